@@ -1,0 +1,191 @@
+; create_cap_triangles_sse2.asm: CreateCapTriangles, the faithful x86-64
+; port of appendix F.
+;
+; Computes: for each triangle j with facing[j] == 0 and doubled vertex
+;   numbers i0, i1, i2: the near cap (i2, i1, i0) and the far cap
+;   (i0+1, i1+1, i2+1), exactly section 7's C. Returns the number of indices.
+; Ports:    J.M.P. van Waveren, "Shadow Volume Construction" (Id Software,
+;           2005), appendix F, "SSE Optimized Construction of Shadow Volume
+;           Cap Triangles". Same instructions, the same four-triangle unroll
+;           (three movdqa for twelve indices) and one-triangle tail, the
+;           same output-pointer trick.
+;
+; The tricks:
+;   - paddd x, x doubles four vertex numbers at once; pshufd / shufps lay
+;     them out as (i2, i1, i0, i0) and (i1, i2, ...); pxor with the constants
+;     c0 = (0,0,0,1) and c1 = (1,1,0,0) adds the +1 of the far cap (the
+;     numbers are even, so ^1 = +1). Triangle 1 of each four straddles two
+;     loads: shufps gathers (i0, i0, i2, i1) and c2 = (0,1,0,0) fixes it up,
+;     stored high half first.
+;   - No branch per triangle: all six indices are always stored and the
+;     output pointer (kept divided by 8, as in appendix E) advances by
+;     (facing - 1) & 3 = 3 eight-byte units when facing is 0, else 0. The
+;     pointer alternates between rbx and rcx.
+;
+; int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
+;                                        const int *indices, int numIndices)
+;
+; Register map (listing -> port):
+;   eax  -(triangles left) (+4 inside loop4)    -> rax (64-bit)
+;   edx  3 * eax: index offset into indices     -> rdx
+;   ebx  output pointer / 8, alternating with ecx -> rbx (pushed), rcx
+;   esi  facing + numTriangles                  -> rsi
+;   edi  indices + numIndices                   -> rdi
+;   r8   shadowIndices, kept for the return value; r9 numIndices / 3 (the
+;        listing's C `int num = numIndices / 3`)
+;   xmm6 c0, xmm7 c1, xmm5 c2 (SIMD_DW_capTris_c0..c2)
+;
+; Contracts: indices 16-byte aligned (movdqa); numIndices a multiple of 3
+;   (the end pointer is indices + numIndices but the walk counts whole
+;   triangles, so anything else misaligns every load); vertex numbers in
+;   [0, 2^30) (doubled in 32 bits); facing bytes 0 or 1 ((f - 1) & 3 is 3
+;   only for 0 and 0 only for 1); shadowIndices 8-byte aligned, room for
+;   2 * numIndices ints (6 written per triangle). numIndices >= 0.
+;
+; Errata fixed (docs/ERRATA.md): `padd` -> paddd; for numIndices == 0 the
+;   listing skips `shr ebx, 3` and returns garbage; the tail loop's
+;   `movdqu xmm0, [edi+edx*4]` reads 16 bytes for a 12-byte triangle, 4
+;   past the end of indices on the last one (a fault when the array ends at
+;   a page boundary): the port loads 8 + 4 bytes; the return statement names
+;   `shadowIndexes` and casts a pointer to int.
+;
+; Measured cost: see `shadowvol bench --routine create_cap_triangles`.
+;
+; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
+; Port: Copyright (C) 2026 the shadowvol authors.
+; This code is free software; you can redistribute it and/or modify it under
+; the terms of the GNU Lesser General Public License as published by the Free
+; Software Foundation; either version 2.1 of the License, or (at your option)
+; any later version.
+
+%include "sv_abi.inc"
+
+RODATA
+SIMD_DW_capTris_c0: dd 0, 0, 0, 1
+SIMD_DW_capTris_c1: dd 1, 1, 0, 0
+SIMD_DW_capTris_c2: dd 0, 1, 0, 0
+
+FUNCTION sv_create_cap_triangles_sse2_paper
+        push    rbx
+        movsxd  rax, arg4d              ; numIndices
+        mov     rbx, arg1q              ; shadowIndices
+        mov     r8, arg1q
+        ; rsi = facing already
+        mov     rdi, arg3q              ; indices
+        ; num = numIndices / 3, rounded toward zero as C does
+        imul    r9, rax, 0x55555556
+        mov     rcx, r9
+        shr     rcx, 63
+        sar     r9, 32
+        add     r9d, ecx
+        shr     rbx, 3                  ; moved above the early exit (erratum F-2)
+        shl     rax, 2
+        jz      .done
+        add     rdi, rax
+        movsxd  rax, r9d                ; mov eax, num
+        add     rsi, rax
+        neg     rax
+
+        movaps  xmm6, [SIMD_DW_capTris_c0]
+        movaps  xmm7, [SIMD_DW_capTris_c1]
+        movaps  xmm5, [SIMD_DW_capTris_c2]
+
+        add     rax, 4
+        lea     rdx, [rax*2+rax]
+        jg      .run1
+
+.loop4:
+        movdqa  xmm0, [rdi+rdx*4-4*3*4+0]            ; xmm0 = 0, 1, 2, 3
+        paddd   xmm0, xmm0                           ; listing: padd (erratum F-1)
+        pshufd  xmm1, xmm0, SHUFFLE_D(2, 1, 0, 0)    ; xmm1 = 2, 1, 0, 0
+        movzx   ecx, byte [rsi+rax-4]
+        pshufd  xmm2, xmm0, SHUFFLE_D(1, 2, 1, 2)    ; xmm2 = 1, 2, 1, 2
+        sub     ecx, 1
+        pxor    xmm1, xmm6
+        and     ecx, 3
+        movlps  qword [rbx*8+0*4], xmm1
+        add     rcx, rbx
+        movhps  qword [rbx*8+2*4], xmm1
+        pxor    xmm2, xmm7
+        movlps  qword [rbx*8+4*4], xmm2
+
+        movdqa  xmm3, [rdi+rdx*4-3*3*4+4]            ; xmm3 = 4, 5, 6, 7
+        paddd   xmm3, xmm3
+        shufps  xmm0, xmm3, SHUFFLE_D(3, 3, 1, 0)    ; xmm0 = 3, 3, 5, 4
+        movzx   ebx, byte [rsi+rax-3]
+        movdqa  xmm2, xmm3                           ; xmm2 = 4, 5, 6, 7
+        sub     ebx, 1
+        pxor    xmm0, xmm5
+        and     ebx, 3
+        movhps  qword [rcx*8+0*4], xmm0
+        add     rbx, rcx
+        movlps  qword [rcx*8+2*4], xmm0
+        pxor    xmm2, xmm7
+        movlps  qword [rcx*8+4*4], xmm2
+
+        movdqa  xmm0, [rdi+rdx*4-1*3*4-4]            ; xmm0 = 8, 9, 10, 11
+        paddd   xmm0, xmm0
+        shufps  xmm3, xmm0, SHUFFLE_D(2, 3, 0, 1)    ; xmm3 = 6, 7, 8, 9
+        pshufd  xmm1, xmm3, SHUFFLE_D(2, 1, 0, 0)    ; xmm1 = 8, 7, 6, 6
+        movzx   ecx, byte [rsi+rax-2]
+        pshufd  xmm2, xmm3, SHUFFLE_D(1, 2, 1, 2)    ; xmm2 = 7, 8, 7, 8
+        sub     ecx, 1
+        pxor    xmm1, xmm6
+        and     ecx, 3
+        movlps  qword [rbx*8+0*4], xmm1
+        add     rcx, rbx
+        movhps  qword [rbx*8+2*4], xmm1
+        pxor    xmm2, xmm7
+        movlps  qword [rbx*8+4*4], xmm2
+
+        pshufd  xmm1, xmm0, SHUFFLE_D(3, 2, 1, 1)    ; xmm1 = 11, 10, 9, 9
+        movzx   ebx, byte [rsi+rax-1]
+        pshufd  xmm2, xmm0, SHUFFLE_D(2, 3, 2, 3)    ; xmm2 = 10, 11, 10, 11
+        sub     ebx, 1
+        pxor    xmm1, xmm6
+        and     ebx, 3
+        movlps  qword [rcx*8+0*4], xmm1
+        add     rbx, rcx
+        movhps  qword [rcx*8+2*4], xmm1
+        pxor    xmm2, xmm7
+        movlps  qword [rcx*8+4*4], xmm2
+
+        add     rdx, 3*4
+        add     rax, 4
+        jle     .loop4
+
+.run1:
+        sub     rax, 4
+        jge     .done
+
+.loop1:
+        lea     rdx, [rax*2+rax]
+        ; listing: movdqu xmm0, [edi+edx*4+0], 16 bytes for a 12-byte
+        ; triangle (erratum F-3). Lane 3 is never used, so load 8 + 4.
+        movq    xmm0, qword [rdi+rdx*4+0]
+        movd    xmm1, dword [rdi+rdx*4+8]
+        punpcklqdq xmm0, xmm1
+        paddd   xmm0, xmm0
+        pshufd  xmm1, xmm0, SHUFFLE_D(2, 1, 0, 0)
+        pshufd  xmm2, xmm0, SHUFFLE_D(1, 2, 1, 2)
+        pxor    xmm1, xmm6
+        movlps  qword [rbx*8+0*4], xmm1
+        pxor    xmm2, xmm7
+        movhps  qword [rbx*8+2*4], xmm1
+        movzx   ecx, byte [rsi+rax]
+        movlps  qword [rbx*8+4*4], xmm2
+        sub     ecx, 1
+        and     ecx, 3
+        add     rbx, rcx
+
+        add     rax, 1
+        jl      .loop1
+
+.done:
+        shl     rbx, 3
+        mov     rax, rbx                ; return (end - shadowIndices) / 4
+        sub     rax, r8
+        sar     rax, 2
+        pop     rbx
+        ret
+ENDFUNCTION

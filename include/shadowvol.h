@@ -1,0 +1,221 @@
+/*
+ * shadowvol: CPU shadow-volume construction after J.M.P. van Waveren,
+ * "Shadow Volume Construction", Id Software, 2005.
+ *
+ * Public C API (usable from C and C++). Every routine exists in several
+ * variants (the paper's C, the branch-free C the text derives, the faithful
+ * SSE2 port of the listing, ...) that compute exactly the same result on
+ * in-contract input. The contracts are written next to each signature; the
+ * sv_check_* functions test them, and the *_checked entry points refuse
+ * out-of-contract input with a negative SV_E_* code instead of running.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SHADOWVOL_H
+#define SHADOWVOL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- The paper's types (section 3, appendices A and B) ----------------- */
+
+/* A potential silhouette edge. Convention (paper, section 3): the edge
+ * v1 -> v2 winds counter-clockwise in triangle p1 and clockwise in p2.
+ * v1 and v2 are vertex numbers MULTIPLIED BY TWO: they address the even
+ * (x,y,z,1) vertices of the double-length shadow vertex buffer; v + 1 is the
+ * extruded (x,y,z,0) copy. An edge used by one triangle only ("dangling")
+ * has p2 = numTriangles, whose facing byte is always 1. */
+typedef struct SilEdge {
+    int p1, p2; /* triangles (planes) sharing the edge */
+    int v1, v2; /* doubled vertex numbers: even, in [0, 2^31 - 2] */
+} SilEdge;
+
+typedef struct Plane {
+    float a, b, c, d; /* a*x + b*y + c*z + d = 0 */
+} Plane;
+
+typedef struct Vec4 {
+    float x, y, z, w; /* w = 1: point light origin; w = 0: direction */
+} Vec4;
+
+/* ---- Routine signatures ------------------------------------------------- */
+
+/* CountFacing (section 4, appendix C): number of facing bytes that are set.
+ *   facing       numTriangles bytes, each exactly 0 or 1.
+ *                sse2_paper: 16-byte aligned (movdqa / paddusb m128).
+ *   numTriangles >= 0 (a negative count returns 0 and reads nothing).
+ *   Reads facing[0 .. numTriangles-1] only; writes nothing. */
+typedef int (*sv_count_facing_fn)(const uint8_t *facing, int numTriangles);
+
+/* CountFacingCull (section 5, appendix D): for every triangle whose three
+ * vertices share a set cull bit (outside one light-volume plane), set its
+ * facing byte to 1; return the number of facing bytes set afterwards.
+ *   facing       numTriangles bytes, each 0 or 1; modified in place.
+ *   indices      3 * numTriangles vertex numbers (not doubled), each a valid
+ *                index into cullBits. No alignment needed.
+ *   cullBits     one byte per vertex.
+ *                sse2_paper limit (faithful, see docs/ERRATA.md): in its
+ *                four-triangle loop the AND of the cull bytes is compared
+ *                SIGNED with pcmpgtb, so a triangle whose only shared cull
+ *                bit is bit 7 is not culled there. Use bits 0..6 only
+ *                (six light planes use bits 0..5).
+ *   numTriangles >= 0 (negative returns 0, touches nothing). */
+typedef int (*sv_count_facing_cull_fn)(uint8_t *facing, int numTriangles,
+                                       const int *indices, const uint8_t *cullBits);
+
+/* CreateSilTriangles (section 6, appendix E): two triangles (6 indices) per
+ * edge whose two facing bytes differ; returns the number of indices written
+ * (a multiple of 6).
+ *   shadowIndices  room for 6 * numSilEdges ints. Branch-free variants
+ *                  write 6 indices for EVERY edge, at the current output
+ *                  position, advancing only for silhouette edges: so they
+ *                  may write up to 6 ints past the returned count, never
+ *                  past 6 * numSilEdges.
+ *                  sse2_paper: 8-byte aligned (the listing keeps the output
+ *                  pointer divided by 8 and addresses [reg*8]).
+ *   facing         indexed by p1 and p2: each byte 0 or 1, so it needs
+ *                  numTriangles + 1 bytes with facing[numTriangles] = 1.
+ *   silEdges       numSilEdges edges, 0 <= p1, p2 <= numTriangles, v1 and
+ *                  v2 even (the xor-by-one trick relies on it).
+ *   numSilEdges    >= 0 (negative returns 0 and writes nothing). */
+typedef int (*sv_create_sil_triangles_fn)(int *shadowIndices, const uint8_t *facing,
+                                          const SilEdge *silEdges, int numSilEdges);
+
+/* CreateCapTriangles (section 7, appendix F): for every triangle whose
+ * facing byte is 0, a near cap triangle (i2, i1, i0) and a far cap triangle
+ * (i0+1, i1+1, i2+1) with doubled vertex numbers; returns the number of
+ * indices written (a multiple of 6).
+ *   shadowIndices  room for 2 * numIndices ints (6 per triangle). Branch-
+ *                  free variants write 6 ints for every triangle, so up to 6
+ *                  past the returned count, never past 2 * numIndices.
+ *                  sse2_paper: 8-byte aligned.
+ *   facing         numIndices / 3 bytes, each 0 or 1.
+ *   indices        numIndices vertex numbers in [0, 2^30) (they are doubled).
+ *                  sse2_paper: 16-byte aligned (movdqa).
+ *   numIndices     a multiple of 3, >= 0. */
+typedef int (*sv_create_cap_triangles_fn)(int *shadowIndices, const uint8_t *facing,
+                                          const int *indices, int numIndices);
+
+/* ---- Variants ----------------------------------------------------------- */
+
+enum {
+    SV_ISA_NONE = 0,      /* portable C */
+    SV_ISA_SSE2 = 1u << 0 /* baseline of every x86-64 CPU */
+};
+
+/* One named set of the four kernels. c_ref: the paper's C; c_branchless:
+ * the branch-free C of sections 4-7; sse2_paper: the faithful NASM ports of
+ * appendices C-F. */
+typedef struct sv_variant {
+    const char *name;
+    unsigned isa; /* SV_ISA_* bits the CPU must have */
+    sv_count_facing_fn count_facing;
+    sv_count_facing_cull_fn count_facing_cull;
+    sv_create_sil_triangles_fn create_sil_triangles;
+    sv_create_cap_triangles_fn create_cap_triangles;
+    /* Alignment the variant needs, in bytes (1 = none). */
+    unsigned align_facing;        /* CountFacing's facing array */
+    unsigned align_indices;       /* CreateCapTriangles' indices */
+    unsigned align_shadow_indices; /* output of Sil/Cap triangles */
+} sv_variant;
+
+/* All variants compiled in, the reference first. *count receives their
+ * number. Variants whose ISA the CPU lacks are included: check isa against
+ * sv_cpu_isa() before calling them. */
+const sv_variant *sv_variants(int *count);
+/* The variant called NAME, or NULL. */
+const sv_variant *sv_variant_by_name(const char *name);
+/* SV_ISA_* bits of this CPU. */
+unsigned sv_cpu_isa(void);
+
+/* ---- CreateShadowVolume (section 3) --------------------------------------
+ * Builds the index list of the shadow volume: silhouette quads first, then
+ * near and far caps, with the kernels of VARIANT. If cullBits is not NULL,
+ * triangles outside the light volume are first made facing (so facing is
+ * modified). Returns the number of indices, 0 when no triangle casts.
+ *   shadowIndices  room for sv_shadow_volume_capacity(numIndices,
+ *                  numSilEdges) ints; aligned as the variant needs.
+ *   indices        numIndices (multiple of 3) vertex numbers, aligned as
+ *                  the variant needs; facing: numIndices / 3 + 1 bytes of
+ *                  0 or 1, the last one 1, aligned as the variant needs. */
+int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices,
+                            const int *indices, int numIndices,
+                            const SilEdge *silEdges, int numSilEdges,
+                            uint8_t *facing, const uint8_t *cullBits);
+
+/* Ints of output a shadow volume may need: 6 per SilEdge + 6 per triangle.
+ * Returns 0 for negative counts, SIZE_MAX on overflow. */
+size_t sv_shadow_volume_capacity(int numIndices, int numSilEdges);
+
+/* ---- The variants by name (for users who link one directly) ------------- */
+
+int sv_count_facing_c_ref(const uint8_t *facing, int numTriangles);
+int sv_count_facing_c_branchless(const uint8_t *facing, int numTriangles);
+int sv_count_facing_sse2_paper(const uint8_t *facing, int numTriangles);
+
+int sv_count_facing_cull_c_ref(uint8_t *facing, int numTriangles,
+                               const int *indices, const uint8_t *cullBits);
+int sv_count_facing_cull_c_branchless(uint8_t *facing, int numTriangles,
+                                      const int *indices, const uint8_t *cullBits);
+int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles,
+                                    const int *indices, const uint8_t *cullBits);
+
+int sv_create_sil_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
+                                  const SilEdge *silEdges, int numSilEdges);
+int sv_create_sil_triangles_c_branchless(int *shadowIndices, const uint8_t *facing,
+                                         const SilEdge *silEdges, int numSilEdges);
+int sv_create_sil_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
+                                       const SilEdge *silEdges, int numSilEdges);
+
+int sv_create_cap_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
+                                  const int *indices, int numIndices);
+int sv_create_cap_triangles_c_branchless(int *shadowIndices, const uint8_t *facing,
+                                         const int *indices, int numIndices);
+int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
+                                       const int *indices, int numIndices);
+
+/* ---- Contracts -----------------------------------------------------------
+ * Each sv_check_* returns SV_OK or the first violated contract (SV_E_*), for
+ * the named variant (its alignment needs) and the given buffers. The
+ * *_checked entry points run the check, then the kernel; they return the
+ * kernel's result or the negative SV_E_* code, and never write outside
+ * [shadowIndices, shadowIndices + capacity). */
+enum sv_status {
+    SV_OK = 0,
+    SV_E_NULL = -1,            /* a required pointer is NULL */
+    SV_E_COUNT = -2,           /* negative count, or numIndices % 3 != 0 */
+    SV_E_ALIGNMENT = -3,       /* an array is less aligned than the variant needs */
+    SV_E_FACING_NOT_BOOL = -4, /* a facing byte other than 0 or 1 */
+    SV_E_INDEX_RANGE = -5,     /* a triangle/vertex number outside its array */
+    SV_E_ODD_VERTEX = -6,      /* a SilEdge vertex number is odd */
+    SV_E_CAPACITY = -7,        /* output room below the documented bound */
+    SV_E_OVERFLOW = -8,        /* the output size does not fit in an int */
+    SV_E_CPU = -9              /* the CPU lacks the variant's instruction set */
+};
+const char *sv_status_string(int status);
+
+int sv_count_facing_checked(const sv_variant *v, const uint8_t *facing, int numTriangles);
+int sv_count_facing_cull_checked(const sv_variant *v, uint8_t *facing, int numTriangles,
+                                 const int *indices, const uint8_t *cullBits, int numVerts);
+int sv_create_sil_triangles_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
+                                    const uint8_t *facing, int numTriangles,
+                                    const SilEdge *silEdges, int numSilEdges);
+int sv_create_cap_triangles_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
+                                    const uint8_t *facing, const int *indices, int numIndices,
+                                    int numVerts);
+/* numVerts: vertices of the mesh (indices < numVerts, SilEdge v < 2 *
+ * numVerts); facing: numIndices / 3 + 1 bytes. */
+int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
+                                    const int *indices, int numIndices, int numVerts,
+                                    const SilEdge *silEdges, int numSilEdges,
+                                    uint8_t *facing, const uint8_t *cullBits);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SHADOWVOL_H */

@@ -1,0 +1,42 @@
+/*
+ * The table of variants: every implementation of the four kernels, by name,
+ * so tests and benchmarks iterate over all of them (checkasm-style).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <string.h>
+
+#include "shadowvol.h"
+
+static const sv_variant variants[] = {
+    {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref, sv_count_facing_cull_c_ref,
+     sv_create_sil_triangles_c_ref, sv_create_cap_triangles_c_ref, 1, 1, 1},
+    {"c_branchless", SV_ISA_NONE, sv_count_facing_c_branchless,
+     sv_count_facing_cull_c_branchless, sv_create_sil_triangles_c_branchless,
+     sv_create_cap_triangles_c_branchless, 1, 1, 1},
+    /* Alignments from the listings: movdqa on facing (App. C) and on
+     * indices (App. F); the output pointer kept as ptr / 8 (App. E, F). */
+    {"sse2_paper", SV_ISA_SSE2, sv_count_facing_sse2_paper,
+     sv_count_facing_cull_sse2_paper, sv_create_sil_triangles_sse2_paper,
+     sv_create_cap_triangles_sse2_paper, 16, 16, 8},
+};
+
+const sv_variant *sv_variants(int *count) {
+    if (count) {
+        *count = (int)(sizeof variants / sizeof variants[0]);
+    }
+    return variants;
+}
+
+const sv_variant *sv_variant_by_name(const char *name) {
+    size_t i;
+    if (!name) {
+        return NULL;
+    }
+    for (i = 0; i < sizeof variants / sizeof variants[0]; i++) {
+        if (strcmp(variants[i].name, name) == 0) {
+            return &variants[i];
+        }
+    }
+    return NULL;
+}
