@@ -1,0 +1,149 @@
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include "test_support.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+
+namespace svtest {
+
+static uint64_t splitmix64(uint64_t &x) {
+    uint64_t z = (x += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static uint64_t pick_seed() {
+    const char *env = std::getenv("SV_TEST_SEED");
+    if (!env || !*env) {
+        return 20050408; // the paper's date
+    }
+    if (std::string(env) == "random") {
+        std::random_device rd;
+        return ((uint64_t)rd() << 32) ^ rd();
+    }
+    char *end = nullptr;
+    uint64_t s = std::strtoull(env, &end, 0);
+    if (*end) {
+        std::fprintf(stderr, "SV_TEST_SEED=%s is neither a number nor 'random'\n", env);
+        std::exit(2);
+    }
+    return s;
+}
+
+uint64_t seed() {
+    static const uint64_t s = [] {
+        uint64_t v = pick_seed();
+        std::printf("shadowvol tests: seed %llu (reproduce with SV_TEST_SEED=%llu)\n",
+                    (unsigned long long)v, (unsigned long long)v);
+        return v;
+    }();
+    return s;
+}
+
+std::string seed_trace() {
+    return "seed " + std::to_string(seed()) + " (reproduce with SV_TEST_SEED=" +
+           std::to_string(seed()) + ")";
+}
+
+Rng::Rng(uint64_t s) {
+    for (auto &w : s_) w = splitmix64(s);
+}
+
+static inline uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+uint64_t Rng::next() {
+    uint64_t r = rotl(s_[1] * 5, 7) * 9;
+    uint64_t t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = rotl(s_[3], 45);
+    return r;
+}
+
+uint32_t Rng::below(uint32_t n) { return (uint32_t)(((next() >> 32) * (uint64_t)n) >> 32); }
+
+double Rng::unit() { return (double)(next() >> 11) * (1.0 / 9007199254740992.0); }
+
+Rng rng_for(const char *test_name) {
+    uint64_t h = 1469598103934665603ull; // FNV-1a of the name
+    for (const char *p = test_name; *p; p++) h = (h ^ (uint8_t)*p) * 1099511628211ull;
+    return Rng(seed() ^ h);
+}
+
+GuardedBuffer::GuardedBuffer(size_t bytes, size_t offset)
+    : storage_(bytes + offset + 2 * kGuard + 64, kPattern), bytes_(bytes) {
+    uintptr_t base = (uintptr_t)storage_.data() + kGuard;
+    base = (base + 63) & ~(uintptr_t)63;
+    data_ = (uint8_t *)base + offset;
+    std::memset(data_, 0, bytes_);
+}
+
+bool GuardedBuffer::guards_intact() const {
+    const uint8_t *lo = storage_.data();
+    const uint8_t *hi = storage_.data() + storage_.size();
+    for (const uint8_t *p = lo; p < data_; p++)
+        if (*p != kPattern) return false;
+    for (const uint8_t *p = data_ + bytes_; p < hi; p++)
+        if (*p != kPattern) return false;
+    return true;
+}
+
+void abi_scramble(Rng &rng) {
+    for (auto &c : sv_abi_canary) c = rng.next();
+    for (size_t i = 0; i < sizeof sv_abi_xmm_garbage; i += 8) {
+        uint64_t w = rng.next();
+        std::memcpy(&sv_abi_xmm_garbage[i], &w, 8);
+    }
+}
+
+std::string abi_failures(uint32_t mask) {
+    static const char *names[] = {"rbx", "rbp", "r12", "r13", "r14", "r15",
+                                  "rsp", "direction flag"};
+    std::string s;
+    for (int i = 0; i < 8; i++) {
+        if (mask & (1u << i)) {
+            if (!s.empty()) s += ", ";
+            s += names[i];
+        }
+    }
+    return s;
+}
+
+uint64_t int_arg(int v, Rng &rng) {
+    uint32_t hi = (uint32_t)rng.next();
+    uint32_t sign_ext = v < 0 ? 0xFFFFFFFFu : 0u;
+    if (hi == sign_ext) hi ^= 0xDEADBEEFu;
+    return ((uint64_t)hi << 32) | (uint32_t)v;
+}
+
+int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3, uint64_t a4,
+                 uint64_t a5) {
+    abi_scramble(rng);
+    sv_abi_failed = 0;
+    uint64_t r = sv_abi_checked_call(fn, a1, a2, a3, a4, a5);
+    EXPECT_EQ(sv_abi_failed, 0u) << "ABI broken: " << abi_failures(sv_abi_failed);
+    return (int)(uint32_t)r;
+}
+
+std::vector<const sv_variant *> runnable_variants() {
+    int n = 0;
+    const sv_variant *all = sv_variants(&n);
+    std::vector<const sv_variant *> out;
+    for (int i = 0; i < n; i++) {
+        if ((all[i].isa & sv_cpu_isa()) == all[i].isa) {
+            out.push_back(&all[i]);
+        } else {
+            std::printf("[  SKIPPED ] variant %s: this CPU lacks its instruction set\n",
+                        all[i].name);
+        }
+    }
+    return out;
+}
+
+} // namespace svtest

@@ -1,0 +1,95 @@
+// Shared test machinery: the seed, the random generator, guarded buffers,
+// and calls through the ABI-checking trampoline.
+//
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "shadowvol.h"
+
+namespace svtest {
+
+// The run's seed: SV_TEST_SEED=<number> reproduces a run, SV_TEST_SEED=random
+// draws a fresh one; unset means the fixed default. Printed at start and in
+// the trace of every failure.
+uint64_t seed();
+
+// xoshiro256** seeded through splitmix64: fast, and the same sequence on
+// every platform for a given seed.
+class Rng {
+public:
+    explicit Rng(uint64_t s);
+    uint64_t next();
+    uint32_t below(uint32_t n); // uniform in [0, n), n > 0
+    double unit();              // uniform in [0, 1)
+    bool chance(double p) { return unit() < p; }
+
+private:
+    uint64_t s_[4];
+};
+
+// A generator for one test: the run's seed mixed with the test's name, so
+// tests do not share a stream and each is reproducible on its own.
+Rng rng_for(const char *test_name);
+
+// Trace line naming the seed; use as SCOPED_TRACE(seed_trace()).
+std::string seed_trace();
+
+// A byte array at a chosen offset from a 64-byte boundary, with guard bytes
+// before and after that must survive every call: a write out of bounds
+// (below or above) is caught by guards_intact().
+class GuardedBuffer {
+public:
+    static constexpr size_t kGuard = 256;
+    static constexpr uint8_t kPattern = 0xA5;
+
+    GuardedBuffer(size_t bytes, size_t offset);
+    uint8_t *data() { return data_; }
+    template <class T> T *as() { return reinterpret_cast<T *>(data_); }
+    size_t size() const { return bytes_; }
+    bool guards_intact() const;
+    void fill(uint8_t v) { std::memset(data_, v, bytes_); }
+
+private:
+    std::vector<uint8_t> storage_;
+    uint8_t *data_;
+    size_t bytes_;
+};
+
+// ---- ABI-checked calls ---------------------------------------------------
+
+extern "C" {
+uint64_t sv_abi_checked_call(const void *fn, uint64_t a1, uint64_t a2, uint64_t a3,
+                             uint64_t a4, uint64_t a5);
+extern uint64_t sv_abi_canary[6];
+extern uint8_t sv_abi_xmm_garbage[256];
+extern uint32_t sv_abi_failed;
+}
+
+// Fresh random callee-saved canaries and xmm garbage for the next call.
+void abi_scramble(Rng &rng);
+// Names of the broken promises in a sv_abi_failed bit mask.
+std::string abi_failures(uint32_t mask);
+
+// A 32-bit int argument as the register it travels in, with a garbage upper
+// half that is never the sign extension of the low half.
+uint64_t int_arg(int v, Rng &rng);
+inline uint64_t ptr_arg(const void *p) { return (uint64_t)(uintptr_t)p; }
+
+// Calls fn through the trampoline with scrambled registers; the result's low
+// 32 bits are the int return value. Fails the current test if the routine
+// broke the ABI.
+int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3 = 0,
+                 uint64_t a4 = 0, uint64_t a5 = 0);
+
+// The variants this CPU runs; the others are reported as skipped by name.
+std::vector<const sv_variant *> runnable_variants();
+
+} // namespace svtest
