@@ -1,0 +1,159 @@
+// The contracts of the header, enforced: each *_checked entry point refuses
+// each kind of out-of-contract input with its SV_E_* code (and writes
+// nothing), and accepts input exactly at every bound.
+//
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include "test_support.h"
+
+#include <climits>
+#include <set>
+
+using namespace svtest;
+
+namespace {
+const sv_variant *paper() { return sv_variant_by_name("sse2_paper"); }
+const sv_variant *ref() { return sv_variant_by_name("c_ref"); }
+} // namespace
+
+TEST(Contracts, VariantTableNamesAreUniqueAndComplete) {
+    int n = 0;
+    const sv_variant *all = sv_variants(&n);
+    ASSERT_GE(n, 3);
+    EXPECT_STREQ(all[0].name, "c_ref") << "the reference comes first";
+    std::set<std::string> names;
+    for (int i = 0; i < n; i++) {
+        EXPECT_TRUE(names.insert(all[i].name).second) << all[i].name;
+        EXPECT_EQ(sv_variant_by_name(all[i].name), &all[i]);
+        EXPECT_TRUE(all[i].count_facing && all[i].count_facing_cull &&
+                    all[i].create_sil_triangles && all[i].create_cap_triangles)
+            << all[i].name;
+    }
+    EXPECT_EQ(sv_variant_by_name("no_such_variant"), nullptr);
+    EXPECT_EQ(sv_variant_by_name(nullptr), nullptr);
+}
+
+TEST(Contracts, StatusStringsAreDistinct) {
+    std::set<std::string> seen;
+    for (int s = SV_OK; s >= SV_E_CPU; s--) {
+        EXPECT_TRUE(seen.insert(sv_status_string(s)).second) << s;
+    }
+}
+
+TEST(Contracts, CountFacingRefusesUnalignedNegativeAndNonBoolean) {
+    alignas(16) uint8_t facing[33] = {0};
+    facing[3] = 1;
+    EXPECT_EQ(sv_count_facing_checked(paper(), facing, 32), 1);
+    EXPECT_EQ(sv_count_facing_checked(paper(), facing + 1, 16), SV_E_ALIGNMENT);
+    EXPECT_EQ(sv_count_facing_checked(ref(), facing + 1, 16), 1) << "c_ref needs no alignment";
+    EXPECT_EQ(sv_count_facing_checked(paper(), facing, -1), SV_E_COUNT);
+    EXPECT_EQ(sv_count_facing_checked(paper(), nullptr, 4), SV_E_NULL);
+    EXPECT_EQ(sv_count_facing_checked(paper(), nullptr, 0), 0);
+    EXPECT_EQ(sv_count_facing_checked(nullptr, facing, 4), SV_E_NULL);
+    facing[7] = 2;
+    EXPECT_EQ(sv_count_facing_checked(paper(), facing, 32), SV_E_FACING_NOT_BOOL);
+}
+
+TEST(Contracts, CountFacingCullRefusesIndicesOutOfRange) {
+    uint8_t facing[2] = {0, 0};
+    int indices[6] = {0, 1, 2, 1, 2, 3};
+    uint8_t cull[4] = {1, 1, 1, 0};
+    uint8_t before[2] = {0, 0};
+    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, 2, indices, cull, 3), SV_E_INDEX_RANGE);
+    EXPECT_EQ(0, memcmp(facing, before, 2)) << "a refused call must not modify facing";
+    indices[0] = -1;
+    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, 2, indices, cull, 4), SV_E_INDEX_RANGE);
+    indices[0] = 0;
+    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, 2, indices, cull, 4), 1);
+    EXPECT_EQ(facing[0], 1);
+    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, -2, indices, cull, 4), SV_E_COUNT);
+    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, INT_MAX, indices, cull, 4), SV_E_COUNT)
+        << "3 * numTriangles would overflow int";
+}
+
+TEST(Contracts, SilTrianglesCapacityIsExactlySixPerEdge) {
+    Rng rng = rng_for("Contracts.SilCapacity");
+    // every edge a silhouette edge: the output fills the bound exactly
+    const int n = 37;
+    std::vector<uint8_t> facing(n + 2);
+    std::vector<SilEdge> edges(n);
+    for (int i = 0; i <= n; i++) facing[(size_t)i] = (uint8_t)(i & 1);
+    facing[(size_t)n + 1] = 1;
+    for (int i = 0; i < n; i++) edges[(size_t)i] = {i, i + 1, 2 * i, 2 * i + 2};
+    for (const sv_variant *v : runnable_variants()) {
+        GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+        EXPECT_EQ(sv_create_sil_triangles_checked(v, out.as<int>(), 6 * n - 1, facing.data(), n + 1,
+                                                  edges.data(), n),
+                  SV_E_CAPACITY)
+            << v->name;
+        EXPECT_EQ(sv_create_sil_triangles_checked(v, out.as<int>(), 6 * n, facing.data(), n + 1,
+                                                  edges.data(), n),
+                  6 * n)
+            << v->name;
+        EXPECT_TRUE(out.guards_intact()) << v->name;
+    }
+    (void)rng;
+}
+
+TEST(Contracts, SilTrianglesRefusesBadEdges) {
+    uint8_t facing[3] = {0, 1, 1};
+    alignas(16) int out[12];
+    SilEdge good = {0, 2, 0, 2};
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &good, 1), 6);
+    SilEdge odd = {0, 2, 1, 2};
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &odd, 1), SV_E_ODD_VERTEX);
+    SilEdge far = {0, 3, 0, 2};
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &far, 1), SV_E_INDEX_RANGE);
+    SilEdge neg = {-1, 1, 0, 2};
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &neg, 1), SV_E_INDEX_RANGE);
+    uint8_t bad_facing[3] = {0, 1, 2};
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, bad_facing, 2, &good, 1),
+              SV_E_FACING_NOT_BOOL);
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &good, -1), SV_E_COUNT);
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &good, INT_MAX / 6 + 1),
+              SV_E_OVERFLOW);
+}
+
+TEST(Contracts, CapTrianglesRefusesPartialTrianglesAndUnalignedIndices) {
+    alignas(16) int indices[16] = {0, 1, 2, 2, 1, 3, 3, 1, 0, 0, 2, 3};
+    uint8_t facing[4] = {0, 0, 1, 0};
+    alignas(16) int out[32];
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 12, 4), 18);
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 13, 4), SV_E_COUNT);
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices + 1, 9, 4),
+              SV_E_ALIGNMENT);
+    EXPECT_EQ(sv_create_cap_triangles_checked(ref(), out, 24, facing, indices + 1, 9, 4), 12);
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 23, facing, indices, 12, 4),
+              SV_E_CAPACITY);
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 12, 3),
+              SV_E_INDEX_RANGE);
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 12, (1 << 30) + 1),
+              SV_E_INDEX_RANGE)
+        << "doubled vertex numbers must fit in an int";
+}
+
+TEST(Contracts, ShadowVolumeCapacityAndOverflow) {
+    EXPECT_EQ(sv_shadow_volume_capacity(0, 0), 0u);
+    EXPECT_EQ(sv_shadow_volume_capacity(3 * 1344, 2016), 6u * 2016 + 6u * 1344);
+    EXPECT_EQ(sv_shadow_volume_capacity(-3, 5), 0u);
+    EXPECT_EQ(sv_shadow_volume_capacity(INT_MAX - 1, INT_MAX),
+              6ull * INT_MAX + 2ull * (INT_MAX - 1));
+    int out[1];
+    int indices[3] = {0, 1, 2};
+    uint8_t facing[2] = {0, 1};
+    SilEdge edge = {0, 1, 0, 2};
+    // 6 * 400M edges does not fit the int the routine returns
+    EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out, SIZE_MAX, indices, 3, 3, &edge,
+                                              400000000, facing, nullptr),
+              SV_E_OVERFLOW);
+    EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out, 11, indices, 3, 3, &edge, 1, facing,
+                                              nullptr),
+              SV_E_CAPACITY);
+    alignas(16) int out12[12];
+    EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out12, 12, indices, 3, 3, &edge, 1, facing,
+                                              nullptr),
+              12);
+    SilEdge beyond = {0, 1, 0, 6}; // vertex 3 of a 3-vertex mesh
+    EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out12, 12, indices, 3, 3, &beyond, 1, facing,
+                                              nullptr),
+              SV_E_INDEX_RANGE);
+}

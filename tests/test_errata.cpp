@@ -1,0 +1,212 @@
+// One test per fixed erratum and per hidden limit of the printed listings
+// (docs/ERRATA.md gives each the same ID). A fix test fails without the fix;
+// a limit test pins the faithful behaviour so a change to it is noticed.
+//
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include "test_support.h"
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+using namespace svtest;
+
+namespace {
+
+const sv_variant &paper() {
+    const sv_variant *v = sv_variant_by_name("sse2_paper");
+    EXPECT_NE(v, nullptr);
+    return *v;
+}
+
+// `bytes` of memory whose last byte is the last byte before an unmapped
+// page: reading one byte further faults.
+class PageEndBuffer {
+public:
+    explicit PageEndBuffer(size_t bytes) {
+        page_ = (size_t)sysconf(_SC_PAGESIZE);
+        size_t pages = (bytes + page_ - 1) / page_ + 1;
+        map_len_ = pages * page_;
+        map_ = (uint8_t *)mmap(nullptr, map_len_, PROT_READ | PROT_WRITE,
+                               MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        EXPECT_NE(map_, MAP_FAILED);
+        EXPECT_EQ(mprotect(map_ + map_len_ - page_, page_, PROT_NONE), 0);
+        data_ = map_ + map_len_ - page_ - bytes;
+    }
+    ~PageEndBuffer() { munmap(map_, map_len_); }
+    uint8_t *data() { return data_; }
+
+private:
+    size_t page_, map_len_;
+    uint8_t *map_, *data_;
+};
+
+} // namespace
+
+// C-2: appendix C jumps to `done` for numTriangles == 0 before anything is
+// stored to its stack array n, and returns n[0]+n[1]+n[2]+n[3] of
+// uninitialised memory. The port zeroes the accumulator first. The
+// trampoline fills every xmm register with fresh garbage on each call.
+TEST(Errata, C2_CountFacingOfZeroTrianglesIsZero) {
+    Rng rng = rng_for("Errata.C2");
+    uint8_t facing[16] __attribute__((aligned(16))) = {1, 1, 1, 1};
+    for (int i = 0; i < 100; i++) {
+        EXPECT_EQ(checked_call(rng, (const void *)paper().count_facing, ptr_arg(facing),
+                               int_arg(0, rng)),
+                  0);
+    }
+}
+
+// D-3: appendix D's `test eax, eax; jz done` skips `pxor xmm5, xmm5`, and
+// `done` stores xmm5 as the result: whatever the caller left there.
+TEST(Errata, D3_CountFacingCullOfZeroTrianglesIsZero) {
+    Rng rng = rng_for("Errata.D3");
+    uint8_t facing[4] = {1, 1, 1, 1}, cull[4] = {1, 1, 1, 1};
+    int indices[3] = {0, 1, 2};
+    for (int i = 0; i < 100; i++) {
+        EXPECT_EQ(checked_call(rng, (const void *)paper().count_facing_cull, ptr_arg(facing),
+                               int_arg(0, rng), ptr_arg(indices), ptr_arg(cull)),
+                  0);
+    }
+}
+
+// E-1 / F-2: with no edges (no indices) appendices E and F jump to `done`
+// before `shr ebx, 3`, where `shl ebx, 3` turns the raw pointer into
+// pointer * 8: the returned count is (7 * pointer) / 4, not 0.
+TEST(Errata, E1_SilTrianglesOfZeroEdgesIsZero) {
+    Rng rng = rng_for("Errata.E1");
+    int out[8] __attribute__((aligned(16)));
+    uint8_t facing[2] = {0, 1};
+    SilEdge edge = {0, 1, 0, 2};
+    EXPECT_EQ(checked_call(rng, (const void *)paper().create_sil_triangles, ptr_arg(out),
+                           ptr_arg(facing), ptr_arg(&edge), int_arg(0, rng)),
+              0);
+}
+
+TEST(Errata, F2_CapTrianglesOfZeroIndicesIsZero) {
+    Rng rng = rng_for("Errata.F2");
+    int out[8] __attribute__((aligned(16)));
+    int indices[4] __attribute__((aligned(16))) = {0, 1, 2, 0};
+    uint8_t facing[1] = {0};
+    EXPECT_EQ(checked_call(rng, (const void *)paper().create_cap_triangles, ptr_arg(out),
+                           ptr_arg(facing), ptr_arg(indices), int_arg(0, rng)),
+              0);
+}
+
+// F-3: appendix F's one-triangle loop loads the triangle with
+// `movdqu xmm0, [edi+edx*4]`: 16 bytes for 12, so the last triangle reads 4
+// bytes past the end of indices. With indices 16-byte aligned (the listing's
+// contract) those 4 bytes always share the aligned 16-byte block of the
+// array's last bytes, so they never cross a page and cannot fault: the read
+// is "only" outside the object (undefined behaviour, flagged by memory
+// checkers). It faults for a call of 1 to 3 triangles (the four-triangle
+// loop and its movdqa never run) whose array ends at an unmapped page. The
+// port loads 8 + 4 bytes and reads nothing past the array in any case.
+TEST(Errata, F3_CapTrianglesTailReadsNothingPastIndices) {
+    Rng rng = rng_for("Errata.F3");
+    for (int tris = 1; tris <= 3; tris++) {
+        const size_t bytes = (size_t)tris * 3 * sizeof(int);
+        PageEndBuffer page(bytes);
+        int *indices = (int *)page.data();
+        ASSERT_EQ((uintptr_t)(indices + 3 * tris) % sysconf(_SC_PAGESIZE), (uintptr_t)0);
+        for (int i = 0; i < 3 * tris; i++) indices[i] = 5 * i + 1;
+        std::vector<uint8_t> facing((size_t)tris, 0);
+        std::vector<int> out((size_t)6 * tris), expected((size_t)6 * tris);
+        int n = checked_call(rng, (const void *)paper().create_cap_triangles,
+                             ptr_arg(out.data()), ptr_arg(facing.data()), ptr_arg(indices),
+                             int_arg(3 * tris, rng));
+        int e = sv_create_cap_triangles_c_ref(expected.data(), facing.data(), indices, 3 * tris);
+        EXPECT_EQ(n, e);
+        EXPECT_EQ(out, expected) << "tris=" << tris;
+    }
+}
+
+// E-2 / F-4: both listings return `(num - (int)shadowIndexes) >> 2`, a
+// pointer cast to int. On x86-64 the output lives above 4 GiB; here it is
+// placed there explicitly and the count must still be right.
+TEST(Errata, E2F4_CountsAreRightForOutputAbove4GiB) {
+    Rng rng = rng_for("Errata.E2F4");
+    const size_t len = 1 << 16;
+    void *hint = (void *)(uintptr_t)0x7e0000000000ull;
+    int *out = (int *)mmap(hint, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+                           -1, 0);
+    ASSERT_NE((void *)out, MAP_FAILED);
+    ASSERT_GT((uintptr_t)out, (uintptr_t)0xFFFFFFFFull);
+    uint8_t facing[5] = {1, 0, 0, 1, 1};
+    SilEdge edges[3] = {{0, 1, 0, 2}, {1, 2, 2, 4}, {2, 3, 4, 6}};
+    EXPECT_EQ(checked_call(rng, (const void *)paper().create_sil_triangles, ptr_arg(out),
+                           ptr_arg(facing), ptr_arg(edges), int_arg(3, rng)),
+              12);
+    alignas(16) int indices[12] = {0, 1, 2, 2, 1, 3, 3, 1, 4, 4, 1, 0};
+    EXPECT_EQ(checked_call(rng, (const void *)paper().create_cap_triangles, ptr_arg(out),
+                           ptr_arg(facing), ptr_arg(indices), int_arg(12, rng)),
+              12);
+    munmap(out, len);
+}
+
+// LIMIT D-5 (kept): appendix D's four-triangle loop tests the AND of the
+// cull bytes with the SIGNED pcmpgtb against zero, so a triangle whose
+// vertices share only bit 7 (c = 0x80) is not culled there, while its
+// one-triangle tail (neg; shr 31) and the C cull it. Triangles 0-3 run in
+// the four-triangle loop, triangle 4 in the tail.
+TEST(Errata, D5_Limit_SignedCompareIgnoresBit7InFourTriangleLoop) {
+    Rng rng = rng_for("Errata.D5");
+    uint8_t cull[3] = {0x80, 0x80, 0x80};
+    int indices[15] = {0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2};
+    uint8_t facing[5] = {0, 0, 0, 0, 0};
+    int n = checked_call(rng, (const void *)paper().count_facing_cull, ptr_arg(facing),
+                         int_arg(5, rng), ptr_arg(indices), ptr_arg(cull));
+    EXPECT_EQ(n, 1);
+    const uint8_t expected_paper[5] = {0, 0, 0, 0, 1};
+    EXPECT_EQ(0, memcmp(facing, expected_paper, 5));
+
+    uint8_t ref_facing[5] = {0, 0, 0, 0, 0};
+    EXPECT_EQ(sv_count_facing_cull_c_ref(ref_facing, 5, indices, cull), 5);
+    // Bits 0..6 behave the same in both: 0x40 is culled everywhere.
+    uint8_t cull40[3] = {0x40, 0xC0, 0x7F};
+    uint8_t facing2[5] = {0, 0, 0, 0, 0};
+    EXPECT_EQ(checked_call(rng, (const void *)paper().count_facing_cull, ptr_arg(facing2),
+                           int_arg(5, rng), ptr_arg(indices), ptr_arg(cull40)),
+              5);
+}
+
+// LIMIT C-3 (kept): facing bytes must be 0 or 1. paddusb saturates each
+// byte lane at 255, so 256 bytes of 0xFF (16 per lane in the 256-byte loop)
+// count as 16 * 255, where the branchless C sums 256 * 255 and the paper's
+// C counts 256 non-zero bytes.
+TEST(Errata, C3_Limit_FacingBytesAboveOneSaturate) {
+    alignas(16) uint8_t facing[256];
+    memset(facing, 0xFF, sizeof facing);
+    EXPECT_EQ(sv_count_facing_sse2_paper(facing, 256), 16 * 255);
+    EXPECT_EQ(sv_count_facing_c_branchless(facing, 256), 256 * 255);
+    EXPECT_EQ(sv_count_facing_c_ref(facing, 256), 256);
+}
+
+// LIMIT E-4 (kept): the xor trick needs even (doubled) vertex numbers. With
+// an odd v the paper's C writes v + 1, the xor variants v - 1. The checked
+// entry point refuses such edges (test_contracts.cpp).
+TEST(Errata, E4_Limit_OddVertexNumbersBreakTheXorTrick) {
+    uint8_t facing[2] = {1, 0};
+    SilEdge edge = {0, 1, 3, 5};
+    alignas(16) int ref[6], fast[6];
+    ASSERT_EQ(sv_create_sil_triangles_c_ref(ref, facing, &edge, 1), 6);
+    ASSERT_EQ(sv_create_sil_triangles_sse2_paper(fast, facing, &edge, 1), 6);
+    EXPECT_EQ(ref[1], 6); // v2 + 1
+    EXPECT_EQ(fast[1], 4); // v2 ^ 1
+}
+
+// LIMIT E-5 / F-5 (kept): the output pointer is kept as pointer / 8, so an
+// output that is only 4-byte aligned is written from 4 bytes BEFORE it.
+// The header's contract asks for 8; the checked entry points refuse less.
+TEST(Errata, E5F5_Limit_OutputBelow8ByteAlignmentWritesBeforeIt) {
+    uint8_t facing[2] = {1, 0};
+    SilEdge edge = {0, 1, 2, 4};
+    GuardedBuffer out(6 * sizeof(int), 4); // 4 mod 8
+    ASSERT_EQ((uintptr_t)out.data() % 8, (uintptr_t)4);
+    int n = sv_create_sil_triangles_sse2_paper(out.as<int>(), facing, &edge, 1);
+    EXPECT_EQ(n, 5); // (24 bytes written from start - 4) / 4: one index short
+    EXPECT_FALSE(out.guards_intact()) << "the 4 bytes before the output were written";
+    GuardedBuffer out2(6 * sizeof(int), 4);
+    EXPECT_EQ(sv_create_sil_triangles_checked(&paper(), out2.as<int>(), 6, facing, 1, &edge, 1),
+              SV_E_ALIGNMENT);
+    EXPECT_TRUE(out2.guards_intact());
+}
