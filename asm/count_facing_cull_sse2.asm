@@ -45,7 +45,12 @@
 ; Errata fixed (docs/ERRATA.md): `padd` -> paddd; `numFaces` / `cull` are
 ;   not the parameters (numTriangles / cullBits); for numTriangles == 0 the
 ;   listing jumps over `pxor xmm5, xmm5` and returns whatever xmm5 held;
-;   `movdqa dword ptr n, xmm5` names a dword for a 16-byte store.
+;   `movdqa dword ptr n, xmm5` names a dword for a 16-byte store; for
+;   numTriangles == INT_MIN the listing's 32-bit `neg eax` overflows and its
+;   loop walks ~2^29 triangles: the port negates in 64 bits and returns 0.
+;   A fix of the D-5 limit would cost nothing: pcmpeqb xmm0, xmm6 / pandn
+;   xmm0, xmm7 in place of pcmpgtb / pand. It is not taken here, to stay the
+;   listing's code (issue 3 asks for the faithful behaviour, pinned).
 ;
 ; Measured cost: see `shadowvol bench --routine count_facing_cull`.
 ;
@@ -63,15 +68,14 @@ SIMD_B_one: times 16 db 1
 
 FUNCTION sv_count_facing_cull_sse2_paper
         push    rbx
+        mov     rbx, arg1q              ; facing (first: rdi becomes cullBits)
         mov     eax, arg2d              ; numTriangles
-        mov     r8, arg1q               ; facing (rdi is needed for cullBits)
         mov     rsi, arg3q              ; indices
         mov     rdi, arg4q              ; cullBits
-        mov     rbx, r8                 ; facing
         pxor    xmm5, xmm5              ; moved above the early exit (erratum D-3)
         test    eax, eax
         jz      .done
-        movsxd  rax, eax                ; 64-bit index from here on
+        movsxd  rax, eax                ; 64-bit index from here on (erratum D-7)
         add     rbx, rax
         neg     rax
 

@@ -25,11 +25,14 @@
 ; Contracts: facing 16-byte aligned (movdqa, and paddusb with a memory
 ;   operand, fault on anything less); facing bytes 0 or 1 (paddusb saturates
 ;   at 255, so larger values are not summed as C would); numTriangles >= 0
-;   (negative returns 0). Reads exactly numTriangles bytes.
+;   (negative returns 0 and reads nothing). Reads exactly numTriangles bytes.
 ;
 ; Errata fixed (docs/ERRATA.md): `padd` is no instruction (paddd); for
 ;   numTriangles == 0 the listing jumps over every store to `n` and returns
-;   the sum of uninitialised stack: the port returns 0.
+;   the sum of uninitialised stack: the port returns 0; for numTriangles in
+;   [INT_MIN, INT_MIN + 255] the listing's `sub eax, 256` / `add eax, 240`
+;   overflow and its loops read ~2^28 bytes: the port exits on <= 0;
+;   `movzx ecx, [edi]` has no operand size (byte).
 ;
 ; Measured cost: see `shadowvol bench --routine count_facing` (the README
 ;   keeps the table from the reference machine).
@@ -48,7 +51,7 @@ FUNCTION sv_count_facing_sse2_paper
         ; edi = facing: already in rdi
         pxor    xmm6, xmm6              ; moved above the early exit (erratum C-2)
         test    eax, eax
-        jz      .done
+        jle     .done                   ; listing: jz (erratum C-7)
 
         pxor    xmm7, xmm7
 

@@ -45,8 +45,10 @@
 ; Errata fixed (docs/ERRATA.md): `padd` -> paddd; for numIndices == 0 the
 ;   listing skips `shr ebx, 3` and returns garbage; the tail loop's
 ;   `movdqu xmm0, [edi+edx*4]` reads 16 bytes for a 12-byte triangle, 4
-;   past the end of indices on the last one (a fault when the array ends at
-;   a page boundary): the port loads 8 + 4 bytes; the return statement names
+;   past the end of indices on the last one (inside the last aligned 16-byte
+;   block when indices is 16-byte aligned, so it cannot fault then, but it
+;   is a read outside the array): the port loads 8 + 4 bytes; the return
+;   statement names
 ;   `shadowIndexes` and casts a pointer to int.
 ;
 ; Measured cost: see `shadowvol bench --routine create_cap_triangles`.

@@ -28,8 +28,9 @@
 ;
 ; Register map (listing -> port):
 ;   eax  negative byte offset from the end of silEdges -> rax (64-bit)
-;   ebx  output pointer / 8, and scratch in odd edges -> rbx (pushed)
-;   edx  output pointer / 8, and scratch in even edges -> rdx
+;   ebx  output pointer / 8 in the 1st and 3rd edge of loop4, scratch (f2,
+;        then the next pointer) in the 2nd and 4th  -> rbx (pushed)
+;   edx  the other way round                        -> rdx
 ;   ecx  f1, then f1 ^ f2                              -> rcx
 ;   esi  facing                                        -> rsi (2nd argument)
 ;   edi  silEdges + numSilEdges (end pointer)          -> rdi
@@ -41,7 +42,8 @@
 ;   written for every edge, advancing or not); facing bytes 0 or 1 (the xor
 ;   and the 3 * (f1 ^ f2) advance need it); v1, v2 even; p1, p2 valid
 ;   indices into facing. No other alignment (movq loads, movlps/movhps
-;   stores), although the paper asks for 16 for speed. numSilEdges >= 0
+;   stores), although section 6 says the routine "assumes the arrays with
+;   indices are aligned on a 16 byte boundary". numSilEdges >= 0
 ;   (negative returns 0, writes nothing).
 ;
 ; Errata fixed (docs/ERRATA.md): for numSilEdges == 0 the listing jumps to

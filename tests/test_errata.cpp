@@ -6,6 +6,8 @@
 #include "test_support.h"
 
 #include <sys/mman.h>
+
+#include <climits>
 #include <unistd.h>
 
 using namespace svtest;
@@ -209,4 +211,117 @@ TEST(Errata, E5F5_Limit_OutputBelow8ByteAlignmentWritesBeforeIt) {
     EXPECT_EQ(sv_create_sil_triangles_checked(&paper(), out2.as<int>(), 6, facing, 1, &edge, 1),
               SV_E_ALIGNMENT);
     EXPECT_TRUE(out2.guards_intact());
+}
+
+namespace {
+
+// A page that faults on any access: a routine given it must not touch it.
+class NoAccessPage {
+public:
+    NoAccessPage() {
+        len_ = (size_t)sysconf(_SC_PAGESIZE);
+        p_ = mmap(nullptr, len_, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        EXPECT_NE(p_, MAP_FAILED);
+    }
+    ~NoAccessPage() { munmap(p_, len_); }
+    template <class T> T *as() { return (T *)p_; }
+
+private:
+    void *p_;
+    size_t len_;
+};
+
+const int kHugeNegativeCounts[] = {INT32_MIN, INT32_MIN + 1, INT32_MIN + 100, INT32_MIN + 255,
+                                   INT32_MIN + 256, -1000, -256, -17, -1};
+
+} // namespace
+
+// C-7: appendix C tests only `jz done`; for a count in [INT_MIN,
+// INT_MIN + 255], `sub eax, 256` and `add eax, 256 - 16` overflow and the
+// 16- and 4-byte loops read about 2^28 bytes. The port exits on <= 0. The
+// facing pointer is a no-access page: any read faults.
+TEST(Errata, C7_HugeNegativeCountsReadNothing) {
+    Rng rng = rng_for("Errata.C7");
+    NoAccessPage page;
+    for (const sv_variant *v : runnable_variants()) {
+        for (int n : kHugeNegativeCounts) {
+            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing, ptr_arg(page.as<uint8_t>()),
+                                   int_arg(n, rng)),
+                      0)
+                << v->name << " n=" << n;
+        }
+    }
+}
+
+// D-7: appendix D's `neg eax` leaves INT_MIN negative, so `add eax, 4` /
+// `jg run1` falls into the loop, which walks ~2^29 triangles. The port
+// negates in 64 bits. Every array is a no-access page.
+TEST(Errata, D7_HugeNegativeCountsTouchNothing) {
+    Rng rng = rng_for("Errata.D7");
+    NoAccessPage page;
+    for (const sv_variant *v : runnable_variants()) {
+        for (int n : kHugeNegativeCounts) {
+            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
+                                   ptr_arg(page.as<uint8_t>()), int_arg(n, rng),
+                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>())),
+                      0)
+                << v->name << " n=" << n;
+        }
+    }
+}
+
+// Negative counts for the writers: nothing read, nothing written, 0 back.
+TEST(Errata, NegativeCountsWriteNothing) {
+    Rng rng = rng_for("Errata.NegativeWriters");
+    NoAccessPage page;
+    for (const sv_variant *v : runnable_variants()) {
+        for (int n : kHugeNegativeCounts) {
+            EXPECT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
+                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>()),
+                                   ptr_arg(page.as<SilEdge>()), int_arg(n, rng)),
+                      0)
+                << v->name << " n=" << n;
+            EXPECT_EQ(checked_call(rng, (const void *)v->create_cap_triangles,
+                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>()),
+                                   ptr_arg(page.as<int>()), int_arg(n, rng)),
+                      0)
+                << v->name << " n=" << n;
+        }
+    }
+}
+
+// E-3: appendix E computes 16 * numSilEdges with `shl eax, 4`, which wraps
+// to a negative offset at 2^27 edges (and to 0, "no edges", at 2^28). Here
+// 2^27 edges: 2 GiB of address space built from one zeroed 2 MiB memfd
+// mapped 1023 times (edges {0, 0, 0, 0}: never a silhouette) plus a private
+// last chunk whose final edge is a silhouette edge. The port must find it.
+TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
+    const size_t chunk = 2u << 20;
+    const size_t edges = (size_t)1 << 27;
+    const size_t total = edges * sizeof(SilEdge);
+    const size_t chunks = total / chunk;
+    uint8_t *base = (uint8_t *)mmap(nullptr, total, PROT_NONE,
+                                    MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    ASSERT_NE((void *)base, MAP_FAILED);
+    int fd = memfd_create("sv_zero_edges", 0);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(ftruncate(fd, (off_t)chunk), 0);
+    for (size_t i = 0; i + 1 < chunks; i++) {
+        ASSERT_NE(mmap(base + i * chunk, chunk, PROT_READ, MAP_SHARED | MAP_FIXED, fd, 0),
+                  MAP_FAILED);
+    }
+    uint8_t *last = base + (chunks - 1) * chunk;
+    ASSERT_NE(mmap(last, chunk, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED,
+                   -1, 0),
+              MAP_FAILED);
+    SilEdge *e = (SilEdge *)base;
+    e[edges - 1] = SilEdge{0, 1, 4, 6};
+    uint8_t facing[2] = {0, 1};
+    alignas(16) int out[12];
+    const int n = (int)edges;
+    EXPECT_EQ(sv_create_sil_triangles_sse2_paper(out, facing, e, n), 6);
+    const int expected[6] = {4, 6, 7, 5, 4, 7};
+    EXPECT_EQ(0, memcmp(out, expected, sizeof expected));
+    munmap(base, total);
+    close(fd);
 }
