@@ -36,5 +36,13 @@ cmake --build "$build" >&2
 
 case "$job" in
   bench) exec "$build/shadowvol" bench "$@" ;;
-  test)  exec ctest --test-dir "$build" --output-on-failure "$@" ;;
+  test)
+    ctest --test-dir "$build" --output-on-failure "$@"
+    # The same suite once more under AddressSanitizer + UBSan (Debug): it
+    # catches undefined behaviour in the C that the differential inputs reach.
+    san="${build}-sanitize"
+    cmake -S . -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSV_SANITIZE=ON >/dev/null
+    cmake --build "$san" >&2
+    ctest --test-dir "$san" --output-on-failure "$@"
+    ;;
 esac
