@@ -59,6 +59,27 @@ static int check_vertex_indices(const int *indices, int numIndices, int numVerts
     return SV_OK;
 }
 
+/* Each edge names triangles in [0, numTriangles] (numTriangles is the
+ * dangling edges' slot) and even vertex numbers; below 2 * numVerts when the
+ * vertex count is known (numVerts >= 0). */
+static int check_sil_edges(const SilEdge *edges, int numEdges, int numTriangles, int numVerts) {
+    int i;
+    for (i = 0; i < numEdges; i++) {
+        const SilEdge *e = &edges[i];
+        if (e->p1 < 0 || e->p1 > numTriangles || e->p2 < 0 || e->p2 > numTriangles ||
+            e->v1 < 0 || e->v2 < 0) {
+            return SV_E_INDEX_RANGE;
+        }
+        if (numVerts >= 0 && (e->v1 / 2 >= numVerts || e->v2 / 2 >= numVerts)) {
+            return SV_E_INDEX_RANGE;
+        }
+        if ((e->v1 & 1) || (e->v2 & 1)) {
+            return SV_E_ODD_VERTEX;
+        }
+    }
+    return SV_OK;
+}
+
 int sv_count_facing_checked(const sv_variant *v, const uint8_t *facing, int numTriangles) {
     int s = check_variant(v);
     if (s) return s;
@@ -83,7 +104,7 @@ int sv_count_facing_cull_checked(const sv_variant *v, uint8_t *facing, int numTr
 int sv_create_sil_triangles_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
                                     const uint8_t *facing, int numTriangles,
                                     const SilEdge *silEdges, int numSilEdges) {
-    int i, s = check_variant(v);
+    int s = check_variant(v);
     if (s) return s;
     if (numSilEdges < 0 || numTriangles < 0) return SV_E_COUNT;
     if (numSilEdges > INT_MAX / 6) return SV_E_OVERFLOW;
@@ -92,14 +113,7 @@ int sv_create_sil_triangles_checked(const sv_variant *v, int *shadowIndices, siz
     if (capacity < 6u * (size_t)numSilEdges) return SV_E_CAPACITY;
     /* facing holds numTriangles + 1 bytes: the last is the dangling edges' 1 */
     if ((s = check_facing_bytes(facing, numTriangles + 1))) return s;
-    for (i = 0; i < numSilEdges; i++) {
-        const SilEdge *e = &silEdges[i];
-        if (e->p1 < 0 || e->p1 > numTriangles || e->p2 < 0 || e->p2 > numTriangles) {
-            return SV_E_INDEX_RANGE;
-        }
-        if ((e->v1 & 1) || (e->v2 & 1)) return SV_E_ODD_VERTEX;
-        if (e->v1 < 0 || e->v2 < 0) return SV_E_INDEX_RANGE;
-    }
+    if ((s = check_sil_edges(silEdges, numSilEdges, numTriangles, -1))) return s;
     return v->create_sil_triangles(shadowIndices, facing, silEdges, numSilEdges);
 }
 
@@ -127,7 +141,7 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
                                     const int *indices, int numIndices, int numVerts,
                                     const SilEdge *silEdges, int numSilEdges,
                                     uint8_t *facing, const uint8_t *cullBits) {
-    int i, s = check_variant(v);
+    int s = check_variant(v);
     int numTriangles;
     if (s) return s;
     if (numIndices < 0 || numIndices % 3 != 0 || numSilEdges < 0 || numVerts < 0) {
@@ -147,14 +161,7 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
     }
     if ((s = check_facing_bytes(facing, numTriangles + 1))) return s;
     if ((s = check_vertex_indices(indices, numIndices, numVerts))) return s;
-    for (i = 0; i < numSilEdges; i++) {
-        const SilEdge *e = &silEdges[i];
-        if (e->p1 < 0 || e->p1 > numTriangles || e->p2 < 0 || e->p2 > numTriangles ||
-            e->v1 < 0 || e->v2 < 0 || e->v1 >= 2 * numVerts || e->v2 >= 2 * numVerts) {
-            return SV_E_INDEX_RANGE;
-        }
-        if ((e->v1 & 1) || (e->v2 & 1)) return SV_E_ODD_VERTEX;
-    }
+    if ((s = check_sil_edges(silEdges, numSilEdges, numTriangles, numVerts))) return s;
     return sv_create_shadow_volume(v, shadowIndices, indices, numIndices, silEdges,
                                    numSilEdges, facing, cullBits);
 }
