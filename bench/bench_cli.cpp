@@ -109,8 +109,8 @@ void bench_usage(FILE *out) {
         "and the exit status is 1.\n"
         "\n"
         "options:\n"
-        "  --runs N         timed calls per row (default %d; --quick %d), split over\n"
-        "                   4 rounds through all rows\n"
+        "  --runs N         timed regions (calls, or batches: --batch) per row (default\n"
+        "                   %d; --quick %d), split over 4 rounds through all rows\n"
         "  --quick          a short run (about a second) with every row still checked\n"
         "  --regime R       moving, fixed or both (default both)\n"
         "  --routine NAME   only this routine (repeatable), one of:\n"
@@ -118,13 +118,20 @@ void bench_usage(FILE *out) {
         "  --variant NAME   only this variant (repeatable): %s\n"
         "  --timer T        auto, rdtscp, cpuid or lfence (default auto: rdtscp where the\n"
         "                   CPU has it, else cpuid)\n"
+        "  --batch N        calls per timed region: auto (the default) times a batch of\n"
+        "                   back-to-back calls, as many as their input copies fit in 2/3\n"
+        "                   of the L1 data cache, in a count routine's row whose call\n"
+        "                   lasts under 50 TSC steps (or 50 x the empty region's jitter);\n"
+        "                   1 never batches; 2 to %d batches every row (N times the\n"
+        "                   calls: slower). Batched rows are marked xN and report ticks\n"
+        "                   per call\n"
         "  --seed N         seed of the facing patterns (default 1)\n"
         "  -h, --help       this text\n"
         "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n",
         kDefaultRuns, kQuickRuns, wrap(routine_list(), 58, "\n                     ").c_str(),
-        variant_list().c_str());
+        variant_list().c_str(), kMaxBatch);
 }
 
 int bench_main(int argc, char **argv) {
@@ -190,6 +197,14 @@ int bench_main(int argc, char **argv) {
                 timer = need();
                 if (timer != "auto" && timer != "rdtscp" && timer != "cpuid" && timer != "lfence") {
                     bad("--timer must be auto, rdtscp, cpuid or lfence, not '" + timer + "'");
+                }
+            } else if (opt == "--batch") {
+                const std::string b = need();
+                try {
+                    o.batch = b == "auto" ? 0 : (int)parse_int(opt, b, 1, kMaxBatch);
+                } catch (const UsageError &) {
+                    bad("--batch needs auto or a whole number from 1 to " +
+                        std::to_string(kMaxBatch) + ", not '" + b + "'");
                 }
             } else if (opt == "--seed") {
                 o.seed = parse_seed(need());

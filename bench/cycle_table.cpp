@@ -45,42 +45,26 @@ struct Expected {
 
 /* One row of the table. */
 struct Row {
-    Routine routine;
-    const sv_variant *variant;
-    bool moving;
+    Routine routine = Routine::count_facing;
+    const sv_variant *variant = nullptr;
+    bool moving = true;
     bool ok = true;
     std::string failure;
     int rounds = 0;                         /* rounds measured so far */
-    uint64_t min = 0, median = 0;           /* ticks, the fences' cost subtracted */
+    int batch = 0;                          /* calls per timed region; 0: not decided yet */
+    double min = 0, median = 0;             /* ticks per call, the fences' cost subtracted */
     uint64_t emptyMedian = 0, emptyIqr = 0; /* empty regions of the round kept */
-    uint64_t medianWorst = 0;               /* the highest of the rounds' medians */
+    double medianWorst = 0;                 /* the highest of the rounds' medians */
 };
 
-/* The work buffers every call writes: facing (copied from the pattern
- * before each call, canary bytes after its numTriangles + 1 bytes) and the
- * output (capacity of sv_shadow_volume_capacity, canary ints after it). */
-struct Buffers {
-    AlignedArray<uint8_t> facing;
-    AlignedArray<int> out;
-    size_t facingBytes = 0;
-    size_t outCap = 0;
-};
-
-struct Context {
-    const Workload *w;
-    const std::vector<Expected> *expected; /* per pattern, for this routine */
-    Buffers *buf;
-    int runs, warmup, patterns;
-    int round;
-};
-
-/* A median below kNoiseFactor times the larger of the TSC's step and the
- * interquartile range of the row's empty regions is mostly timer noise: its
- * speed-up is printed with a "~". */
+/* A timed region whose median (the empty regions' subtracted) is below
+ * kNoiseFactor times the larger of the TSC's step and the interquartile
+ * range of the row's empty regions is mostly timer noise: its speed-up is
+ * printed with a "~". For a batched row the region is the whole batch. */
 constexpr uint64_t kNoiseFactor = 5;
 
 bool below_noise(const Row &r, uint64_t step) {
-    return r.median < kNoiseFactor * std::max(step, r.emptyIqr);
+    return r.median * std::max(1, r.batch) < (double)(kNoiseFactor * std::max(step, r.emptyIqr));
 }
 
 bool is_index_routine(Routine r) {
@@ -90,6 +74,48 @@ bool is_index_routine(Routine r) {
 int elements_of(Routine r, const Workload &w) {
     return r == Routine::create_sil_triangles ? w.numSilEdges : w.numTriangles;
 }
+
+/* One call's work buffers: facing (copied from the pattern before the call,
+ * canary bytes after its numTriangles + 1 bytes) and the output (capacity of
+ * sv_shadow_volume_capacity, canary ints after it; poisoned before the
+ * call). */
+struct Slot {
+    AlignedArray<uint8_t> facing;
+    AlignedArray<int> out;
+};
+
+/* A timed region holds one call, or a batch of calls each with a slot of
+ * its own (below). Slots are added as a row first needs them. */
+struct Buffers {
+    std::vector<Slot> slots;
+    size_t facingBytes = 0;
+    size_t outCap = 0;
+    /* At least N slots, the canaries after each (re-)armed: a row that broke
+     * them failed alone. */
+    void arm(size_t n) {
+        while (slots.size() < n) {
+            Slot s;
+            s.facing = AlignedArray<uint8_t>(facingBytes + kCanaryBytes);
+            s.out = AlignedArray<int>(outCap + kCanaryInts);
+            slots.push_back(std::move(s));
+        }
+        for (Slot &s : slots) {
+            std::fill_n(s.facing.data() + facingBytes, kCanaryBytes, (uint8_t)kCanaryValue);
+            std::fill_n(s.out.data() + outCap, kCanaryInts, kCanaryValue);
+        }
+    }
+};
+
+struct Context {
+    const Workload *w;
+    const std::vector<Expected> *expected; /* per pattern, for this routine */
+    Buffers *buf;
+    int runs, warmup, patterns;
+    int round;
+    int forcedBatch;         /* --batch; 0: choose per row */
+    int autoBatch;           /* the batch of a row that needs one */
+    uint64_t batchThreshold; /* ticks: a row whose call is shorter needs one */
+};
 
 /* The calls, one functor per routine, so the timed region holds nothing but
  * the fences and the call through the variant's pointer. */
@@ -130,40 +156,41 @@ struct VolumeCall {
     }
 };
 
-/* Compares one call's result with the paper's C, outside the timed region:
- * the count, output[0 .. count), the whole facing array (cull routines
- * modify it; the others must not), and the canaries past both buffers.
+/* Compares one call's result in slot SL with the paper's C, outside the
+ * timed region: the count, output[0 .. count), the whole facing array (cull
+ * routines modify it; the others must not), and the canaries past both
+ * buffers.
  * Returns an empty string when all agree, else what differed first. */
-std::string check_call(const Expected &e, int got, const Buffers &buf) {
+std::string check_call(const Expected &e, int got, const Buffers &buf, const Slot &sl) {
     char msg[160];
     if (got != e.count) {
         std::snprintf(msg, sizeof msg, "returned %d, c_ref %d", got, e.count);
         return msg;
     }
-    if (!e.out.empty() && std::memcmp(buf.out.data(), e.out.data(), e.out.size() * sizeof(int))) {
+    if (!e.out.empty() && std::memcmp(sl.out.data(), e.out.data(), e.out.size() * sizeof(int))) {
         size_t i = 0;
-        while (buf.out[i] == e.out[i]) {
+        while (sl.out[i] == e.out[i]) {
             i++;
         }
-        std::snprintf(msg, sizeof msg, "output[%zu] = %d, c_ref %d", i, buf.out[i], e.out[i]);
+        std::snprintf(msg, sizeof msg, "output[%zu] = %d, c_ref %d", i, sl.out[i], e.out[i]);
         return msg;
     }
-    if (std::memcmp(buf.facing.data(), e.facing.data(), e.facing.size())) {
+    if (std::memcmp(sl.facing.data(), e.facing.data(), e.facing.size())) {
         size_t i = 0;
-        while (buf.facing[i] == e.facing[i]) {
+        while (sl.facing[i] == e.facing[i]) {
             i++;
         }
-        std::snprintf(msg, sizeof msg, "facing[%zu] = %d after the call, c_ref %d", i,
-                      buf.facing[i], e.facing[i]);
+        std::snprintf(msg, sizeof msg, "facing[%zu] = %d after the call, c_ref %d", i, sl.facing[i],
+                      e.facing[i]);
         return msg;
     }
     for (int i = 0; i < kCanaryBytes; i++) {
-        if (buf.facing[buf.facingBytes + (size_t)i] != (uint8_t)kCanaryValue) {
+        if (sl.facing[buf.facingBytes + (size_t)i] != (uint8_t)kCanaryValue) {
             return "wrote past the facing array";
         }
     }
     for (int i = 0; i < kCanaryInts; i++) {
-        if (buf.out[buf.outCap + (size_t)i] != kCanaryValue) {
+        if (sl.out[buf.outCap + (size_t)i] != kCanaryValue) {
             return "wrote past the output capacity";
         }
     }
@@ -174,10 +201,11 @@ std::string check_call(const Expected &e, int got, const Buffers &buf) {
  * one constant: where a hypervisor traps cpuid, its cost drifts by 20% in
  * phases of a fraction of a second to seconds (12.6k to 15.4k ticks on one
  * VM), so a minimum taken once at start-up would add the drift to every
- * figure. Each row therefore times an empty region right before every call,
- * and compares like with like over the same stretch of time:
- *   min    = min of the calls    - min of the empty regions
- *   median = median of the calls - median of the empty regions
+ * figure. Each row therefore times an empty region right before every timed
+ * region (one call or a batch), and compares like with like over the same
+ * stretch of time:
+ *   min    = min of the regions    - min of the empty regions
+ *   median = median of the regions - median of the empty regions
  * (clamped at 0). Where the timer is steady (rdtscp, lfence on bare metal)
  * this is the classic "minus the empty region's minimum". */
 template <class Timer> inline uint64_t empty_region() {
@@ -190,49 +218,163 @@ uint64_t saturating_sub(uint64_t a, uint64_t b) {
     return a > b ? a - b : 0;
 }
 
-template <class Timer, class Call> void measure_row(const Call &call, const Context &c, Row &row) {
-    Buffers &buf = *c.buf;
-    const Workload &w = *c.w;
-    std::vector<uint64_t> calls((size_t)c.runs), empties((size_t)c.runs);
-    /* (Re-)arm the canaries: a row that broke them failed alone. */
-    std::fill_n(buf.facing.data() + buf.facingBytes, kCanaryBytes, (uint8_t)kCanaryValue);
-    std::fill_n(buf.out.data() + buf.outCap, kCanaryInts, kCanaryValue);
-    for (int r = -c.warmup; r < c.runs; r++) {
-        const int p = row.moving ? (r + c.warmup) % c.patterns : 0;
-        const Expected &e = (*c.expected)[(size_t)p];
-        /* Fresh input and poisoned output, outside the timed region. */
-        std::memcpy(buf.facing.data(), w.patterns[(size_t)p].facing.data(), buf.facingBytes);
-        std::fill_n(buf.out.data(), e.out.size(), kPoison);
-        const uint64_t empty = empty_region<Timer>();
+/* Batching, as checkasm does for functions shorter than its timer can
+ * resolve. Where one call lasts only a few TSC steps (sse2_paper
+ * count_facing: about one 21-tick step on the reference VM), a timed region
+ * holds a batch of B calls back to back, and the row reports ticks per
+ * call: (min over the batches - min of the empty regions) / B and (median
+ * over the batches - median of the empty regions) / B.
+ *
+ * Which rows, decided once per row in the warm-up of its first round: the
+ * warm-up's single calls are timed like measured ones, and a row is batched
+ * when their median (the warm-up's empty-region median subtracted) is below
+ * the threshold (batch_threshold): kBatchSteps x the larger of the TSC
+ * step and the jitter of the empty regions timed at start-up, their IQR
+ * less one step. Less one step, because the difference of two stamps of a
+ * counter that moves in steps spreads a region of constant length over two
+ * neighbouring values, so the IQR of the readings exceeds the jitter of the
+ * regions by up to a step (here 21 ticks, and 42 in some runs while the
+ * timer is quiet, which alone would double the threshold). The IQR of
+ * thousands of regions, one for all rows, rather than each row's 64
+ * warm-up regions: on the reference VM about one window of 64 in 30 has an
+ * IQR of 2 or 3 steps while the timer is quiet, which would batch a
+ * count_facing_cull row (1200 to 3000 ticks, over 50 steps) in one run and
+ * not in the next. Where the hypervisor's cpuid cost is noisy (IQRs of
+ * 1000 ticks and more), the threshold rises and those rows are batched
+ * too, for the whole run; the header prints the threshold.
+ *
+ * Which B: one size for every batched row, the largest whose input copies
+ * stay in L1 (batch_size), not the smallest that would reach the
+ * threshold. The figure per call moves a little with B, since a batch pays
+ * the fences' entry and exit once (reference VM: sse2_paper count_facing
+ * 26.2 ticks per call in batches of 12, 28.3 to 30.1 in batches of 23,
+ * about 30 in batches of 64; c_ref 357 alone, 329 in batches of 3, 316 to
+ * 326 in batches of 23 or 64). A B that followed the timer's noise would
+ * move the figures from run to run; one B makes batched rows compare like
+ * with like.
+ *
+ * Inputs and outputs: every call of a batch has its own slot, so each call
+ * gets a fresh copy of its input, made before the batch (count_facing_cull
+ * modifies facing in place); the moving light gives each call the next
+ * pattern (a batch never replays one input), the fixed light gives all of
+ * them pattern 0, as it does a single call; every call's count, facing,
+ * output and canaries are checked after the batch, outside the timed
+ * region.
+ *
+ * Working set, and why only the count routines: a single call reads a copy
+ * of its facing array made just before it, hot in L1. The B copies of a
+ * batch are kept to 2/3 of the L1 data cache (their sources stream through
+ * it too): 23 copies of 1408 bytes in a 48 KiB L1. In a loop without
+ * fences, sse2_paper count_facing takes 28.7 ticks per call rotating over up
+ * to 32 such copies, 31.6 over 48 or 64 (out of L1). The index routines
+ * write 9.7 to 26 KB of output per call: B output buffers would take the
+ * row's working set out of L1 at B = 2 or 3, so they run one call per
+ * region unless --batch forces a size. They take over 70 TSC steps a call
+ * here, which a single call resolves. */
+constexpr uint64_t kBatchSteps = 50;
+constexpr size_t kDefaultL1Bytes = 32 * 1024; /* when sysconf does not know */
 
-        const uint64_t t0 = Timer::begin();
-        const int got = call(buf.facing.data(), buf.out.data());
-        const uint64_t t1 = Timer::end();
+/* Bytes of one call's slot as a count routine uses it: the facing array
+ * and its canaries, in whole cache lines. */
+size_t slot_bytes(size_t facingBytes) {
+    return (facingBytes + kCanaryBytes + 63) / 64 * 64;
+}
 
-        std::string why = check_call(e, got, buf);
-        if (!why.empty()) {
-            char where[120];
-            if (r < 0) {
-                std::snprintf(where, sizeof where, "pattern %d, round %d, warm-up call %d: ", p,
-                              c.round + 1, r + c.warmup + 1);
-            } else {
-                std::snprintf(where, sizeof where, "pattern %d, round %d, timed call %d: ", p,
-                              c.round + 1, r + 1);
-            }
-            row.failure = where + why;
-            row.ok = false;
-            return;
-        }
-        if (r >= 0) {
-            calls[(size_t)r] = t1 - t0;
-            empties[(size_t)r] = empty;
-        }
+/* The L1 data cache's size, and the batch of the batched rows: as many
+ * slots as fit in 2/3 of it, at least 2, at most kMaxBatch. */
+size_t l1d_bytes() {
+    const long l1 = sysconf(_SC_LEVEL1_DCACHE_SIZE);
+    return l1 > 0 ? (size_t)l1 : kDefaultL1Bytes;
+}
+int batch_size(size_t facingBytes) {
+    const size_t fit = l1d_bytes() * 2 / 3 / slot_bytes(facingBytes);
+    return (int)std::max<size_t>(2, std::min<size_t>(kMaxBatch, fit));
+}
+
+uint64_t median_of(std::vector<uint64_t> v) {
+    std::sort(v.begin(), v.end());
+    return v[(v.size() - 1) / 2];
+}
+
+/* The IQR of TRIES empty regions, after a short warm-up. */
+template <class Timer> uint64_t empty_iqr_with(int tries) {
+    std::vector<uint64_t> e((size_t)std::max(tries, 4));
+    for (int i = 0; i < 64; i++) {
+        (void)empty_region<Timer>();
     }
+    for (uint64_t &x : e) {
+        x = empty_region<Timer>();
+    }
+    std::sort(e.begin(), e.end());
+    return e[e.size() * 3 / 4] - e[e.size() / 4];
+}
+uint64_t empty_iqr(TimerKind k, int tries) {
+    switch (k) {
+    case TimerKind::rdtscp: return empty_iqr_with<TscRdtscp>(tries);
+    case TimerKind::cpuid: return empty_iqr_with<TscCpuid>(tries);
+    case TimerKind::lfence: return empty_iqr_with<TscLfence>(tries);
+    }
+    return 0;
+}
+
+/* Ticks below which a row is batched (see above). */
+uint64_t batch_threshold(uint64_t step, uint64_t iqr) {
+    return kBatchSteps * std::max(step, saturating_sub(iqr, step));
+}
+
+/* The row's batch from its timed warm-up calls (see above). */
+int choose_batch(const Context &c, Routine r, const std::vector<uint64_t> &calls,
+                 const std::vector<uint64_t> &empties) {
+    if (c.forcedBatch) {
+        return c.forcedBatch;
+    }
+    if (is_index_routine(r) || calls.empty()) {
+        return 1;
+    }
+    const uint64_t single = saturating_sub(median_of(calls), median_of(empties));
+    return single < c.batchThreshold ? c.autoBatch : 1;
+}
+
+/* The parts of a row's measurement around the timed regions, out of line so
+ * that the template below holds little more than the loops, the fences and
+ * the calls. */
+
+/* Fresh input and poisoned output in slot S for a call on pattern P. */
+void prepare_slot(Buffers &buf, const Workload &w, const Expected &e, size_t s, int p) {
+    Slot &sl = buf.slots[s];
+    std::memcpy(sl.facing.data(), w.patterns[(size_t)p].facing.data(), buf.facingBytes);
+    std::fill_n(sl.out.data(), e.out.size(), kPoison);
+}
+
+/* Checks the call on pattern P that returned GOT in slot S; on a mismatch
+ * marks the row failed, saying where: WHAT (a warm-up or timed call or
+ * batch) number N, and in a batch of B > 1 which call I. */
+bool check_slot(const Context &c, Row &row, int got, size_t s, int p, const char *what, int n,
+                int i, int b) {
+    const std::string why = check_call((*c.expected)[(size_t)p], got, *c.buf, c.buf->slots[s]);
+    if (why.empty()) {
+        return true;
+    }
+    char where[160];
+    if (b > 1) {
+        std::snprintf(where, sizeof where, "pattern %d, round %d, %s %d, call %d of %d: ", p,
+                      c.round + 1, what, n, i + 1, b);
+    } else {
+        std::snprintf(where, sizeof where, "pattern %d, round %d, %s %d: ", p, c.round + 1, what,
+                      n);
+    }
+    row.failure = where + why;
+    row.ok = false;
+    return false;
+}
+
+/* Folds one round's timed regions of B calls into the row. */
+void record_round(Row &row, std::vector<uint64_t> &calls, std::vector<uint64_t> &empties, int b) {
     std::sort(calls.begin(), calls.end());
     std::sort(empties.begin(), empties.end());
     const size_t n = calls.size(), mid = (n - 1) / 2;
-    const uint64_t min = saturating_sub(calls[0], empties[0]);
-    const uint64_t median = saturating_sub(calls[mid], empties[mid]);
+    const double min = (double)saturating_sub(calls[0], empties[0]) / b;
+    const double median = (double)saturating_sub(calls[mid], empties[mid]) / b;
     if (row.rounds == 0 || min < row.min) {
         row.min = min;
     }
@@ -243,6 +385,97 @@ template <class Timer, class Call> void measure_row(const Call &call, const Cont
     }
     row.medianWorst = std::max(row.medianWorst, median);
     row.rounds++;
+}
+
+template <class Timer, class Call> void measure_row(const Call &call, const Context &c, Row &row) {
+    Buffers &buf = *c.buf;
+    const Workload &w = *c.w;
+    const std::vector<Expected> &ex = *c.expected;
+    /* The k-th call of this round (warm-up first) gets pattern k mod the
+     * pattern count with the light moving, pattern 0 with it fixed. */
+    auto pattern = [&](long k) { return row.moving ? (int)(k % c.patterns) : 0; };
+    buf.arm((size_t)std::max(1, row.batch));
+
+    /* Warm-up: single calls, checked, and timed like the measured ones: in
+     * the first round their median decides the row's batch. */
+    std::vector<uint64_t> wcalls((size_t)c.warmup), wempties((size_t)c.warmup);
+    for (int r = 0; r < c.warmup; r++) {
+        const int p = pattern(r);
+        prepare_slot(buf, w, ex[(size_t)p], 0, p);
+        const uint64_t empty = empty_region<Timer>();
+
+        const uint64_t t0 = Timer::begin();
+        const int got = call(buf.slots[0].facing.data(), buf.slots[0].out.data());
+        const uint64_t t1 = Timer::end();
+
+        if (!check_slot(c, row, got, 0, p, "warm-up call", r + 1, 0, 1)) {
+            return;
+        }
+        wcalls[(size_t)r] = t1 - t0;
+        wempties[(size_t)r] = empty;
+    }
+    if (row.batch == 0) {
+        row.batch = choose_batch(c, row.routine, wcalls, wempties);
+        buf.arm((size_t)row.batch);
+    }
+    const int B = row.batch;
+
+    std::vector<uint64_t> calls((size_t)c.runs), empties((size_t)c.runs);
+    long next = c.warmup; /* the number of this round's next call */
+    if (B == 1) {
+        uint8_t *const facing = buf.slots[0].facing.data();
+        int *const out = buf.slots[0].out.data();
+        for (int r = 0; r < c.runs; r++) {
+            const int p = pattern(next++);
+            prepare_slot(buf, w, ex[(size_t)p], 0, p);
+            const uint64_t empty = empty_region<Timer>();
+
+            const uint64_t t0 = Timer::begin();
+            const int got = call(facing, out);
+            const uint64_t t1 = Timer::end();
+
+            if (!check_slot(c, row, got, 0, p, "timed call", r + 1, 0, 1)) {
+                return;
+            }
+            calls[(size_t)r] = t1 - t0;
+            empties[(size_t)r] = empty;
+        }
+    } else {
+        uint8_t *facing[kMaxBatch];
+        int *out[kMaxBatch];
+        int got[kMaxBatch];
+        int pat[kMaxBatch];
+        for (int i = 0; i < B; i++) {
+            facing[i] = buf.slots[(size_t)i].facing.data();
+            out[i] = buf.slots[(size_t)i].out.data();
+        }
+        /* r = -1: one untimed batch after the warm-up's single calls. */
+        for (int r = -1; r < c.runs; r++) {
+            for (int i = 0; i < B; i++) {
+                pat[i] = pattern(next++);
+                prepare_slot(buf, w, ex[(size_t)pat[i]], (size_t)i, pat[i]);
+            }
+            const uint64_t empty = empty_region<Timer>();
+
+            const uint64_t t0 = Timer::begin();
+            for (int i = 0; i < B; i++) {
+                got[i] = call(facing[i], out[i]);
+            }
+            const uint64_t t1 = Timer::end();
+
+            for (int i = 0; i < B; i++) {
+                if (!check_slot(c, row, got[i], (size_t)i, pat[i],
+                                r < 0 ? "warm-up batch" : "timed batch", r < 0 ? 1 : r + 1, i, B)) {
+                    return;
+                }
+            }
+            if (r >= 0) {
+                calls[(size_t)r] = t1 - t0;
+                empties[(size_t)r] = empty;
+            }
+        }
+    }
+    record_round(row, calls, empties, B);
 }
 
 template <class Call> void measure_with(TimerKind k, const Call &call, const Context &c, Row &row) {
@@ -385,7 +618,8 @@ std::string pct(int part, int whole) {
 }
 
 void print_header(FILE *out, const TableOptions &o, const Workload &w, int cpu, double tscHz,
-                  const Overhead &ovh, uint64_t step, const std::vector<Row> &rows,
+                  const Overhead &ovh, uint64_t step, int autoBatch, uint64_t iqr,
+                  uint64_t threshold, const std::vector<Row> &rows,
                   const std::vector<const sv_variant *> &skipped) {
     std::fprintf(out,
                  "shadowvol %s bench: the cycle table of J.M.P. van Waveren, \"Shadow Volume "
@@ -419,7 +653,7 @@ void print_header(FILE *out, const TableOptions &o, const Workload &w, int cpu, 
     std::fprintf(out,
                  "overhead  empty region at start: min %llu, median %llu, p90 %llu ticks (%d "
                  "tries); each row times one\n"
-                 "          before every call and subtracts their min from the calls' min, "
+                 "          before every timed region and subtracts their min from the calls' min, "
                  "their median from the calls'\n"
                  "          median (the rows' empty-region medians ranged %llu..%llu ticks)\n",
                  (unsigned long long)ovh.min, (unsigned long long)ovh.median,
@@ -427,10 +661,29 @@ void print_header(FILE *out, const TableOptions &o, const Workload &w, int cpu, 
                  (unsigned long long)hi);
     const int rounds = std::max(1, std::min(o.rounds, o.runs));
     std::fprintf(out,
-                 "runs      %d timed calls per row in %d round%s over all rows, each after "
+                 "runs      %d timed regions per row in %d round%s over all rows, each after "
                  "%d warm-up calls; every call\n          checked against c_ref. A row keeps "
                  "its lowest min and its lowest round median\n",
                  o.runs, rounds, rounds == 1 ? "" : "s", o.warmup);
+    if (o.batch == 0) {
+        std::fprintf(out,
+                     "batch     a region times one call, or, in a count routine's row whose "
+                     "warm-up calls' median is\n          below %llu ticks (%llu x the larger of "
+                     "the TSC step and the IQR of %d empty regions\n          less one step: "
+                     "%llu - %llu), a batch of %d back-to-back calls after an untimed one,\n"
+                     "          each on its own input, whose copies fill 2/3 of the %zu KiB L1D: "
+                     "rows marked x%d\n",
+                     (unsigned long long)threshold, (unsigned long long)kBatchSteps,
+                     o.overheadTries, (unsigned long long)iqr, (unsigned long long)step, autoBatch,
+                     l1d_bytes() / 1024, autoBatch);
+    } else if (o.batch == 1) {
+        std::fprintf(out, "batch     one call per timed region (--batch 1)\n");
+    } else {
+        std::fprintf(out,
+                     "batch     %d back-to-back calls per timed region in every row (--batch "
+                     "%d), each on its own input\n",
+                     o.batch, o.batch);
+    }
     std::fprintf(out, "build     %s, %s, commit %s\n", compiler_version().c_str(),
                  build_flags().c_str(), git_commit().c_str());
     std::fprintf(out,
@@ -492,8 +745,18 @@ void print_table(FILE *out, bool moving, const std::vector<Row> &rows, const Wor
             continue;
         }
         const double el = elements_of(r.routine, w);
-        std::fprintf(out, "%10llu %10llu %9.2f %9.2f ", (unsigned long long)r.min,
-                     (unsigned long long)r.median, (double)r.min / el, (double)r.median / el);
+        /* A batched row: "xN" before its min, ticks per call to a tenth. */
+        char mark[16] = "", mn[32], md[32];
+        const bool batched = r.batch > 1;
+        if (batched) {
+            std::snprintf(mark, sizeof mark, "x%d", r.batch);
+        }
+        std::snprintf(mn, sizeof mn, batched ? "%.1f" : "%.0f", r.min);
+        std::snprintf(md, sizeof md, batched ? "%.1f" : "%.0f", r.median);
+        const int pad =
+            std::max(batched ? 1 : 0, 10 - (int)std::strlen(mark) - (int)std::strlen(mn));
+        std::fprintf(out, "%s%*s%s %10s %9.2f %9.2f ", mark, pad, "", mn, md, r.min / el,
+                     r.median / el);
         const Row *ref = nullptr;
         for (const Row &x : rows) {
             if (x.moving == moving && x.routine == r.routine &&
@@ -503,8 +766,7 @@ void print_table(FILE *out, bool moving, const std::vector<Row> &rows, const Wor
         }
         if (ref && r.median > 0) {
             const bool noisy = below_noise(r, step) || below_noise(*ref, step);
-            std::fprintf(out, "%s%6.2fx | ", noisy ? "~" : " ",
-                         (double)ref->median / (double)r.median);
+            std::fprintf(out, "%s%6.2fx | ", noisy ? "~" : " ", ref->median / r.median);
         } else {
             std::fprintf(out, "%8s | ", "-");
         }
@@ -575,7 +837,10 @@ int run_cycle_table(const TableOptions &o, FILE *out) {
         }
         for (Routine r : routines) {
             for (const sv_variant *v : variants) {
-                Row row{r, v, moving, true, {}, 0, 0, 0, 0, 0, 0};
+                Row row;
+                row.routine = r;
+                row.variant = v;
+                row.moving = moving;
                 rows.push_back(row);
             }
         }
@@ -583,9 +848,8 @@ int run_cycle_table(const TableOptions &o, FILE *out) {
 
     Buffers buf;
     buf.facingBytes = (size_t)w.numTriangles + 1;
-    buf.facing = AlignedArray<uint8_t>(buf.facingBytes + kCanaryBytes);
     buf.outCap = sv_shadow_volume_capacity(w.numIndices, w.numSilEdges);
-    buf.out = AlignedArray<int>(buf.outCap + kCanaryInts);
+    buf.arm(1);
 
     std::vector<std::vector<Expected>> expected((size_t)kNumRoutines);
     for (Routine r : routines) {
@@ -596,6 +860,9 @@ int run_cycle_table(const TableOptions &o, FILE *out) {
     const double tscHz = estimate_tsc_hz(o.tscSeconds);
     const Overhead ovh = measure_overhead(o.timer, o.overheadTries);
     const uint64_t step = tsc_step();
+    const int autoBatch = batch_size(buf.facingBytes);
+    const uint64_t iqr = empty_iqr(o.timer, o.overheadTries);
+    const uint64_t threshold = batch_threshold(step, iqr);
 
     /* Rounds: every row measured once per round, a share of its runs each
      * time. A disturbance of the machine lasting a fraction of a second
@@ -612,7 +879,17 @@ int run_cycle_table(const TableOptions &o, FILE *out) {
                 continue;
             }
             progress.update(round, (int)i, row);
-            Context c{&w, &expected[(size_t)row.routine], &buf, runs, o.warmup, o.patterns, round};
+            Context c;
+            c.w = &w;
+            c.expected = &expected[(size_t)row.routine];
+            c.buf = &buf;
+            c.runs = runs;
+            c.warmup = o.warmup;
+            c.patterns = o.patterns;
+            c.round = round;
+            c.forcedBatch = o.batch;
+            c.autoBatch = autoBatch;
+            c.batchThreshold = threshold;
             measure(o.timer, c, row);
         }
     }
@@ -623,7 +900,7 @@ int run_cycle_table(const TableOptions &o, FILE *out) {
     }
     progress.finish();
 
-    print_header(out, o, w, cpu, tscHz, ovh, step, rows, skipped);
+    print_header(out, o, w, cpu, tscHz, ovh, step, autoBatch, iqr, threshold, rows, skipped);
     for (int regime = 0; regime < 2; regime++) {
         const bool moving = regime == 0;
         if ((moving && o.moving) || (!moving && o.fixed)) {
@@ -637,6 +914,16 @@ int run_cycle_table(const TableOptions &o, FILE *out) {
                  "or c_ref's median is below %llu x\n  the TSC step or the spread (IQR) of "
                  "the row's empty regions: mostly timer noise.\n",
                  w.numTriangles, w.numSilEdges, (unsigned long long)kNoiseFactor);
+    bool anyBatched = false;
+    for (const Row &r : rows) {
+        anyBatched = anyBatched || (r.ok && r.batch > 1);
+    }
+    if (anyBatched) {
+        std::fprintf(out, "xN: N back-to-back calls per timed region, each on a fresh copy of its "
+                          "input (moving light: the\n  next pattern each) and each checked; "
+                          "figures per call: (batch - empty region) / N, the min and\n  median "
+                          "over the batches; ~ then compares the whole batch with the noise.\n");
+    }
     std::fprintf(out, "P4 columns: the paper's \"Hot Cache Clock Cycle Counts\" (core cycles) on "
                       "the row of its C (c_ref) and of its SSE2 listing (sse2_paper);\n"
                       "  create_shadow_volume = \"CreateShadowVolume, no culling\", "

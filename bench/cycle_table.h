@@ -1,9 +1,10 @@
 /*
  * The cycle table (DESIGN.md section 5; the paper's section 8): every
  * routine of every variant the CPU runs, timed call by call with the
- * serialised TSC on the synthetic workload, in two regimes, each call
- * checked against the paper's C, printed beside the paper's Pentium 4
- * figures.
+ * serialised TSC on the synthetic workload (routines too short for the
+ * TSC's resolution in batches of back-to-back calls, reported per call), in
+ * two regimes, each call checked against the paper's C, printed beside the
+ * paper's Pentium 4 figures.
  *
  *   moving light  a different facing pattern every call, rotating through
  *                 the workload's patterns: the branch predictor cannot learn
@@ -36,15 +37,21 @@ enum class Routine {
 };
 constexpr int kNumRoutines = 6;
 
+/* The largest batch: calls per timed region. */
+constexpr int kMaxBatch = 64;
+
 const char *routine_name(Routine r);
 /* False when NAME is none of the names above. */
 bool routine_by_name(const std::string &name, Routine *r);
 
 struct TableOptions {
-    int runs = 0;       /* timed calls per row */
+    int runs = 0;       /* timed regions per row (a call or a batch of calls) */
     int rounds = 4;     /* the runs of a row are split over this many passes
                            over all rows */
     int warmup = 0;     /* untimed (but checked) calls before each round */
+    int batch = 0;      /* calls per timed region: 0 chooses per row (see
+                           cycle_table.cpp), 1 never batches, N > 1 forces N
+                           on every row; at most kMaxBatch */
     int patterns = 64;  /* facing patterns of the moving light */
     uint64_t seed = 1;  /* workload seed */
     bool moving = true; /* regimes to run */
