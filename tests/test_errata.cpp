@@ -122,9 +122,11 @@ TEST(Errata, F3_CapTrianglesTailReadsNothingPastIndices) {
     }
 }
 
-// E-2 / F-4: both listings return `(num - (int)shadowIndexes) >> 2`, a
-// pointer cast to int. On x86-64 the output lives above 4 GiB; here it is
-// placed there explicitly and the count must still be right.
+// E-2 / F-4: both listings keep the output pointer / 8 in ebx and return
+// `(num - (int)shadowIndexes) >> 2`. The 32-bit difference is harmless (it
+// wraps alike on both sides), but a port that kept pointer / 8 in a 32-bit
+// register would store to a truncated address. Here the output is mapped
+// above 4 GiB explicitly: stores and count must still be right.
 TEST(Errata, E2F4_CountsAreRightForOutputAbove4GiB) {
     Rng rng = rng_for("Errata.E2F4");
     const size_t len = 1 << 16;
