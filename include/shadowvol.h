@@ -42,6 +42,62 @@ typedef struct Vec4 {
     float x, y, z, w; /* w = 1: point light origin; w = 0: direction */
 } Vec4;
 
+/* Axis-aligned bounds of a surface, as appendix B takes them: the box
+ * center +- extents (w of both ignored). extents are half sizes, >= 0. */
+typedef struct Bounds {
+    Vec4 center;
+    Vec4 extents;
+} Bounds;
+
+/* Appendix B: the number of light-volume bounding planes, one cull bit each. */
+#define SV_NUM_LIGHT_PLANES 6
+
+/* ---- Appendices A and B: facing and cull bits (the paper's C) ----------
+ * Reference C, compiled with -ffp-contract=off and evaluated in exactly the
+ * paper's operation order, left to right in float:
+ *   ((a*x + b*y) + c*z) + d*w
+ * so they are the bit-exact oracle of any SIMD variant. */
+
+/* CalculateFacing (appendix A):
+ *   facing[i] = planes[i].a * light.x + planes[i].b * light.y +
+ *               planes[i].c * light.z + planes[i].d * light.w > 0.0f
+ * for i in [0, numTriangles), then facing[numTriangles] = 1 (the byte that
+ * dangling SilEdges point at). So facing needs numTriangles + 1 bytes.
+ *   light   (x,y,z,1): a point (or spot) light's origin; (x,y,z,0): a
+ *           directional light, (x,y,z) pointing TOWARDS the light. The test
+ *           is strict: a light exactly on a triangle's plane (sum == 0, also
+ *           -0.0) makes the triangle NOT facing (0), so it casts; a NaN sum
+ *           gives 0 as well.
+ *   numTriangles >= 0. A negative count writes nothing (the paper would
+ *           write facing[numTriangles], out of bounds).
+ * Every facing byte written is exactly 0 or 1. */
+void sv_calculate_facing_c_ref(const Plane *planes, int numTriangles, const Vec4 *light,
+                               uint8_t *facing);
+
+/* CalculateCullBits (appendix B): bit i of cullBits[j] is set when vertex j
+ * is strictly behind light plane i (a*x + b*y + c*z + d < 0.0f, the paper's
+ * CULL_EPSILON = 0): light planes point INTO the light volume, and a vertex
+ * with any bit set is outside it. Bits 6 and 7 are always 0.
+ *   positions     numVerts vertices as Vec4; only x, y, z are read (the
+ *                 paper's Vertex is {Vec4 position; Vec4 normal;}, 32 bytes;
+ *                 this port takes a plain 16-byte Vec4 array of positions).
+ *   surfaceBounds a box containing every vertex (center +- extents).
+ *   lightPlanes   SV_NUM_LIGHT_PLANES (6) planes; plane i <-> bit i.
+ * First the surface box is tested against each plane: where
+ *   (a*cx + b*cy + c*cz + d) - (|a*ex| + |b*ey| + |c*ez|) >= 0.0f
+ * the whole box is in front of plane i and bit i stays 0 for every vertex
+ * (that plane is not evaluated per vertex).
+ * Returns 1 when the box is in front of all six planes: the surface is
+ * completely inside the light volume, and cullBits is NOT WRITTEN (not even
+ * cleared). The caller must then pass cullBits = NULL to
+ * sv_create_shadow_volume (no culling needed). Returns 0 otherwise, after
+ * writing all numVerts bytes of cullBits.
+ *   numVerts >= 0 (a negative count writes nothing and returns 0). */
+int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
+                                 const Bounds *surfaceBounds,
+                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                 uint8_t *cullBits);
+
 /* ---- Routine signatures ------------------------------------------------- */
 
 /* CountFacing (section 4, appendix C): number of facing bytes that are set.
