@@ -182,9 +182,10 @@ TEST(Differential, CreateCapTriangles) {
             const int expected_count = sv_create_cap_triangles_c_ref(
                 expected.data(), facing.data(), indices.data(), 3 * n);
             for (const sv_variant *v : variants) {
+                // every input offset, each paired with one of the output's
+                const std::vector<size_t> out_offsets = offsets_for(v->align_shadow_indices, 4);
                 for (size_t in_off : offsets_for(v->align_indices, 4)) {
-                    size_t out_off = offsets_for(v->align_shadow_indices, 4)
-                        [in_off / 4 % offsets_for(v->align_shadow_indices, 4).size()];
+                    size_t out_off = out_offsets[in_off / 4 % out_offsets.size()];
                     GuardedBuffer ibuf(indices.size() * sizeof(int), in_off);
                     GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
                     std::copy(indices.begin(), indices.end(), ibuf.as<int>());
