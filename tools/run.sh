@@ -17,7 +17,11 @@ case "$job" in
 esac
 
 # Debian packages the build and the tests need.
-packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git)
+# libtinygltf-dev builds from its header with nlohmann-json3-dev (and
+# libstb-dev, named by its Debian notes); assimp-testmodels gives the loader
+# tests third-party malformed glTF files.
+packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
+          libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -4,7 +4,8 @@
  * argv (argv[0] = its name) and returning the exit status; this file only
  * dispatches.
  *
- * Exit status: 0 done; 1 a correctness check failed; 2 bad arguments.
+ * Exit status: 0 done; 1 a correctness check failed; 2 bad arguments; 3 a
+ * model file could not be loaded (inspect, verify).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -12,6 +13,7 @@
 #include <cstring>
 
 #include "bench_cli.h"
+#include "model_cli.h"
 
 #ifndef SV_PROJECT_VERSION
 #define SV_PROJECT_VERSION "unknown"
@@ -26,10 +28,14 @@ struct Command {
     void (*usage)(FILE *out);
 };
 
-/* inspect, verify and accuracy join here as they are written. */
+/* accuracy joins here when it is written. */
 const Command kCommands[] = {
     {"bench", "the cycle table of every routine and variant, beside the paper's Pentium 4",
      svbench::bench_main, svbench::bench_usage},
+    {"inspect", "what shadow-volume preparation finds in a glTF model, per mesh and in total",
+     svcli::inspect_main, svcli::inspect_usage},
+    {"verify", "prove a model's shadow volumes closed and right in space, for every variant",
+     svcli::verify_main, svcli::verify_usage},
 };
 
 const Command *find_command(const char *name) {
@@ -54,7 +60,8 @@ void usage(FILE *out) {
     }
     std::fprintf(out, "\n"
                       "'shadowvol <command> --help' describes a command's options.\n"
-                      "Exit status: 0 done, 1 a correctness check failed, 2 bad arguments.\n");
+                      "Exit status: 0 done, 1 a correctness check failed, 2 bad arguments,\n"
+                      "3 a model could not be loaded.\n");
 }
 
 } // namespace

@@ -1,0 +1,89 @@
+/*
+ * shadowvol: glTF 2.0 loading (.gltf and .glb, through Debian's tinygltf).
+ * Turns the mesh instances of a scene into triangle surfaces in world space,
+ * ready for sv::prepare_surface (shadowvol_mesh.h).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SHADOWVOL_GLTF_H
+#define SHADOWVOL_GLTF_H
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sv {
+
+struct GltfLoadOptions {
+    /* Empty: every mesh instance of the scene (below). Otherwise only the
+     * instances of the mesh with this name; when the scene does not use
+     * that mesh it is loaded once with the identity transform. An unknown
+     * name is an error that lists the mesh names. */
+    std::string mesh_name;
+};
+
+/* One mesh instance (a node with a mesh, or a mesh loaded on its own):
+ * all its triangle primitives merged into one surface. */
+struct GltfSurface {
+    std::string name;      /* "<mesh name or mesh#i> @ <node name or node#j>";
+                              just the mesh part when loaded at identity */
+    int mesh_index = -1;
+    int node_index = -1;   /* -1: loaded at identity (no node) */
+    int primitives = 0;    /* triangle primitives merged (modes 4, 5, 6) */
+    bool mirrored = false; /* some triangle's winding was flipped back
+                              (flipped_triangles > 0). Rigid: the node's
+                              world transform has a negative determinant,
+                              and every triangle was flipped. Skinned: the
+                              blended matrix of a triangle's first corner
+                              decides, triangle by triangle. */
+    std::size_t flipped_triangles = 0;
+    bool skinned = false;  /* placed by its skin's joints (bind pose); the
+                              node's own transform is ignored (glTF) */
+    /* World-space positions, x y z per vertex, computed in double and
+     * rounded to float once. Vertices whose mesh-space positions are
+     * bitwise equal (-0.0 == +0.0) get bitwise equal world positions, so
+     * welding finds in world space exactly what it finds in mesh space:
+     * the first vertex at a position is transformed (skinned: with its own
+     * weights) and the others copy it. Every coordinate is finite. */
+    std::vector<float> positions;
+    /* Triangles (3 per triangle), counter-clockwise seen from the front in
+     * world space; strips and fans converted; each index < vertex count. */
+    std::vector<uint32_t> indices;
+
+    std::size_t num_vertices() const { return positions.size() / 3; }
+    std::size_t num_triangles() const { return indices.size() / 3; }
+};
+
+struct GltfModel {
+    std::string path;
+    /* In depth-first pre-order of the scene; never empty, and each has at
+     * least one triangle (instances without any are left out, with a
+     * note). */
+    std::vector<GltfSurface> surfaces;
+    /* What was ignored or adjusted, one line each:
+     * primitives of other modes (points, lines), instances without
+     * triangles, morph targets, skin weights that did not sum to 1,
+     * tinygltf warnings. */
+    std::vector<std::string> notes;
+};
+
+/* Malformed or unusable input. what() is "<path>: <problem>", naming the
+ * mesh / primitive / accessor / vertex concerned. */
+class GltfError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/* Loads a .gltf (JSON) or .glb (binary) file; the format is chosen by the
+ * file's first bytes ("glTF" magic), not by its name.
+ * Scene: the file's `scene`, else scene 0, else (no scenes) every root
+ * node; a file without nodes loads each mesh once at identity.
+ * Throws GltfError; see the implementation's header comment for the list of
+ * checks. Never reads outside a buffer. */
+GltfModel load_gltf(const std::string &path, const GltfLoadOptions &options = {});
+
+} // namespace sv
+
+#endif /* SHADOWVOL_GLTF_H */

@@ -1,0 +1,525 @@
+/*
+ * `shadowvol inspect MODEL` and `shadowvol verify MODEL`: what preparation
+ * finds in a glTF model, and the 3D proof that the shadow volumes built from
+ * it are right (shadowvol_verify.h). One surface per mesh instance of the
+ * scene (all primitives of the mesh merged, in world space).
+ *
+ * Exit status: 0 done (verify: every check passed); 1 a check failed;
+ * 2 bad arguments; 3 the model could not be loaded or prepared (the message
+ * on stderr names the file and the problem).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "model_cli.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "cli_args.h"
+#include "shadowvol_gltf.h"
+#include "shadowvol_mesh.h"
+#include "shadowvol_verify.h"
+
+namespace svcli {
+
+namespace {
+
+constexpr int kExitCheckFailed = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitBadModel = 3;
+
+struct Surface {
+    sv::GltfSurface source; /* positions and indices dropped after preparing */
+    sv::PreparedSurface prepared;
+};
+
+struct LoadedModel {
+    std::string path;
+    std::vector<Surface> surfaces;
+    std::vector<std::string> notes;
+};
+
+/* Loads and prepares every surface; a failure is reported on stderr and
+ * gives false. */
+bool load_model(const char *command, const std::string &path, const std::string &mesh,
+                LoadedModel *out) {
+    sv::GltfLoadOptions options;
+    options.mesh_name = mesh;
+    try {
+        sv::GltfModel m = sv::load_gltf(path, options);
+        out->path = path;
+        out->notes = m.notes;
+        for (sv::GltfSurface &g : m.surfaces) {
+            Surface s;
+            try {
+                s.prepared = sv::prepare_surface(g.positions.data(), g.num_vertices(),
+                                                 g.indices.data(), g.indices.size());
+            } catch (const sv::PrepareError &e) {
+                std::fprintf(stderr, "shadowvol %s: %s: surface %s: %s\n", command, path.c_str(),
+                             g.name.c_str(), e.what());
+                return false;
+            }
+            s.source = std::move(g);
+            s.source.positions.clear();
+            s.source.positions.shrink_to_fit();
+            s.source.indices.clear();
+            s.source.indices.shrink_to_fit();
+            out->surfaces.push_back(std::move(s));
+        }
+    } catch (const sv::GltfError &e) {
+        std::fprintf(stderr, "shadowvol %s: %s\n", command, e.what());
+        return false;
+    } catch (const std::bad_alloc &) {
+        std::fprintf(stderr, "shadowvol %s: %s: out of memory\n", command, path.c_str());
+        return false;
+    }
+    return true;
+}
+
+bool is_closed(const sv::PrepareReport &r) {
+    return r.triangles > 0 && r.boundary_edges == 0 && r.non_manifold_edges == 0 &&
+           r.same_direction_edges == 0;
+}
+
+void add_report(sv::PrepareReport &t, const sv::PrepareReport &r) {
+    t.vertices_in += r.vertices_in;
+    t.triangles_in += r.triangles_in;
+    t.degenerate_dropped += r.degenerate_dropped;
+    t.triangles += r.triangles;
+    t.welded_vertices += r.welded_vertices;
+    t.zero_normal_triangles += r.zero_normal_triangles;
+    t.edges += r.edges;
+    t.boundary_edges += r.boundary_edges;
+    t.manifold_edges += r.manifold_edges;
+    t.same_direction_edges += r.same_direction_edges;
+    t.non_manifold_edges += r.non_manifold_edges;
+    t.sil_edges += r.sil_edges;
+    t.dangling_sil_edges += r.dangling_sil_edges;
+}
+
+std::string shorten(const std::string &s, std::size_t n) {
+    return s.size() <= n ? s : s.substr(0, n - 3) + "...";
+}
+
+/* JSON file output: "-" is stdout. */
+struct JsonOut {
+    FILE *f = nullptr;
+    bool owned = false;
+    bool open(const char *command, const std::string &path) {
+        if (path.empty()) return true;
+        if (path == "-") {
+            f = stdout;
+            return true;
+        }
+        f = std::fopen(path.c_str(), "w");
+        if (!f) {
+            std::fprintf(stderr, "shadowvol %s: cannot write %s\n", command, path.c_str());
+            return false;
+        }
+        owned = true;
+        return true;
+    }
+    ~JsonOut() {
+        if (owned) std::fclose(f);
+    }
+};
+
+void json_report(FILE *f, const sv::PrepareReport &r) {
+    std::fprintf(f,
+                 "{\"vertices_in\": %lld, \"triangles_in\": %lld, \"degenerate_dropped\": %lld, "
+                 "\"triangles\": %lld, \"welded_vertices\": %lld, \"zero_normal_triangles\": "
+                 "%lld, \"edges\": %lld, \"boundary_edges\": %lld, \"manifold_edges\": %lld, "
+                 "\"same_direction_edges\": %lld, \"non_manifold_edges\": %lld, \"sil_edges\": "
+                 "%lld, \"dangling_sil_edges\": %lld, \"closed\": %s}",
+                 (long long)r.vertices_in, (long long)r.triangles_in,
+                 (long long)r.degenerate_dropped, (long long)r.triangles,
+                 (long long)r.welded_vertices, (long long)r.zero_normal_triangles,
+                 (long long)r.edges, (long long)r.boundary_edges, (long long)r.manifold_edges,
+                 (long long)r.same_direction_edges, (long long)r.non_manifold_edges,
+                 (long long)r.sil_edges, (long long)r.dangling_sil_edges,
+                 is_closed(r) ? "true" : "false");
+}
+
+} // namespace
+
+/* ---- inspect ------------------------------------------------------------ */
+
+void inspect_usage(FILE *out) {
+    std::fprintf(out,
+                 "usage: shadowvol inspect MODEL [--mesh NAME] [--json FILE]\n"
+                 "\n"
+                 "Loads a glTF 2.0 model (.gltf or .glb) and prints, for every mesh instance\n"
+                 "of its scene (one surface: the mesh's triangle primitives merged, placed in\n"
+                 "world space) and in total, what shadow-volume preparation finds:\n"
+                 "  prims      triangle primitives merged (strips and fans converted)\n"
+                 "  mirror     the node transform mirrors the mesh (winding flipped back)\n"
+                 "  tris in    triangles as stored;  verts in: vertices as stored\n"
+                 "  welded     distinct positions (vertices welded by exact position)\n"
+                 "  degen      triangles dropped: two corners welded together\n"
+                 "  tris       triangles kept;  edges: distinct edges of those\n"
+                 "  boundary   edges used by one triangle (the mesh is open there)\n"
+                 "  manifold   edges used twice, in opposite directions\n"
+                 "  same-dir   edges used twice in the same direction (inconsistent winding)\n"
+                 "  non-mfld   edges used by more than two triangles\n"
+                 "  silEdges   SilEdges built;  dangling: of those, p2 = numTriangles\n"
+                 "  zero-n     kept triangles with collinear corners (plane 0,0,0,0)\n"
+                 "  closed     closed 2-manifold (no boundary, non-manifold or same-dir edge)\n"
+                 "\n"
+                 "options:\n"
+                 "  --mesh NAME   only the instances of the mesh called NAME\n"
+                 "  --json FILE   also write the report as JSON (schema shadowvol-inspect/1;\n"
+                 "                FILE - is stdout, and the table then goes to stderr)\n"
+                 "\n"
+                 "Exit status: 0 done, 2 bad arguments, 3 the model could not be loaded.\n");
+}
+
+int inspect_main(int argc, char **argv) {
+    std::string model, mesh, json_path;
+    try {
+        ArgReader a(argc, argv);
+        while (a.next()) {
+            if (a.is_flag("-h") || a.is_flag("--help")) {
+                inspect_usage(stdout);
+                return 0;
+            } else if (a.is("--mesh")) {
+                mesh = a.value();
+            } else if (a.is("--json")) {
+                json_path = a.value();
+            } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
+                usage_error("unknown option '" + a.arg() + "'");
+            } else if (model.empty()) {
+                model = a.arg();
+            } else {
+                usage_error("unexpected argument '" + a.arg() + "'");
+            }
+        }
+        if (model.empty()) usage_error("which model? (shadowvol inspect MODEL)");
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "shadowvol inspect: %s\nTry 'shadowvol inspect --help'.\n",
+                     e.message.c_str());
+        return kExitUsage;
+    }
+
+    LoadedModel m;
+    if (!load_model("inspect", model, mesh, &m)) return kExitBadModel;
+    JsonOut json;
+    if (!json.open("inspect", json_path)) return kExitBadModel;
+    FILE *out = json.f == stdout ? stderr : stdout;
+
+    std::fprintf(out, "%s: %zu surface%s\n\n", model.c_str(), m.surfaces.size(),
+                 m.surfaces.size() == 1 ? "" : "s");
+    const char *head = "%-34s %5s %6s %8s %8s %8s %5s %8s %8s %8s %8s %8s %8s %8s %8s %6s %6s\n";
+    std::fprintf(out, head, "surface", "prims", "mirror", "tris in", "verts in", "welded", "degen",
+                 "tris", "edges", "boundary", "manifold", "same-dir", "non-mfld", "silEdges",
+                 "dangling", "zero-n", "closed");
+    auto row = [&](const std::string &name, const std::string &prims, const char *mirror,
+                   const sv::PrepareReport &r, const char *closed) {
+        std::fprintf(out,
+                     "%-34s %5s %6s %8lld %8lld %8lld %5lld %8lld %8lld %8lld %8lld %8lld %8lld "
+                     "%8lld %8lld %6lld %6s\n",
+                     shorten(name, 34).c_str(), prims.c_str(), mirror, (long long)r.triangles_in,
+                     (long long)r.vertices_in, (long long)r.welded_vertices,
+                     (long long)r.degenerate_dropped, (long long)r.triangles, (long long)r.edges,
+                     (long long)r.boundary_edges, (long long)r.manifold_edges,
+                     (long long)r.same_direction_edges, (long long)r.non_manifold_edges,
+                     (long long)r.sil_edges, (long long)r.dangling_sil_edges,
+                     (long long)r.zero_normal_triangles, closed);
+    };
+    sv::PrepareReport total;
+    int prims = 0, closed = 0;
+    for (const Surface &s : m.surfaces) {
+        const sv::PrepareReport &r = s.prepared.report;
+        row(s.source.name, std::to_string(s.source.primitives), s.source.mirrored ? "yes" : "no",
+            r, is_closed(r) ? "yes" : "no");
+        add_report(total, r);
+        prims += s.source.primitives;
+        closed += is_closed(r);
+    }
+    if (m.surfaces.size() > 1) {
+        const std::string c = std::to_string(closed) + "/" + std::to_string(m.surfaces.size());
+        row("total", std::to_string(prims), "", total, c.c_str());
+    }
+    for (const std::string &n : m.notes) std::fprintf(out, "note: %s\n", n.c_str());
+
+    if (json.f) {
+        std::fprintf(json.f, "{\"schema\": \"shadowvol-inspect/1\", \"model\": %s,\n \"surfaces\": [",
+                     json_string(model).c_str());
+        for (std::size_t i = 0; i < m.surfaces.size(); i++) {
+            const Surface &s = m.surfaces[i];
+            std::fprintf(json.f,
+                         "%s\n  {\"name\": %s, \"mesh\": %d, \"node\": %d, \"primitives\": %d, "
+                         "\"mirrored\": %s, \"skinned\": %s, \"report\": ",
+                         i ? "," : "", json_string(s.source.name).c_str(), s.source.mesh_index,
+                         s.source.node_index, s.source.primitives,
+                         s.source.mirrored ? "true" : "false", s.source.skinned ? "true" : "false");
+            json_report(json.f, s.prepared.report);
+            std::fprintf(json.f, "}");
+        }
+        std::fprintf(json.f, "],\n \"total\": ");
+        json_report(json.f, total);
+        std::fprintf(json.f, ",\n \"notes\": [");
+        for (std::size_t i = 0; i < m.notes.size(); i++) {
+            std::fprintf(json.f, "%s%s", i ? ", " : "", json_string(m.notes[i]).c_str());
+        }
+        std::fprintf(json.f, "]}\n");
+    }
+    return 0;
+}
+
+/* ---- verify ------------------------------------------------------------- */
+
+namespace {
+
+constexpr int kDefaultLights = 16;
+constexpr int kDefaultPoints = 1000;
+
+std::string variant_names(const std::vector<const sv_variant *> &v) {
+    std::string s;
+    for (const sv_variant *x : v) s += (s.empty() ? "" : ", ") + std::string(x->name);
+    return s;
+}
+
+struct SurfaceVerdict {
+    int lights = 0, point_lights = 0, culled_lights = 0, directional_lights = 0;
+    int64_t volumes = 0, distinct_volumes = 0, volume_triangles = 0, culled_triangles = 0;
+    sv::InSpaceCounts counts;
+    double seconds = 0;
+};
+
+} // namespace
+
+void verify_usage(FILE *out) {
+    std::fprintf(out,
+                 "usage: shadowvol verify MODEL [--lights N] [--points N] [--seed S]\n"
+                 "                              [--variant NAME]... [--mesh NAME] [--json FILE]\n"
+                 "\n"
+                 "Proves, for every mesh instance of a glTF model (one surface each, in world\n"
+                 "space), that the shadow volumes built by every variant this CPU can run are\n"
+                 "right, for N lights around the surface: half point lights (every other one\n"
+                 "with a light box that culls part of the mesh, appendix B), half directional.\n"
+                 "For each light and variant:\n"
+                 "  closure   every directed edge a->b of the index list appears as often as\n"
+                 "            b->a (the volume is closed and consistently wound);\n"
+                 "  in space  at N random points (half around the bounds, half just behind or\n"
+                 "            in front of the mesh), the volume's winding number (the stencil\n"
+                 "            count, by signed ray crossings; odd vertices pushed 1000 radii\n"
+                 "            away from the light) equals the number of casting triangles the\n"
+                 "            segment from the point to the light crosses. For a closed mesh\n"
+                 "            and an unculled light, a point outside the mesh is also checked\n"
+                 "            to be in shadow exactly when that segment crosses the mesh.\n"
+                 "Variants whose index lists are equal share the in-space check. Points too\n"
+                 "close to a boundary to decide are skipped and counted (at most 2%%).\n"
+                 "Stops at the first failure and prints the variant, the light and the point.\n"
+                 "\n"
+                 "options:\n"
+                 "  --lights N      lights per surface (default %d)\n"
+                 "  --points N      points per light (default %d)\n"
+                 "  --seed S        seed of the lights and points (default 1)\n"
+                 "  --variant NAME  only this variant (repeatable; default: all this CPU runs)\n"
+                 "  --mesh NAME     only the instances of the mesh called NAME\n"
+                 "  --json FILE     also write the results as JSON (schema shadowvol-verify/1;\n"
+                 "                  FILE - is stdout, and the table then goes to stderr)\n"
+                 "\n"
+                 "Progress goes to stderr. Exit status: 0 every check passed, 1 a check failed,\n"
+                 "2 bad arguments, 3 the model could not be loaded.\n",
+                 kDefaultLights, kDefaultPoints);
+}
+
+int verify_main(int argc, char **argv) {
+    std::string model, mesh, json_path;
+    int lights = kDefaultLights, points = kDefaultPoints;
+    uint64_t seed = 1;
+    std::vector<const sv_variant *> variants;
+    try {
+        ArgReader a(argc, argv);
+        while (a.next()) {
+            if (a.is_flag("-h") || a.is_flag("--help")) {
+                verify_usage(stdout);
+                return 0;
+            } else if (a.is("--lights")) {
+                lights = (int)a.integer(1, 100000);
+            } else if (a.is("--points")) {
+                points = (int)a.integer(1, 10000000);
+            } else if (a.is("--seed")) {
+                seed = a.seed();
+            } else if (a.is("--variant")) {
+                const std::string v = a.value();
+                const sv_variant *var = sv_variant_by_name(v.c_str());
+                if (!var) {
+                    int n = 0;
+                    const sv_variant *all = sv_variants(&n);
+                    std::string names;
+                    for (int i = 0; i < n; i++) names += (i ? ", " : "") + std::string(all[i].name);
+                    usage_error("unknown variant '" + v + "' (variants: " + names + ")");
+                }
+                if ((var->isa & sv_cpu_isa()) != var->isa) {
+                    usage_error("variant '" + v + "' needs an instruction set this CPU lacks");
+                }
+                if (std::find(variants.begin(), variants.end(), var) == variants.end()) {
+                    variants.push_back(var);
+                }
+            } else if (a.is("--mesh")) {
+                mesh = a.value();
+            } else if (a.is("--json")) {
+                json_path = a.value();
+            } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
+                usage_error("unknown option '" + a.arg() + "'");
+            } else if (model.empty()) {
+                model = a.arg();
+            } else {
+                usage_error("unexpected argument '" + a.arg() + "'");
+            }
+        }
+        if (model.empty()) usage_error("which model? (shadowvol verify MODEL)");
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "shadowvol verify: %s\nTry 'shadowvol verify --help'.\n",
+                     e.message.c_str());
+        return kExitUsage;
+    }
+    if (variants.empty()) variants = sv::supported_variants();
+
+    LoadedModel m;
+    if (!load_model("verify", model, mesh, &m)) return kExitBadModel;
+    JsonOut json;
+    if (!json.open("verify", json_path)) return kExitBadModel;
+    FILE *out = json.f == stdout ? stderr : stdout;
+
+    std::fprintf(out,
+                 "%s: %zu surface%s, %d lights each, %d points per light, seed %llu\n"
+                 "variants: %s\n\n",
+                 model.c_str(), m.surfaces.size(), m.surfaces.size() == 1 ? "" : "s", lights,
+                 points, (unsigned long long)seed, variant_names(variants).c_str());
+    const char *head = "%-34s %8s %6s %6s %7s %9s %9s %9s %9s %8s %7s %7s %7s\n";
+    std::fprintf(out, head, "surface", "tris", "closed", "lights", "volumes", "vol tris", "points",
+                 "shadow", "lit", "crossing", "inside", "skipped", "seconds");
+
+    sv::VerifyOptions options;
+    options.points_per_light = points;
+    /* Progress (surface and light) on a terminal only: logs stay clean. */
+    const bool progress = isatty(2);
+    std::vector<SurfaceVerdict> verdicts;
+    std::string failure;
+    std::size_t failed_surface = 0;
+    for (std::size_t si = 0; si < m.surfaces.size() && failure.empty(); si++) {
+        const Surface &s = m.surfaces[si];
+        SurfaceVerdict v;
+        const auto t0 = std::chrono::steady_clock::now();
+        const uint64_t surface_seed = seed * 0x9E3779B97F4A7C15ull + si;
+        const std::vector<sv::VerifyLight> ls = sv::make_verify_lights(s.prepared, lights,
+                                                                      surface_seed);
+        for (std::size_t li = 0; li < ls.size(); li++) {
+            if (progress) {
+                std::fprintf(stderr, "\rverify: surface %zu/%zu, light %zu/%zu ", si + 1,
+                             m.surfaces.size(), li + 1, ls.size());
+                std::fflush(stderr);
+            }
+            const sv::VerifyLight &l = ls[li];
+            const sv::LightResult r =
+                sv::verify_light(s.prepared, l, variants, options, surface_seed ^ (li + 1) * 0xD1B54A32D192ED03ull);
+            v.lights++;
+            (l.light.w == 0.0f ? v.directional_lights : v.point_lights)++;
+            v.culled_lights += l.culled;
+            v.volumes += r.variants_checked;
+            v.distinct_volumes += r.distinct_volumes;
+            v.volume_triangles += r.volume_triangles;
+            v.culled_triangles += r.culled_triangles;
+            v.counts.add(r.counts);
+            if (!r.ok) {
+                failure = r.failure;
+                failed_surface = si;
+                break;
+            }
+        }
+        v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (progress) std::fprintf(stderr, "\r%60s\r", "");
+        const sv::PrepareReport &r = s.prepared.report;
+        std::fprintf(out, "%-34s %8lld %6s %6d %7lld %9lld %9lld %9lld %9lld %8lld %7lld %7lld %7.1f\n",
+                     shorten(s.source.name, 34).c_str(), (long long)r.triangles,
+                     is_closed(r) ? "yes" : "no", v.lights, (long long)v.volumes,
+                     (long long)(v.volume_triangles / std::max<int64_t>(v.distinct_volumes, 1)),
+                     (long long)v.counts.points, (long long)v.counts.in_shadow,
+                     (long long)v.counts.lit, (long long)v.counts.crossing_checked,
+                     (long long)v.counts.inside_mesh, (long long)v.counts.skipped, v.seconds);
+        verdicts.push_back(v);
+    }
+    SurfaceVerdict t;
+    for (const SurfaceVerdict &v : verdicts) {
+        t.lights += v.lights;
+        t.point_lights += v.point_lights;
+        t.culled_lights += v.culled_lights;
+        t.directional_lights += v.directional_lights;
+        t.volumes += v.volumes;
+        t.distinct_volumes += v.distinct_volumes;
+        t.culled_triangles += v.culled_triangles;
+        t.counts.add(v.counts);
+        t.seconds += v.seconds;
+    }
+    std::fprintf(out,
+                 "\n%d lights (%d point, %d of them culled by a light box, %d directional); "
+                 "%lld volumes built and checked closed (%lld distinct index lists); %lld "
+                 "triangles culled;\n%lld points checked in space (%lld in shadow, %lld lit), "
+                 "%lld of them also by segment crossing, %lld inside the mesh; %lld skipped "
+                 "near a boundary; %lld rays replaced; %lld crossings of edge-on casting "
+                 "triangles.\n",
+                 t.lights, t.point_lights, t.culled_lights, t.directional_lights,
+                 (long long)t.volumes, (long long)t.distinct_volumes,
+                 (long long)t.culled_triangles, (long long)t.counts.points,
+                 (long long)t.counts.in_shadow, (long long)t.counts.lit,
+                 (long long)t.counts.crossing_checked, (long long)t.counts.inside_mesh,
+                 (long long)t.counts.skipped, (long long)t.counts.ray_retries,
+                 (long long)t.counts.inverted_prisms);
+    if (!failure.empty()) {
+        std::fprintf(out, "FAILED: surface %s: %s\n", m.surfaces[failed_surface].source.name.c_str(),
+                     failure.c_str());
+        if (out != stderr) {
+            std::fprintf(stderr, "shadowvol verify: %s: surface %s: %s\n", model.c_str(),
+                         m.surfaces[failed_surface].source.name.c_str(), failure.c_str());
+        }
+    } else {
+        std::fprintf(out, "PASSED: every volume closed and right in space.\n");
+    }
+
+    if (json.f) {
+        std::fprintf(json.f,
+                     "{\"schema\": \"shadowvol-verify/1\", \"model\": %s, \"lights\": %d, "
+                     "\"points_per_light\": %d, \"seed\": %llu, \"variants\": [",
+                     json_string(model).c_str(), lights, points, (unsigned long long)seed);
+        for (std::size_t i = 0; i < variants.size(); i++) {
+            std::fprintf(json.f, "%s%s", i ? ", " : "", json_string(variants[i]->name).c_str());
+        }
+        std::fprintf(json.f, "],\n \"passed\": %s, \"failure\": %s,\n \"surfaces\": [",
+                     failure.empty() ? "true" : "false",
+                     failure.empty() ? "null" : json_string(failure).c_str());
+        for (std::size_t i = 0; i < verdicts.size(); i++) {
+            const SurfaceVerdict &v = verdicts[i];
+            const sv::InSpaceCounts &c = v.counts;
+            std::fprintf(json.f,
+                         "%s\n  {\"name\": %s, \"triangles\": %lld, \"closed\": %s, \"lights\": "
+                         "%d, \"point_lights\": %d, \"culled_lights\": %d, "
+                         "\"directional_lights\": %d, \"volumes\": %lld, \"distinct_volumes\": "
+                         "%lld, \"culled_triangles\": %lld, \"points\": %lld, \"in_shadow\": "
+                         "%lld, \"lit\": %lld, \"crossing_checked\": %lld, \"inside_mesh\": %lld, "
+                         "\"skipped\": %lld, \"ray_retries\": %lld, \"inverted_prisms\": %lld, "
+                         "\"seconds\": %.3f}",
+                         i ? "," : "", json_string(m.surfaces[i].source.name).c_str(),
+                         (long long)m.surfaces[i].prepared.report.triangles,
+                         is_closed(m.surfaces[i].prepared.report) ? "true" : "false", v.lights,
+                         v.point_lights, v.culled_lights, v.directional_lights,
+                         (long long)v.volumes, (long long)v.distinct_volumes,
+                         (long long)v.culled_triangles, (long long)c.points,
+                         (long long)c.in_shadow, (long long)c.lit, (long long)c.crossing_checked,
+                         (long long)c.inside_mesh, (long long)c.skipped, (long long)c.ray_retries,
+                         (long long)c.inverted_prisms, v.seconds);
+        }
+        std::fprintf(json.f, "]}\n");
+    }
+    return failure.empty() ? 0 : kExitCheckFailed;
+}
+
+} // namespace svcli

@@ -1,0 +1,233 @@
+// The verifier (shadowvol_verify.h) checked on its own: winding numbers of
+// known solids, closure on broken lists, and -- the part that matters -- that
+// verify_light FAILS for volumes that are wrong in the ways a broken kernel
+// would make them wrong (a missing quad, the whole volume reversed, the
+// volume of the wrong triangles, culling ignored), while it passes
+// every real variant on the generated character and on meshes with open and
+// non-manifold edges.
+//
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "model_gen.h"
+#include "shadowvol_mesh.h"
+#include "shadowvol_verify.h"
+
+namespace {
+
+using sv::Point3;
+
+uint64_t test_seed() {
+    const char *s = std::getenv("SV_TEST_SEED");
+    if (s && std::strcmp(s, "random") != 0) return std::strtoull(s, nullptr, 0);
+    return 20050408;
+}
+
+sv::PreparedSurface prepare(const std::vector<float> &pos, const std::vector<uint32_t> &idx) {
+    return sv::prepare_surface(pos.data(), pos.size() / 3, idx.data(), idx.size());
+}
+
+// An axis-aligned cube [-1, 1]^3, outward counter-clockwise triangles.
+sv::PreparedSurface cube() {
+    std::vector<float> p;
+    for (int i = 0; i < 8; i++) {
+        p.push_back(i & 1 ? 1.f : -1.f);
+        p.push_back(i & 2 ? 1.f : -1.f);
+        p.push_back(i & 4 ? 1.f : -1.f);
+    }
+    const std::vector<uint32_t> idx = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                       2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+    return prepare(p, idx);
+}
+
+TEST(WindingVolume, TetrahedronIsOneInsideZeroOutside) {
+    const std::vector<Point3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int outward[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    sv::WindingVolume vol(v, outward, 12);
+    uint64_t rng = 1;
+    int w = 99;
+    ASSERT_EQ(vol.winding({0.1, 0.1, 0.1}, rng, &w, nullptr), sv::WindingVolume::Status::ok);
+    EXPECT_EQ(w, 1);
+    ASSERT_EQ(vol.winding({2, 2, 2}, rng, &w, nullptr), sv::WindingVolume::Status::ok);
+    EXPECT_EQ(w, 0);
+    // Reversed, the inside counts -1: the sign is checked, not just != 0.
+    const int inward[] = {0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2};
+    sv::WindingVolume rev(v, inward, 12);
+    ASSERT_EQ(rev.winding({0.1, 0.1, 0.1}, rng, &w, nullptr), sv::WindingVolume::Status::ok);
+    EXPECT_EQ(w, -1);
+    // On a face: reported, not guessed.
+    EXPECT_EQ(vol.winding({0.2, 0.2, 0}, rng, &w, nullptr),
+              sv::WindingVolume::Status::on_boundary);
+}
+
+TEST(Closure, FindsTheOpenEdgeAndBadIndices) {
+    const int tet[] = {0, 4, 2, 0, 2, 6, 0, 6, 4, 2, 4, 6};
+    EXPECT_TRUE(sv::check_closure(tet, 12, 4).closed);
+    sv::ClosureResult r = sv::check_closure(tet, 9, 4);
+    EXPECT_FALSE(r.closed);
+    EXPECT_NE(r.problem.find("open"), std::string::npos) << r.problem;
+    EXPECT_FALSE(sv::check_closure(tet, 12, 3).closed);  // index 6 >= 2 * 3
+    EXPECT_FALSE(sv::check_closure(tet, 11, 4).closed);  // not whole triangles
+    // Two copies of one triangle, opposite windings: closed (degenerate).
+    const int pair[] = {0, 2, 4, 4, 2, 0};
+    EXPECT_TRUE(sv::check_closure(pair, 6, 3).closed);
+}
+
+// ---- Broken "variants": each wraps c_ref and breaks one thing -----------
+
+int sil_drop_last_quad(int *out, const uint8_t *facing, const SilEdge *e, int n) {
+    int k = sv_create_sil_triangles_c_ref(out, facing, e, n);
+    return k >= 6 ? k - 6 : k;
+}
+int sil_reversed(int *out, const uint8_t *facing, const SilEdge *e, int n) {
+    int k = sv_create_sil_triangles_c_ref(out, facing, e, n);
+    for (int i = 0; i < k; i += 3) std::swap(out[i + 1], out[i + 2]);
+    return k;
+}
+int cap_reversed(int *out, const uint8_t *facing, const int *idx, int n) {
+    int k = sv_create_cap_triangles_c_ref(out, facing, idx, n);
+    for (int i = 0; i < k; i += 3) std::swap(out[i + 1], out[i + 2]);
+    return k;
+}
+// Culling ignored: triangles outside the light volume still cast (closed,
+// but wrong in space for a culled light).
+int count_cull_ignored(uint8_t *facing, int n, const int *, const uint8_t *) {
+    return sv_count_facing_c_ref(facing, n);
+}
+// The volume of the lit triangles instead of the unlit ones.
+int count_inverted(const uint8_t *facing, int n) { return n - sv_count_facing_c_ref(facing, n); }
+int g_num_triangles = 0; // of the surface under test (the sil routine is not told)
+int sil_inverted(int *out, const uint8_t *facing, const SilEdge *e, int n) {
+    // Facing flipped for every triangle (the dangling byte stays 1).
+    const int nt = g_num_triangles;
+    std::vector<uint8_t> f(facing, facing + nt + 1);
+    for (int i = 0; i < nt; i++) f[i] ^= 1;
+    return sv_create_sil_triangles_c_ref(out, f.data(), e, n);
+}
+int cap_inverted(int *out, const uint8_t *facing, const int *idx, int n) {
+    std::vector<uint8_t> f(facing, facing + n / 3 + 1);
+    for (int i = 0; i < n / 3; i++) f[i] ^= 1;
+    return sv_create_cap_triangles_c_ref(out, f.data(), idx, n);
+}
+
+sv_variant broken(const char *name) {
+    sv_variant v = *sv_variant_by_name("c_ref");
+    v.name = name;
+    return v;
+}
+
+std::vector<sv::VerifyLight> lights_for(const sv::PreparedSurface &s, int n) {
+    return sv::make_verify_lights(s, n, test_seed());
+}
+
+// Runs every light; returns the first failure ("" when all pass).
+std::string run_all(const sv::PreparedSurface &s, const std::vector<const sv_variant *> &vars,
+                    int lights, int points, sv::InSpaceCounts *total = nullptr) {
+    sv::VerifyOptions o;
+    o.points_per_light = points;
+    int i = 0;
+    int64_t culled_total = 0;
+    for (const sv::VerifyLight &l : lights_for(s, lights)) {
+        sv::LightResult r = sv::verify_light(s, l, vars, o, test_seed() + (uint64_t)i++);
+        if (!r.ok) return r.failure;
+        if (total) total->add(r.counts);
+        if (l.culled) culled_total += r.culled_triangles;
+    }
+    // The culled lights must really cull something, or culling is untested.
+    if (lights >= 2 && culled_total == 0) return "no light culled any triangle";
+    return "";
+}
+
+sv::PreparedSurface character() {
+    const svgen::TriMesh m = svgen::build_character(1);
+    return prepare(m.positions, m.indices);
+}
+
+TEST(VerifyLight, EveryRealVariantPassesOnTheCharacter) {
+    const sv::PreparedSurface s = character();
+    ASSERT_EQ(s.num_triangles(), 1344);
+    sv::InSpaceCounts total;
+    const std::string failure = run_all(s, sv::supported_variants(), 12, 300, &total);
+    EXPECT_EQ(failure, "");
+    // The check has teeth only if both outcomes occur often.
+    EXPECT_GT(total.in_shadow, 300);
+    EXPECT_GT(total.lit, 300);
+    EXPECT_GT(total.crossing_checked, 300);
+    EXPECT_LT(total.skipped, total.points / 50 + 1);
+}
+
+TEST(VerifyLight, CubeShadowsExactlyBehindIt) {
+    const sv::PreparedSurface s = cube();
+    sv::VerifyLight l;
+    l.light = {0, 0, 10, 1};
+    sv::VerifyOptions o;
+    o.points_per_light = 2000;
+    sv::LightResult r = sv::verify_light(s, l, sv::supported_variants(), o, test_seed());
+    EXPECT_TRUE(r.ok) << r.failure;
+    EXPECT_EQ(r.distinct_volumes, 1) << "variants disagree with c_ref";
+    EXPECT_GT(r.counts.in_shadow, 100);
+}
+
+TEST(VerifyLight, CatchesEveryBrokenVolume) {
+    const sv::PreparedSurface s = character();
+    g_num_triangles = s.num_triangles();
+    struct Case {
+        const char *what;
+        sv_variant v;
+        const char *expect; // a word of the failure message
+    };
+    std::vector<Case> cases;
+    {
+        sv_variant v = broken("drops_a_quad");
+        v.create_sil_triangles = sil_drop_last_quad;
+        cases.push_back({"a missing silhouette quad", v, "not closed"});
+    }
+    {
+        sv_variant v = broken("reversed");
+        v.create_sil_triangles = sil_reversed;
+        v.create_cap_triangles = cap_reversed;
+        cases.push_back({"every triangle reversed", v, "winding number"});
+    }
+    {
+        sv_variant v = broken("ignores_culling");
+        v.count_facing_cull = count_cull_ignored;
+        cases.push_back({"culled triangles still cast", v, "winding number"});
+    }
+    {
+        sv_variant v = broken("lit_triangles");
+        v.count_facing = count_inverted;
+        v.create_sil_triangles = sil_inverted;
+        v.create_cap_triangles = cap_inverted;
+        cases.push_back({"the volume of the lit triangles", v, "winding number"});
+    }
+    for (const Case &c : cases) {
+        SCOPED_TRACE(c.what);
+        const std::string failure = run_all(s, {&c.v}, 4, 300);
+        EXPECT_NE(failure.find(c.expect), std::string::npos) << "failure: '" << failure << "'";
+        EXPECT_NE(failure.find(c.v.name), std::string::npos) << failure;
+        std::printf("  caught %s: %s\n", c.what, failure.c_str());
+    }
+}
+
+// Open and non-manifold meshes: the identity holds for any mesh (the
+// "iff the segment crosses" check is for closed meshes only).
+TEST(VerifyLight, OpenAndNonManifoldMeshes) {
+    // An open box (cube without its top) plus a fin: three triangles on one
+    // edge, and one triangle sharing an edge in the same direction.
+    sv::PreparedSurface c = cube();
+    std::vector<float> p(c.positions);
+    std::vector<uint32_t> idx(c.indices.begin(), c.indices.end() - 6);
+    const uint32_t n = (uint32_t)p.size() / 3;
+    for (float f : {0.f, 3.f, 0.f, 0.f, 2.5f, 2.5f}) p.push_back(f);
+    idx.insert(idx.end(), {2, 3, n, 3, 2, n + 1, 0, 2, n});
+    const sv::PreparedSurface s = prepare(p, idx);
+    ASSERT_GT(s.report.boundary_edges, 0);
+    ASSERT_GT(s.report.non_manifold_edges + s.report.same_direction_edges, 0);
+    EXPECT_EQ(run_all(s, sv::supported_variants(), 16, 400), "");
+}
+
+} // namespace
