@@ -46,10 +46,13 @@
 #include "shadowvol_mesh.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace sv {
+
+class RayTriangles; /* src/verify/ray_triangles.h */
 
 /* ---- Check 1: closure --------------------------------------------------- */
 
@@ -146,10 +149,10 @@ public:
      * outward volume). seed_state advances per ray drawn; *retries counts
      * rays replaced. */
     Status winding(const Point3 &p, uint64_t &seed_state, int *winding, int64_t *retries) const;
-    std::size_t triangles() const { return a_.size(); }
+    std::size_t triangles() const;
 
 private:
-    std::vector<Point3> a_, e1_, e2_;
+    std::shared_ptr<const RayTriangles> tris_;
     double eps_dist_ = 0;
 };
 

@@ -43,16 +43,14 @@ check_model "$models/character_1344.glb" 16 1000
   || err "verify --json FILE: no schema or not passed"
 
 if [ -d "$shared" ]; then
-  # Points per light by size, so the whole run stays within a minute.
   check_shared() { # name lights points
     if [ -f "$shared/$1.glb" ]; then check_model "$shared/$1.glb" "$2" "$3"
     else err "missing $shared/$1.glb"; fi
   }
-  for m in RiggedFigure Fox spot_lowres RobotExpressive CesiumMan; do
-    check_shared "$m" 16 400
+  for m in RiggedFigure Fox spot_lowres RobotExpressive CesiumMan spot; do
+    check_shared "$m" 16 1000
   done
-  check_shared spot 8 100
-  check_shared koala 4 40
+  check_shared koala 8 500
 else
   echo "NOTE: $shared not found: the real characters were NOT checked (only the generated one)."
 fi

@@ -9,6 +9,7 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -228,6 +229,81 @@ TEST(VerifyLight, OpenAndNonManifoldMeshes) {
     ASSERT_GT(s.report.boundary_edges, 0);
     ASSERT_GT(s.report.non_manifold_edges + s.report.same_direction_edges, 0);
     EXPECT_EQ(run_all(s, sv::supported_variants(), 16, 400), "");
+}
+
+} // namespace
+
+// The hierarchy only prunes: every triangle a ray really crosses must be
+// among the candidates it hands out (checked against a plain plane-and-
+// barycentric test of every triangle, for rays and segments).
+#include "ray_triangles.h"
+
+namespace {
+
+bool crosses(const Point3 &p, const Point3 &r, double s_max, const Point3 &a, const Point3 &e1,
+             const Point3 &e2) {
+    const Point3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                   e1.x * e2.y - e1.y * e2.x};
+    const double rn = r.x * n.x + r.y * n.y + r.z * n.z;
+    if (rn == 0) return false;
+    const double s = ((a.x - p.x) * n.x + (a.y - p.y) * n.y + (a.z - p.z) * n.z) / rn;
+    if (s < 0 || s > s_max) return false;
+    const Point3 q{p.x + s * r.x - a.x, p.y + s * r.y - a.y, p.z + s * r.z - a.z};
+    // Barycentrics by least squares on the two edges.
+    const double d11 = e1.x * e1.x + e1.y * e1.y + e1.z * e1.z;
+    const double d12 = e1.x * e2.x + e1.y * e2.y + e1.z * e2.z;
+    const double d22 = e2.x * e2.x + e2.y * e2.y + e2.z * e2.z;
+    const double q1 = q.x * e1.x + q.y * e1.y + q.z * e1.z;
+    const double q2 = q.x * e2.x + q.y * e2.y + q.z * e2.z;
+    const double den = d11 * d22 - d12 * d12;
+    const double u = (q1 * d22 - q2 * d12) / den, v = (q2 * d11 - q1 * d12) / den;
+    return u >= 0 && v >= 0 && u + v <= 1;
+}
+
+TEST(RayTriangles, CandidatesContainEveryCrossing) {
+    const sv::PreparedSurface s = character();
+    sv::RayTriangles tr;
+    for (int t = 0; t < s.num_triangles(); t++) {
+        const int *i = &s.indices[3 * (size_t)t];
+        auto v = [&](int k) {
+            return Point3{s.positions[3 * (size_t)k], s.positions[3 * (size_t)k + 1],
+                          s.positions[3 * (size_t)k + 2]};
+        };
+        tr.add(v(i[0]), v(i[1]), v(i[2]));
+    }
+    tr.build(1e-7);
+    uint64_t state = test_seed();
+    auto rnd = [&]() {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return (double)(state >> 11) * 0x1.0p-53 * 4 - 2;
+    };
+    int64_t crossings = 0, candidates = 0;
+    for (int ray = 0; ray < 2000; ray++) {
+        // From a random point towards a random corner of the mesh (nudged),
+        // so that most rays do cross it.
+        const Point3 p{rnd(), rnd(), rnd()};
+        const size_t k = (size_t)(state >> 20) % tr.size();
+        Point3 r{tr.a[k].x + 0.01 * rnd() - p.x, tr.a[k].y + 0.01 * rnd() - p.y,
+                 tr.a[k].z + 0.01 * rnd() - p.z};
+        const double len = std::sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
+        r = {r.x / len, r.y / len, r.z / len};  // odd rays: to infinity; even: segments
+        const double s_max = ray % 2 ? HUGE_VAL : len;
+        std::vector<char> seen(tr.size(), 0);
+        tr.for_each_candidate(p, r, s_max, [&](uint32_t t) {
+            seen[t] = 1;
+            candidates++;
+            return true;
+        });
+        for (size_t t = 0; t < tr.size(); t++) {
+            if (crosses(p, r, s_max, tr.a[t], tr.e1[t], tr.e2[t])) {
+                crossings++;
+                ASSERT_TRUE(seen[t]) << "ray " << ray << " crosses triangle " << t
+                                     << " but the hierarchy skipped it";
+            }
+        }
+    }
+    EXPECT_GT(crossings, 1000);                   // the rays do cross the mesh
+    EXPECT_LT(candidates, 2000 * (int64_t)tr.size() / 10); // and it prunes
 }
 
 } // namespace

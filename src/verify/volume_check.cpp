@@ -12,6 +12,8 @@
  */
 #include "shadowvol_verify.h"
 
+#include "ray_triangles.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -155,23 +157,31 @@ FacingInput facing_input(const PreparedSurface &s, const VerifyLight &l) {
     return in;
 }
 
-/* Triangles of the mesh in double, for segment crossings. */
+/* Triangles of the mesh in double, for segment crossings, with their
+ * (unnormalized) normals. */
 struct MeshTriangles {
-    std::vector<Point3> a, e1, e2, n;
+    RayTriangles tris;
+    std::vector<Point3> n;
 };
+
+/* Box padding of a triangle set: far above the crossing tolerances, far
+ * below any triangle worth skipping. */
+double box_pad(double scale) { return 1e-7 * scale; }
 
 MeshTriangles mesh_triangles(const PreparedSurface &s) {
     MeshTriangles m;
     const int nt = s.num_triangles();
-    m.a.resize(nt), m.e1.resize(nt), m.e2.resize(nt), m.n.resize(nt);
+    double scale = 0;
     for (int t = 0; t < nt; t++) {
         const int *tri = &s.indices[3 * (size_t)t];
         const Point3 p0 = vertex(s, tri[0]), p1 = vertex(s, tri[1]), p2 = vertex(s, tri[2]);
-        m.a[t] = p0;
-        m.e1[t] = p1 - p0;
-        m.e2[t] = p2 - p0;
-        m.n[t] = cross(m.e1[t], m.e2[t]);
+        m.tris.add(p0, p1, p2);
+        m.n.push_back(cross(p1 - p0, p2 - p0));
+        for (const Point3 &q : {p0, p1, p2}) {
+            scale = std::max({scale, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+        }
     }
+    m.tris.build(box_pad(scale));
     return m;
 }
 
@@ -205,24 +215,28 @@ bool expected_at(const MeshTriangles &m, const FacingInput &in, const Point3 &p,
         s_max = HUGE_VAL;
     }
     Expected e;
-    for (size_t t = 0; t < m.a.size(); t++) {
+    bool decided = true;
+    const RayTriangles &tr = m.tris;
+    tr.for_each_candidate(p, r, s_max, [&](uint32_t t) {
         double det;
-        const Hit h = intersect(p, r, s_max, eps_dist, m.a[t], m.e1[t], m.e2[t], &det);
-        if (h == Hit::miss) continue;
-        if (h != Hit::hit) return false;
+        const Hit h = intersect(p, r, s_max, eps_dist, tr.a[t], tr.e1[t], tr.e2[t], &det);
+        if (h == Hit::miss) return true;
+        if (h != Hit::hit) return decided = false;
         e.crosses_mesh = true;
         /* The light behind t's plane: the segment, running towards the
          * light, crosses t from its front to its back, r . n < 0. */
         const bool light_behind = dot(r, m.n[t]) < 0;
         if (light_behind != (in.facing[t] == 0)) e.facing_disagrees = true;
-        if (!in.casts[t]) continue;
+        if (!in.casts[t]) return true;
         if (light_behind) {
             e.winding += 1;
         } else {
             e.winding -= 1;
             e.inverted++;
         }
-    }
+        return true;
+    });
+    if (!decided) return false;
     *out = e;
     return true;
 }
@@ -238,14 +252,17 @@ Inside inside_closed_mesh(const MeshTriangles &m, const Point3 &p, double eps_di
     for (int attempt = 0; attempt < 8; attempt++) {
         const Point3 r = random_direction(rng);
         int winding = 0;
-        bool clean = true;
-        for (size_t t = 0; t < m.a.size() && clean; t++) {
+        bool clean = true, on_surface = false;
+        const RayTriangles &tr = m.tris;
+        tr.for_each_candidate(p, r, HUGE_VAL, [&](uint32_t t) {
             double det;
-            const Hit h = intersect(p, r, HUGE_VAL, eps_dist, m.a[t], m.e1[t], m.e2[t], &det);
+            const Hit h = intersect(p, r, HUGE_VAL, eps_dist, tr.a[t], tr.e1[t], tr.e2[t], &det);
             if (h == Hit::hit) winding += det < 0 ? 1 : -1;
-            else if (h == Hit::near_start) return Inside::undecided;
-            else if (h != Hit::miss) clean = false;
-        }
+            else if (h == Hit::near_start) return !(on_surface = true);
+            else if (h != Hit::miss) return clean = false;
+            return true;
+        });
+        if (on_surface) return Inside::undecided;
         if (clean) return winding != 0 ? Inside::yes : Inside::no;
         (*retries)++;
     }
@@ -338,33 +355,36 @@ WindingVolume::WindingVolume(const std::vector<Point3> &vertices, const int *ind
         scale = std::max({scale, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
     }
     eps_dist_ = 1e-12 * scale;
+    auto tris = std::make_shared<RayTriangles>();
     for (int i = 0; i + 2 < n; i += 3) {
-        const Point3 &p0 = vertices[(size_t)indices[i]];
-        a_.push_back(p0);
-        e1_.push_back(vertices[(size_t)indices[i + 1]] - p0);
-        e2_.push_back(vertices[(size_t)indices[i + 2]] - p0);
+        tris->add(vertices[(size_t)indices[i]], vertices[(size_t)indices[i + 1]],
+                  vertices[(size_t)indices[i + 2]]);
     }
+    tris->build(box_pad(scale));
+    tris_ = std::move(tris);
 }
+
+std::size_t WindingVolume::triangles() const { return tris_->size(); }
 
 WindingVolume::Status WindingVolume::winding(const Point3 &p, uint64_t &rng, int *out,
                                              int64_t *retries) const {
+    const RayTriangles &tr = *tris_;
     for (int attempt = 0; attempt < 8; attempt++) {
         const Point3 r = random_direction(rng);
         int w = 0;
-        bool clean = true;
-        for (size_t t = 0; t < a_.size() && clean; t++) {
+        bool clean = true, on_boundary = false;
+        tr.for_each_candidate(p, r, HUGE_VAL, [&](uint32_t t) {
             double det;
-            const Hit h = intersect(p, r, HUGE_VAL, eps_dist_, a_[t], e1_[t], e2_[t], &det);
-            if (h == Hit::miss) continue;
-            if (h == Hit::near_start) return Status::on_boundary;
-            if (h != Hit::hit) {
-                clean = false;
-                break;
-            }
+            const Hit h = intersect(p, r, HUGE_VAL, eps_dist_, tr.a[t], tr.e1[t], tr.e2[t], &det);
+            if (h == Hit::miss) return true;
+            if (h == Hit::near_start) return !(on_boundary = true);
+            if (h != Hit::hit) return clean = false;
             /* det = -r . n: leaving through a triangle whose normal points
              * along the ray counts +1. */
             w += det < 0 ? 1 : -1;
-        }
+            return true;
+        });
+        if (on_boundary) return Status::on_boundary;
         if (clean) {
             *out = w;
             return Status::ok;
