@@ -159,8 +159,13 @@ typedef int (*sv_create_cap_triangles_fn)(int *shadowIndices, const uint8_t *fac
 /* ---- Variants ----------------------------------------------------------- */
 
 enum {
-    SV_ISA_NONE = 0,      /* portable C */
-    SV_ISA_SSE2 = 1u << 0 /* baseline of every x86-64 CPU */
+    SV_ISA_NONE = 0,          /* portable C */
+    SV_ISA_SSE2 = 1u << 0,    /* baseline of every x86-64 CPU */
+    SV_ISA_AVX2 = 1u << 1,    /* x86-64-v3: AVX, AVX2, BMI1, BMI2, FMA, POPCNT,
+                                 and the OS saves the YMM state */
+    SV_ISA_AVX512 = 1u << 2,  /* x86-64-v4: AVX-512 F, BW, VL, DQ, CD, and the
+                                 OS saves the opmask and ZMM state */
+    SV_ISA_AVX512_VBMI2 = 1u << 3 /* vpcompressb/w, vpexpandb/w (Ice Lake, Zen 4) */
 };
 
 /* One named set of the four kernels. c_ref: the paper's C; c_branchless:
@@ -185,8 +190,28 @@ typedef struct sv_variant {
 const sv_variant *sv_variants(int *count);
 /* The variant called NAME, or NULL. */
 const sv_variant *sv_variant_by_name(const char *name);
-/* SV_ISA_* bits of this CPU. */
+/* Runtime dispatch: the fastest variant sv_cpu_isa() allows (the table is
+ * ordered from the reference to the fastest; this is the last entry whose
+ * isa the CPU has). Never NULL: c_ref runs everywhere. */
+const sv_variant *sv_best_variant(void);
+/* SV_ISA_* bits this CPU and OS run, capped by the ISA limit (below).
+ * Tests, benchmark and dispatch use this one. */
 unsigned sv_cpu_isa(void);
+/* The same bits without the limit. */
+unsigned sv_cpu_isa_detected(void);
+/* The ISA limit: "c" (C variants only), "sse2", "avx2" or "avx512" caps
+ * sv_cpu_isa() at that level; NULL removes the cap. Returns 0, or -1 for
+ * an unknown level (nothing changes). The environment variable SV_ISA sets
+ * the initial limit (an unknown value there means "c", and
+ * sv_isa_limit_name() reports it). Not thread-safe against concurrent
+ * dispatch: set it before starting threads. */
+int sv_set_isa_limit(const char *level);
+/* The limit's level name, or NULL when there is none. */
+const char *sv_isa_limit_name(void);
+/* The highest level sv_cpu_isa() reaches: "c", "sse2", "avx2", "avx512". */
+const char *sv_isa_level_name(void);
+/* ISA bits as space-separated names ("sse2 avx2 ...") in BUF; returns BUF. */
+const char *sv_isa_names(unsigned isa, char *buf, size_t size);
 
 /* ---- CreateShadowVolume (section 3) --------------------------------------
  * Builds the index list of the shadow volume: silhouette quads first, then

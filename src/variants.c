@@ -1,6 +1,8 @@
 /*
  * The table of variants: every implementation of the four kernels, by name,
- * so tests and benchmarks iterate over all of them (checkasm-style).
+ * so tests and benchmarks iterate over all of them (checkasm-style). Ordered
+ * from the reference to the fastest: sv_best_variant() takes the last one
+ * the CPU runs.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -39,4 +41,15 @@ const sv_variant *sv_variant_by_name(const char *name) {
         }
     }
     return NULL;
+}
+
+const sv_variant *sv_best_variant(void) {
+    const unsigned isa = sv_cpu_isa();
+    size_t i = sizeof variants / sizeof variants[0];
+    while (i-- > 1) {
+        if ((variants[i].isa & isa) == variants[i].isa) {
+            return &variants[i];
+        }
+    }
+    return &variants[0];
 }

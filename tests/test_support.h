@@ -35,6 +35,21 @@ private:
     uint64_t s_[4];
 };
 
+// Lifts the ISA limit (SV_ISA, sv_set_isa_limit) for one scope and puts it
+// back: for tests of one named variant's contract, which must check it in
+// the ISA-limited runs too (the hardware runs the variant; only dispatch
+// is held down there).
+class IsaLimitLifted {
+public:
+    IsaLimitLifted() : saved_(sv_isa_limit_name()) { sv_set_isa_limit(nullptr); }
+    ~IsaLimitLifted() { sv_set_isa_limit(saved_); }
+    IsaLimitLifted(const IsaLimitLifted &) = delete;
+    IsaLimitLifted &operator=(const IsaLimitLifted &) = delete;
+
+private:
+    const char *saved_;
+};
+
 // A generator for one test: the run's seed mixed with the test's name, so
 // tests do not share a stream and each is reproducible on its own.
 Rng rng_for(const char *test_name);

@@ -19,9 +19,10 @@ esac
 # Debian packages the build and the tests need.
 # libtinygltf-dev builds from its header with nlohmann-json3-dev (and
 # libstb-dev, named by its Debian notes); assimp-testmodels gives the loader
-# tests third-party malformed glTF files.
+# tests third-party malformed glTF files; qemu-user runs the test suite as
+# CPUs without AVX-512 and without AVX.
 packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
-          libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels)
+          libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
