@@ -259,6 +259,10 @@ int sv_create_cap_triangles_c_branchless(int *shadowIndices, const uint8_t *faci
 int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
                                        const int *indices, int numIndices);
 
+/* AVX2 variant (asm/..._avx2.asm): declarations go here. */
+
+/* AVX-512 variant (asm/..._avx512.asm): declarations go here. */
+
 /* ---- Contracts -----------------------------------------------------------
  * Each sv_check_* returns SV_OK or the first violated contract (SV_E_*), for
  * the named variant (its alignment needs) and the given buffers. The

@@ -21,6 +21,8 @@ static const sv_variant variants[] = {
     {"sse2_paper", SV_ISA_SSE2, sv_count_facing_sse2_paper,
      sv_count_facing_cull_sse2_paper, sv_create_sil_triangles_sse2_paper,
      sv_create_cap_triangles_sse2_paper, 16, 16, 8},
+    /* AVX2 variant (asm/..._avx2.asm) goes here. */
+    /* AVX-512 variant (asm/..._avx512.asm) goes here. */
 };
 
 const sv_variant *sv_variants(int *count) {

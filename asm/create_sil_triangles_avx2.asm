@@ -1,0 +1,2 @@
+; create_sil_triangles_avx2.asm: being written (issue 6); no functions yet.
+%include "sv_abi.inc"
