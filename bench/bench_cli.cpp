@@ -5,24 +5,59 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include <sys/stat.h>
+
+#include "bench_run.h"
 #include "cycle_table.h"
+#include "json_report.h"
+#include "lights.h"
+#include "model_list.h"
+#include "model_workload.h"
+#include "routines.h"
+#include "synthetic_workload.h"
+#include "sysinfo.h"
+#include "table_report.h"
 #include "timer.h"
+
+/* Set by bench/CMakeLists.txt. */
+#ifndef SV_MODELS_DIR
+#define SV_MODELS_DIR "models"
+#endif
+#ifndef SV_SHARED_MODELS_DIR
+#define SV_SHARED_MODELS_DIR "../shared/models"
+#endif
 
 namespace svbench {
 
 namespace {
 
-/* Full table (6 routines x 3 variants x 2 regimes) in a few seconds on a
+/* The full table of the bundled character (40 rows) in about 7 s on a
  * small VM whose cpuid traps; --quick in about one. */
 constexpr int kDefaultRuns = 4000;
 constexpr int kQuickRuns = 256;
 constexpr int kMaxRuns = 1000000;
-constexpr int kPatterns = 64;
+constexpr int kLights = 64;
+/* Runs are given for a mesh of the paper's size; a larger one gets
+ * proportionally fewer (its calls are longer and steadier), at least
+ * kMinScaledRuns, so `--model all` stays within a minute or so. */
+constexpr int kReferenceTriangles = 1344;
+constexpr int kMinScaledRuns = 64;
+
+constexpr int kExitCheckFailed = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitBadModel = 3;
+
+const char *const kBundledModel = SV_MODELS_DIR "/character_1344.glb";
+
+/* The levels sv_set_isa_limit knows (include/shadowvol.h). */
+const char *const kIsaLevels = "c, sse2, avx2, avx512";
 
 struct UsageError {
     std::string message;
@@ -36,7 +71,7 @@ long long parse_int(const std::string &opt, const std::string &s, long long lo, 
     errno = 0;
     char *end = nullptr;
     const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
-    long long v = digits ? std::strtoll(s.c_str(), &end, 10) : 0;
+    const long long v = digits ? std::strtoll(s.c_str(), &end, 10) : 0;
     if (!digits || errno == ERANGE || *end || v < lo || v > hi) {
         bad(opt + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
             ", not '" + s + "'");
@@ -48,31 +83,60 @@ unsigned long long parse_seed(const std::string &s) {
     errno = 0;
     char *end = nullptr;
     const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
-    unsigned long long v = digits ? std::strtoull(s.c_str(), &end, 10) : 0;
+    const unsigned long long v = digits ? std::strtoull(s.c_str(), &end, 10) : 0;
     if (!digits || errno == ERANGE || *end) {
         bad("--seed needs a whole number from 0 to 18446744073709551615, not '" + s + "'");
     }
     return v;
 }
 
-std::string routine_list() {
-    std::string s;
-    for (int i = 0; i < kNumRoutines; i++) {
-        s += (i ? ", " : "");
-        s += routine_name((Routine)i);
+/* A finite number, the whole of S; false otherwise. */
+bool parse_double(const std::string &s, double *v) {
+    if (s.empty() || std::isspace((unsigned char)s[0])) {
+        return false;
     }
-    return s;
+    errno = 0;
+    char *end = nullptr;
+    *v = std::strtod(s.c_str(), &end);
+    return !*end && errno != ERANGE && std::isfinite(*v);
 }
 
-std::string variant_list() {
-    int n = 0;
-    const sv_variant *v = sv_variants(&n);
-    std::string s;
-    for (int i = 0; i < n; i++) {
-        s += (i ? ", " : "");
-        s += v[i].name;
+/* A ratio strictly between 0 and 1. */
+double parse_ratio(const std::string &opt, const std::string &s) {
+    double v;
+    if (!parse_double(s, &v) || !(v > 0 && v < 1)) {
+        bad(opt + " needs a number between 0 and 1 (exclusive), not '" + s + "'");
     }
-    return s;
+    return v;
+}
+
+/* x,y,z,w: four finite floats, w 1 (a point light's position) or 0 (a
+ * direction towards the light, not zero). */
+Vec4 parse_light(const std::string &s) {
+    const std::string want =
+        "--light needs x,y,z,w: four finite numbers, w = 1 for a point light at (x,y,z) or 0 "
+        "for a directional light shining from direction (x,y,z), not '" +
+        s + "'";
+    double c[4];
+    size_t pos = 0;
+    for (int k = 0; k < 4; k++) {
+        const size_t comma = s.find(',', pos);
+        if ((k < 3) != (comma != std::string::npos)) {
+            bad(want);
+        }
+        const std::string part = s.substr(pos, k < 3 ? comma - pos : std::string::npos);
+        if (!parse_double(part, &c[k]) || !std::isfinite((float)c[k])) {
+            bad(want);
+        }
+        pos = comma + 1;
+    }
+    if (c[3] != 0 && c[3] != 1) {
+        bad(want);
+    }
+    if (c[3] == 0 && c[0] == 0 && c[1] == 0 && c[2] == 0) {
+        bad("--light: a directional light (w = 0) needs a direction other than 0,0,0");
+    }
+    return Vec4{(float)c[0], (float)c[1], (float)c[2], (float)c[3]};
 }
 
 /* Breaks a ", "-separated list into lines of at most WIDTH characters. */
@@ -80,8 +144,8 @@ std::string wrap(const std::string &list, size_t width, const char *newline) {
     std::string out, line;
     size_t pos = 0;
     while (pos < list.size()) {
-        size_t comma = list.find(", ", pos);
-        std::string item =
+        const size_t comma = list.find(", ", pos);
+        const std::string item =
             list.substr(pos, comma == std::string::npos ? std::string::npos : comma + 1 - pos);
         pos = comma == std::string::npos ? list.size() : comma + 2;
         if (!line.empty() && line.size() + 1 + item.size() > width) {
@@ -93,6 +157,239 @@ std::string wrap(const std::string &list, size_t width, const char *newline) {
     return out + line;
 }
 
+/* Everything the command line asked for. */
+struct CliOptions {
+    TableOptions table;
+    int runs = 0; /* 0: the default for --quick or not */
+    bool quick = false;
+    std::string timer = "auto";
+    uint64_t seed = 1;
+    std::vector<std::string> models;
+    bool hasLight = false;
+    Vec4 light{};
+    LightTargets targets;
+    std::string json;               /* --json FILE; "" none, "-" stdout */
+    std::string isa;                /* --isa; "" none */
+    std::vector<const BenchVariant *> variants; /* --variant, as given */
+    bool help = false;
+};
+
+/* "c (--isa)" or "c (SV_ISA)": the ISA limit in force and who set it. */
+std::string limit_source(const CliOptions &c) {
+    const char *l = sv_isa_limit_name();
+    return std::string(l ? l : "none") + (c.isa.empty() ? " (SV_ISA)" : " (--isa)");
+}
+
+CliOptions parse(int argc, char **argv) {
+    CliOptions c;
+    for (int i = 1; i < argc; i++) {
+        const std::string arg = argv[i];
+        std::string opt = arg, value;
+        bool hasValue = false;
+        if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
+            opt = arg.substr(0, arg.find('='));
+            value = arg.substr(arg.find('=') + 1);
+            hasValue = true;
+        }
+        auto need = [&]() -> std::string {
+            if (hasValue) {
+                return value;
+            }
+            if (i + 1 >= argc) {
+                bad(opt + " needs a value");
+            }
+            return argv[++i];
+        };
+        if (opt == "-h" || opt == "--help") {
+            c.help = true;
+            return c;
+        } else if (opt == "--quick" && !hasValue) {
+            c.quick = true;
+        } else if (opt == "--runs") {
+            c.runs = (int)parse_int(opt, need(), 1, kMaxRuns);
+        } else if (opt == "--regime") {
+            const std::string r = need();
+            if (r == "moving" || r == "fixed" || r == "both") {
+                c.table.moving = r != "fixed";
+                c.table.fixed = r != "moving";
+            } else {
+                bad("--regime must be moving, fixed or both, not '" + r + "'");
+            }
+        } else if (opt == "--routine") {
+            const std::string r = need();
+            Routine rt;
+            if (!routine_by_name(r, &rt)) {
+                bad("unknown routine '" + r + "' (routines: " + routine_list() + ")");
+            }
+            if (std::find(c.table.routines.begin(), c.table.routines.end(), rt) ==
+                c.table.routines.end()) {
+                c.table.routines.push_back(rt);
+            }
+        } else if (opt == "--variant") {
+            const std::string v = need();
+            const BenchVariant *var = bench_variant_by_name(v);
+            if (!var) {
+                bad("unknown variant '" + v + "' (variants: " + variant_list() + ")");
+            }
+            c.variants.push_back(var);
+        } else if (opt == "--isa") {
+            /* The library's limit, for the rest of the process (the
+             * shadowvol program runs one command): the variant table,
+             * dispatch and this table then agree on what runs. */
+            c.isa = need();
+            if (sv_set_isa_limit(c.isa.c_str()) != 0) {
+                bad("--isa must be one of " + std::string(kIsaLevels) + ", not '" + c.isa + "'");
+            }
+        } else if (opt == "--timer") {
+            c.timer = need();
+            if (c.timer != "auto" && c.timer != "rdtscp" && c.timer != "cpuid" &&
+                c.timer != "lfence") {
+                bad("--timer must be auto, rdtscp, cpuid or lfence, not '" + c.timer + "'");
+            }
+        } else if (opt == "--batch") {
+            const std::string b = need();
+            try {
+                c.table.batch = b == "auto" ? 0 : (int)parse_int(opt, b, 1, kMaxBatch);
+            } catch (const UsageError &) {
+                bad("--batch needs auto or a whole number from 1 to " + std::to_string(kMaxBatch) +
+                    ", not '" + b + "'");
+            }
+        } else if (opt == "--seed") {
+            c.seed = parse_seed(need());
+        } else if (opt == "--model") {
+            const std::string m = need();
+            if (m.empty()) {
+                bad("--model needs a file, a folder, all or synthetic");
+            }
+            c.models.push_back(m);
+        } else if (opt == "--light") {
+            c.light = parse_light(need());
+            c.hasLight = true;
+        } else if (opt == "--facing-ratio") {
+            c.targets.facing = parse_ratio(opt, need());
+        } else if (opt == "--silhouette-ratio") {
+            c.targets.silhouette = parse_ratio(opt, need());
+        } else if (opt == "--json") {
+            c.json = need();
+            if (c.json.empty()) {
+                bad("--json needs a file name, or - for standard output");
+            }
+        } else if (hasValue && opt == "--quick") {
+            bad("--quick takes no value");
+        } else if (arg.rfind("-", 0) == 0) {
+            bad("unknown option '" + arg + "'");
+        } else {
+            bad("unexpected argument '" + arg + "'");
+        }
+    }
+    if (c.timer == "rdtscp" && !cpu_has_rdtscp()) {
+        bad("--timer rdtscp: this CPU has no RDTSCP (CPUID 0x80000001 EDX bit 27); use cpuid or "
+            "lfence");
+    }
+    for (const BenchVariant *v : c.variants) {
+        if ((v->isa & sv_cpu_isa_detected()) != v->isa) {
+            bad(std::string("variant '") + v->name + "' needs an instruction set this CPU lacks");
+        }
+        if ((v->isa & sv_cpu_isa()) != v->isa) {
+            bad(std::string("variant '") + v->name + "' is above the ISA limit " + limit_source(c));
+        }
+    }
+    return c;
+}
+
+/* The variants to time, in the table's order, and why the others are not:
+ * the library's sv_cpu_isa() decides, the ISA limit (--isa, SV_ISA)
+ * included, as it does for dispatch and the tests. */
+void choose_variants(const CliOptions &c, BenchRun &run) {
+    for (const BenchVariant &v : bench_variants()) {
+        const bool asked =
+            c.variants.empty() ||
+            std::find(c.variants.begin(), c.variants.end(), &v) != c.variants.end();
+        if ((v.isa & sv_cpu_isa_detected()) != v.isa) {
+            run.skipped.push_back({v.name, "this CPU lacks its instruction set"});
+        } else if ((v.isa & sv_cpu_isa()) != v.isa) {
+            run.skipped.push_back({v.name, "above the ISA limit " + limit_source(c)});
+        } else if (asked) {
+            run.options.variants.push_back(&v);
+        }
+    }
+}
+
+int runs_for(int runs, int triangles) {
+    if (triangles <= kReferenceTriangles) {
+        return runs;
+    }
+    const long scaled = (long)runs * kReferenceTriangles / triangles;
+    return (int)std::max<long>(std::min(runs, kMinScaledRuns), scaled);
+}
+
+/* A file for the JSON document, opened before the measurements so that a
+ * name that cannot be written fails at once, and removed again when the run
+ * ends without a document (a model that did not load, an internal error):
+ * a script finds a whole document or none. */
+class JsonFile {
+public:
+    explicit JsonFile(const std::string &name) : name_(name) {
+        if (name.empty()) {
+            return;
+        }
+        f_ = name == "-" ? stdout : std::fopen(name.c_str(), "w");
+        if (!f_) {
+            bad("--json: cannot write " + name + ": " + std::strerror(errno));
+        }
+        struct stat st;
+        if (f_ != stdout && fstat(fileno(f_), &st) == 0 && S_ISREG(st.st_mode)) {
+            regular_ = true;
+            dev_ = st.st_dev;
+            ino_ = st.st_ino;
+        }
+    }
+    ~JsonFile() {
+        if (f_ && f_ != stdout) {
+            std::fclose(f_);
+            discard();
+        }
+    }
+    JsonFile(const JsonFile &) = delete;
+    JsonFile &operator=(const JsonFile &) = delete;
+    bool wanted() const { return f_ != nullptr; }
+    bool is_stdout() const { return f_ == stdout; }
+    /* False (with errno) when the document could not be written whole. */
+    bool write(const std::string &doc) {
+        const bool ok = std::fwrite(doc.data(), 1, doc.size(), f_) == doc.size() &&
+                        std::fflush(f_) == 0;
+        if (f_ != stdout) {
+            const bool closed = std::fclose(f_) == 0;
+            f_ = nullptr;
+            if (!(ok && closed)) {
+                const int e = errno;
+                discard(); /* no half document */
+                errno = e;
+            }
+            return ok && closed;
+        }
+        return ok;
+    }
+    const std::string &name() const { return name_; }
+
+private:
+    /* Removes the file, when NAME is that very regular file: never a
+     * device, a pipe, or a link such as /dev/stdout, whose name would be
+     * removed rather than what it points to. */
+    void discard() {
+        struct stat st;
+        if (regular_ && lstat(name_.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+            st.st_dev == dev_ && st.st_ino == ino_) {
+            std::remove(name_.c_str());
+        }
+    }
+    std::string name_;
+    FILE *f_ = nullptr;
+    bool regular_ = false; /* what was opened is a regular file */
+    dev_t dev_ = 0;
+    ino_t ino_ = 0;
+};
+
 } // namespace
 
 void bench_usage(FILE *out) {
@@ -101,17 +398,37 @@ void bench_usage(FILE *out) {
         "usage: shadowvol bench [options]\n"
         "\n"
         "The cycle table of the paper's section 8: every routine of every variant this\n"
-        "CPU runs, timed call by call with the serialised TSC on a synthetic mesh of the\n"
-        "paper's size (1344 triangles, 2016 SilEdges, 50%% facing, 20%% silhouette), with\n"
-        "a moving light (a different facing pattern every call; the headline) and a fixed\n"
-        "one (the paper's hot-cache setup), beside the paper's Pentium 4 figures. Every\n"
-        "call is checked against the paper's C (c_ref); a row that differs prints FAILED\n"
-        "and the exit status is 1.\n"
+        "CPU runs, timed call by call with the serialised TSC, on the project's 1344-\n"
+        "triangle character (models/character_1344.glb, the paper's sizes) lit by 64\n"
+        "point lights chosen so that about 50%% of the triangles face the light and\n"
+        "about 20%% of the SilEdges are on the silhouette, as in the paper (the header\n"
+        "prints the ratios reached). Two regimes: a moving light (a different light\n"
+        "every call; the headline) and a fixed one (the paper's hot-cache setup).\n"
+        "Beside the paper's Pentium 4 figures. Every call is checked against the\n"
+        "paper's C (c_ref; CalculateFacing and CalculateCullBits against a second\n"
+        "computation); a row that differs prints FAILED and the exit status is 1.\n"
         "\n"
         "options:\n"
+        "  --model M        what to time (repeatable): a glTF FILE (all its surfaces\n"
+        "                   merged into one), a DIR of them, all (the bundled character\n"
+        "                   and the real characters in ../shared/models), or synthetic\n"
+        "                   (a torus with generated facing patterns at the paper's exact\n"
+        "                   ratios). Default: the bundled character only\n"
+        "  --light x,y,z,w  the fixed light (w 1: a point at x,y,z; w 0: a directional\n"
+        "                   light from direction x,y,z), in the model's world space; the\n"
+        "                   moving light still rotates through the 64 searched lights\n"
+        "  --facing-ratio R, --silhouette-ratio R\n"
+        "                   the ratios the light search aims at (default 0.5 and 0.2)\n"
+        "  --json FILE      also write the results as JSON (schema shadowvol-bench/1);\n"
+        "                   FILE - writes it to standard output and the table to stderr\n"
+        "  --isa LEVEL      time only the variants within LEVEL, one of %s\n"
+        "                   (c: the C variants only), as SV_ISA=LEVEL in the\n"
+        "                   environment does\n"
         "  --runs N         timed regions (calls, or batches: --batch) per row (default\n"
-        "                   %d; --quick %d), split over 4 rounds through all rows\n"
-        "  --quick          a short run (about a second) with every row still checked\n"
+        "                   %d; --quick %d), split over 4 rounds through all rows;\n"
+        "                   meshes above 1344 triangles get proportionally fewer (at\n"
+        "                   least %d)\n"
+        "  --quick          a short run (a second or two) with every row still checked\n"
         "  --regime R       moving, fixed or both (default both)\n"
         "  --routine NAME   only this routine (repeatable), one of:\n"
         "                     %s\n"
@@ -119,129 +436,120 @@ void bench_usage(FILE *out) {
         "  --timer T        auto, rdtscp, cpuid or lfence (default auto: rdtscp where the\n"
         "                   CPU has it, else cpuid)\n"
         "  --batch N        calls per timed region: auto (the default) times a batch of\n"
-        "                   back-to-back calls, as many as their input copies fit in 2/3\n"
-        "                   of the L1 data cache, in a count routine's row whose call\n"
+        "                   back-to-back calls, as many as fit in 2/3 of the L1 data\n"
+        "                   cache, in a row of a routine that writes no indices whose call\n"
         "                   lasts under 50 TSC steps (or 50 x the empty region's jitter);\n"
         "                   1 never batches; 2 to %d batches every row (N times the\n"
         "                   calls: slower). Batched rows are marked xN and report ticks\n"
         "                   per call\n"
-        "  --seed N         seed of the facing patterns (default 1)\n"
+        "  --seed N         seed of the light search and of the synthetic patterns\n"
+        "                   (default 1)\n"
         "  -h, --help       this text\n"
         "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
-        "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n",
-        kDefaultRuns, kQuickRuns, wrap(routine_list(), 58, "\n                     ").c_str(),
-        variant_list().c_str(), kMaxBatch);
+        "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
+        "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
+        "could not be loaded.\n",
+        kIsaLevels, kDefaultRuns, kQuickRuns, kMinScaledRuns,
+        wrap(routine_list(), 58, "\n                     ").c_str(), variant_list().c_str(),
+        kMaxBatch);
 }
 
 int bench_main(int argc, char **argv) {
-    TableOptions o;
-    int runs = 0;
-    bool quick = false;
-    std::string timer = "auto";
+    CliOptions c;
+    ModelList models;
     try {
-        for (int i = 1; i < argc; i++) {
-            std::string arg = argv[i], opt = arg, value;
-            bool hasValue = false;
-            if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
-                opt = arg.substr(0, arg.find('='));
-                value = arg.substr(arg.find('=') + 1);
-                hasValue = true;
-            }
-            auto need = [&]() -> std::string {
-                if (hasValue) {
-                    return value;
-                }
-                if (i + 1 >= argc) {
-                    bad(opt + " needs a value");
-                }
-                return argv[++i];
-            };
-            if (opt == "-h" || opt == "--help") {
-                bench_usage(stdout);
-                return 0;
-            } else if (opt == "--quick" && !hasValue) {
-                quick = true;
-            } else if (opt == "--runs") {
-                runs = (int)parse_int(opt, need(), 1, kMaxRuns);
-            } else if (opt == "--regime") {
-                std::string r = need();
-                if (r == "moving" || r == "fixed" || r == "both") {
-                    o.moving = r != "fixed";
-                    o.fixed = r != "moving";
-                } else {
-                    bad("--regime must be moving, fixed or both, not '" + r + "'");
-                }
-            } else if (opt == "--routine") {
-                std::string r = need();
-                Routine rt;
-                if (!routine_by_name(r, &rt)) {
-                    bad("unknown routine '" + r + "' (routines: " + routine_list() + ")");
-                }
-                if (std::find(o.routines.begin(), o.routines.end(), rt) == o.routines.end()) {
-                    o.routines.push_back(rt);
-                }
-            } else if (opt == "--variant") {
-                std::string v = need();
-                const sv_variant *var = sv_variant_by_name(v.c_str());
-                if (!var) {
-                    bad("unknown variant '" + v + "' (variants: " + variant_list() + ")");
-                }
-                if ((var->isa & sv_cpu_isa()) != var->isa) {
-                    bad("variant '" + v + "' needs an instruction set this CPU lacks");
-                }
-                if (std::find(o.variants.begin(), o.variants.end(), var) == o.variants.end()) {
-                    o.variants.push_back(var);
-                }
-            } else if (opt == "--timer") {
-                timer = need();
-                if (timer != "auto" && timer != "rdtscp" && timer != "cpuid" && timer != "lfence") {
-                    bad("--timer must be auto, rdtscp, cpuid or lfence, not '" + timer + "'");
-                }
-            } else if (opt == "--batch") {
-                const std::string b = need();
-                try {
-                    o.batch = b == "auto" ? 0 : (int)parse_int(opt, b, 1, kMaxBatch);
-                } catch (const UsageError &) {
-                    bad("--batch needs auto or a whole number from 1 to " +
-                        std::to_string(kMaxBatch) + ", not '" + b + "'");
-                }
-            } else if (opt == "--seed") {
-                o.seed = parse_seed(need());
-            } else if (hasValue && opt == "--quick") {
-                bad("--quick takes no value");
-            } else if (arg.rfind("-", 0) == 0) {
-                bad("unknown option '" + arg + "'");
-            } else {
-                bad("unexpected argument '" + arg + "'");
-            }
+        c = parse(argc, argv);
+        if (c.help) {
+            bench_usage(stdout);
+            return 0;
         }
-        if (timer == "rdtscp" && !cpu_has_rdtscp()) {
-            bad("--timer rdtscp: this CPU has no RDTSCP (CPUID 0x80000001 EDX bit 27); use "
-                "cpuid or lfence");
+        models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "shadowvol bench: %s\nTry 'shadowvol bench --help'.\n",
+                     e.message.c_str());
+        return kExitUsage;
+    } catch (const ModelListError &e) {
+        std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
+        return kExitBadModel;
+    }
+
+    BenchRun run;
+    run.seed = c.seed;
+    if (sv_isa_limit_name()) {
+        run.isaLimit = limit_source(c);
+    }
+    run.variantsChosen = !c.variants.empty();
+    run.realModels = models.note;
+    run.options = c.table;
+    run.options.runs = c.runs ? c.runs : c.quick ? kQuickRuns : kDefaultRuns;
+    if (run.options.routines.empty()) {
+        run.options.routines.assign(kAllRoutines, kAllRoutines + kNumRoutines);
+    }
+    std::sort(run.options.routines.begin(), run.options.routines.end());
+    choose_variants(c, run);
+
+    try {
+        JsonFile json(c.json);
+        FILE *out = json.is_stdout() ? stderr : stdout;
+
+        /* Every workload before any measurement: a model that does not load
+         * fails at once. */
+        for (const ModelSpec &m : models.models) {
+            ModelRun mr;
+            try {
+                mr.workload = m.synthetic
+                                  ? make_synthetic_workload(c.seed, kLights, c.targets.facing,
+                                                            c.targets.silhouette)
+                                  : make_model_workload(m.path, c.targets, kLights, c.seed,
+                                                        c.hasLight ? &c.light : nullptr);
+            } catch (const WorkloadError &e) {
+                std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
+                return m.synthetic ? kExitUsage : kExitBadModel;
+            }
+            if (m.synthetic) {
+                mr.workload.origin.fixedGiven = c.hasLight;
+            }
+            run.models.push_back(std::move(mr));
+        }
+
+        const TimerKind timer = c.timer == "rdtscp"   ? TimerKind::rdtscp
+                                : c.timer == "cpuid"  ? TimerKind::cpuid
+                                : c.timer == "lfence" ? TimerKind::lfence
+                                                      : timer_auto();
+        run.machine = measure_machine(timer, c.timer == "auto", c.quick ? 1000 : 5000, 0.05);
+        print_run_header(out, run);
+        for (ModelRun &m : run.models) {
+            TableOptions o = run.options;
+            o.runs = runs_for(o.runs, m.workload.numTriangles);
+            const int perRound = (o.runs + o.rounds - 1) / o.rounds;
+            o.warmup = std::min(m.workload.numMoving, perRound); /* up to one turn of lights */
+            m.table = run_cycle_table(o, run.machine, m.workload);
+            print_model(out, run, m);
+        }
+        print_notes(out, run);
+
+        if (json.wanted() && !json.write(bench_json(run))) {
+            std::fprintf(stderr, "shadowvol bench: --json: cannot write %s: %s\n",
+                         json.name().c_str(), std::strerror(errno));
+            return kExitCheckFailed;
         }
     } catch (const UsageError &e) {
         std::fprintf(stderr, "shadowvol bench: %s\nTry 'shadowvol bench --help'.\n",
                      e.message.c_str());
-        return 2;
-    }
-
-    o.timerAuto = timer == "auto";
-    o.timer = timer == "rdtscp"   ? TimerKind::rdtscp
-              : timer == "cpuid"  ? TimerKind::cpuid
-              : timer == "lfence" ? TimerKind::lfence
-                                  : timer_auto();
-    o.runs = runs ? runs : quick ? kQuickRuns : kDefaultRuns;
-    o.patterns = kPatterns;
-    o.warmup = kPatterns; /* one turn through the patterns */
-    o.overheadTries = quick ? 1000 : 5000;
-    o.tscSeconds = 0.05;
-    try {
-        return run_cycle_table(o, stdout);
+        return kExitUsage;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());
-        return 1;
+        return kExitCheckFailed;
     }
+
+    const int failed = failed_rows(run);
+    if (failed) {
+        std::fprintf(stderr, "shadowvol bench: %d row%s failed the check against the reference\n",
+                     failed, failed == 1 ? "" : "s");
+        return kExitCheckFailed;
+    }
+    return 0;
 }
 
 } // namespace svbench

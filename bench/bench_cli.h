@@ -13,7 +13,7 @@ namespace svbench {
 
 /* ARGV[0] is the subcommand's name ("bench"). Returns the exit status: 0
  * done, 1 a row failed its correctness check (or an internal error), 2 bad
- * arguments. */
+ * arguments, 3 a model could not be loaded. */
 int bench_main(int argc, char **argv);
 
 /* The --help text. */

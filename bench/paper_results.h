@@ -16,7 +16,9 @@
  *
  * Rows: "(C)" is the paper's C (variant c_ref), "(SSE)" its SSE2 listing
  * (variant sse2_paper). "CreateShadowVolume, no culling" is the routine
- * create_shadow_volume, "with culling" create_shadow_volume_cull.
+ * create_shadow_volume, "with culling" create_shadow_volume_cull. The
+ * table has no row for CalculateFacing or CalculateCullBits (appendices A
+ * and B): calculate_facing and calculate_cull_bits have no figures.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -26,6 +28,10 @@
 #include <cstring>
 
 namespace svbench {
+
+/* The paper's character. */
+constexpr int kPaperTriangles = 1344;
+constexpr int kPaperSilEdges = 2016;
 
 struct PaperFigures {
     const char *routine;  /* this project's routine name */

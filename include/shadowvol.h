@@ -98,6 +98,46 @@ int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
                                  const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
                                  uint8_t *cullBits);
 
+/* ---- Appendices A and B in SIMD, and their table -------------------------
+ * Each is BIT-IDENTICAL to the reference above (same operations in the same
+ * order, no FMA; see src/facing_simd.c), with the same contract. */
+typedef void (*sv_calculate_facing_fn)(const Plane *planes, int numTriangles,
+                                       const Vec4 *light, uint8_t *facing);
+typedef int (*sv_calculate_cull_bits_fn)(const Vec4 *positions, int numVerts,
+                                         const Bounds *surfaceBounds,
+                                         const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                         uint8_t *cullBits);
+
+void sv_calculate_facing_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
+                              uint8_t *facing);
+void sv_calculate_facing_avx2(const Plane *planes, int numTriangles, const Vec4 *light,
+                              uint8_t *facing);
+void sv_calculate_facing_avx512(const Plane *planes, int numTriangles, const Vec4 *light,
+                                uint8_t *facing);
+int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
+                                const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
+int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
+                                const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
+int sv_calculate_cull_bits_avx512(const Vec4 *positions, int numVerts,
+                                  const Bounds *surfaceBounds,
+                                  const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                  uint8_t *cullBits);
+
+/* The implementations of appendices A and B, by name, from the reference to
+ * the fastest (c_ref, sse2, avx2, avx512). Not every SIMD level is needed:
+ * check isa against sv_cpu_isa() before calling. */
+typedef struct sv_facing_variant {
+    const char *name;
+    unsigned isa; /* SV_ISA_* bits the CPU must have */
+    sv_calculate_facing_fn calculate_facing;
+    sv_calculate_cull_bits_fn calculate_cull_bits;
+} sv_facing_variant;
+
+const sv_facing_variant *sv_facing_variants(int *count);
+const sv_facing_variant *sv_facing_variant_by_name(const char *name);
+/* The last entry sv_cpu_isa() allows (never NULL). */
+const sv_facing_variant *sv_best_facing_variant(void);
+
 /* ---- Routine signatures ------------------------------------------------- */
 
 /* CountFacing (section 4, appendix C): number of facing bytes that are set.

@@ -21,6 +21,7 @@
  * your option) any later version.
  */
 #include "shadowvol.h"
+#include "facing_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -48,17 +49,13 @@ void sv_calculate_facing_c_ref(const Plane *planes, int numTriangles, const Vec4
 
 _Static_assert(NUM_LIGHT_PLANES <= sizeof(uint8_t) * 8, "one cull bit per light plane");
 
-int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
-                                 const Bounds *surfaceBounds,
-                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
-                                 uint8_t *cullBits) {
-    int i, j, frontBits;
-
-    if (numVerts < 0) {
-        return 0;
-    }
-
-    frontBits = 0;
+/* The surface box against the light planes: bit i set when the whole box
+ * is in front of plane i. The first half of appendix B, shared with the
+ * SIMD variants (src/facing_internal.h) so that all of them decide
+ * "completely inside" from the same bits. */
+int sv_cull_front_bits(const Bounds *surfaceBounds,
+                       const Plane lightPlanes[SV_NUM_LIGHT_PLANES]) {
+    int i, frontBits = 0;
 
     /* cull the triangle surface bounding box */
     for (i = 0; i < NUM_LIGHT_PLANES; i++) {
@@ -75,6 +72,20 @@ int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
             frontBits |= 1 << i; /* front bits for the whole surface */
         }
     }
+    return frontBits;
+}
+
+int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
+                                 const Bounds *surfaceBounds,
+                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                 uint8_t *cullBits) {
+    int i, j, frontBits;
+
+    if (numVerts < 0) {
+        return 0;
+    }
+
+    frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
 
     /* if the surface is completely inside the light frustum */
     if (frontBits == ((1 << NUM_LIGHT_PLANES) - 1)) {

@@ -1,31 +1,39 @@
 #!/usr/bin/env bash
 # The shadowvol program as a user meets it: `bench --quick` runs every row,
 # checks every call against the reference and exits 0; bad arguments get a
-# message on stderr and exit status 2; --help goes to stdout with status 0.
+# message on stderr and exit status 2 (3 for a model that cannot be loaded);
+# --help goes to stdout with status 0.
 # usage: check_cli.sh PATH/TO/shadowvol
 set -u
 sv="$1"
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
 
-out=$("$sv" bench --quick 2>/tmp/sv_cli_err.$$); rc=$?
-[ $rc -eq 0 ] || err "bench --quick exited $rc: $(cat /tmp/sv_cli_err.$$)"
-rows=$(printf '%s\n' "$out" | grep -cE '^(count_facing|count_facing_cull|create_sil_triangles|create_cap_triangles|create_shadow_volume|create_shadow_volume_cull) ')
-okrows=$(printf '%s\n' "$out" | grep -E '^(count_facing|create_)' | grep -cE '\| ok$')
-# 6 routines x 3 variants x 2 regimes
-[ "$rows" -ge 36 ] || err "expected at least 36 table rows, got $rows"
+routines='calculate_facing|calculate_cull_bits|count_facing|count_facing_cull|create_sil_triangles|create_cap_triangles|create_shadow_volume|create_shadow_volume_cull'
+out=$("$sv" bench --quick 2>"$tmp/err"); rc=$?
+[ $rc -eq 0 ] || err "bench --quick exited $rc: $(cat "$tmp/err")"
+rows=$(printf '%s\n' "$out" | grep -cE "^($routines) ")
+okrows=$(printf '%s\n' "$out" | grep -E "^($routines) " | grep -cE '\| ok$')
+# 6 routines x 3 variants + calculate_facing and calculate_cull_bits (c_ref), x 2 regimes
+[ "$rows" -ge 40 ] || err "expected at least 40 table rows, got $rows"
 [ "$rows" -eq "$okrows" ] || err "$((rows - okrows)) rows not checked ok"
 printf '%s\n' "$out" | grep -q 'FAILED' && err "a row FAILED its correctness check"
-printf '%s\n' "$out" | grep -q '^timer' || err "no timer line in the header"
+for field in '^cpu ' '^isa ' '^tsc ' '^timer' '^overhead' '^build' '^model .*character_1344.glb' \
+             'real characters' '^lights .*point lights' 'facing [0-9.]+% \(' 'silhouette [0-9.]+% \(' \
+             '^cull .*of the triangles outside'; do
+  printf '%s\n' "$out" | grep -qE "$field" || err "no '$field' in the header"
+done
 
 expect_status() { # expected-status description args...
   local want=$1; shift; local what=$1; shift
-  "$sv" "$@" >/tmp/sv_cli_out.$$ 2>/tmp/sv_cli_err.$$; local got=$?
-  [ $got -eq "$want" ] || err "$what: exit $got, want $want"
+  "$sv" "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  [ $got -eq "$want" ] || err "$what: exit $got, want $want ($(head -c 300 "$tmp/err"))"
   if [ "$want" -ne 0 ]; then
-    [ -s /tmp/sv_cli_err.$$ ] || err "$what: no message on stderr"
+    [ -s "$tmp/err" ] || err "$what: no message on stderr"
   else
-    [ -s /tmp/sv_cli_out.$$ ] || err "$what: nothing on stdout"
+    [ -s "$tmp/out" ] || err "$what: nothing on stdout"
   fi
 }
 expect_status 0 "help" help
@@ -40,7 +48,34 @@ expect_status 2 "--regime foo" bench --regime foo
 expect_status 2 "unknown routine" bench --routine no_such_routine
 expect_status 2 "unknown variant" bench --variant no_such_variant
 expect_status 2 "--timer foo" bench --timer foo
+expect_status 2 "--light with three numbers" bench --light 1,2,3
+grep -q -- '--light needs x,y,z,w' "$tmp/err" || err "--light: the message does not say what it needs"
+expect_status 2 "--light with five numbers" bench --light 1,2,3,1,5
+expect_status 2 "--light not numbers" bench --light a,b,c,d
+expect_status 2 "--light w neither 0 nor 1" bench --light 1,2,3,0.5
+expect_status 2 "--light nan" bench --light nan,0,0,1
+expect_status 2 "--light directional 0,0,0" bench --light 0,0,0,0
+expect_status 2 "--isa unknown level" bench --isa avx9000
+grep -q -- '--isa must be one of c, sse2' "$tmp/err" || err "--isa: the message does not list the levels"
+expect_status 2 "--variant above --isa" bench --isa c --variant sse2_paper
+expect_status 2 "--facing-ratio 1.5" bench --facing-ratio 1.5
+expect_status 2 "--silhouette-ratio 0" bench --silhouette-ratio 0
+expect_status 2 "--json into a missing folder" bench --json "$tmp/no/such/dir/b.json"
+expect_status 3 "--model missing file" bench --model "$tmp/no_such_model.glb" --json "$tmp/failed.json"
+grep -q 'no_such_model.glb' "$tmp/err" || err "--model: the message does not name the file"
+[ -e "$tmp/failed.json" ] && err "--json: a run that failed left a JSON file behind"
+printf 'not a glTF file\n' >"$tmp/broken.glb"
+expect_status 3 "--model not glTF" bench --model "$tmp/broken.glb"
+expect_status 3 "--model folder without glTF" bench --model "$tmp"
 
-rm -f /tmp/sv_cli_out.$$ /tmp/sv_cli_err.$$
+# --isa c: the C variants only, and the header says why the others are not run.
+expect_status 0 "--isa c" bench --quick --isa c --routine count_facing --regime fixed
+grep -qE '^count_facing +sse2_paper' "$tmp/out" && err "--isa c: sse2_paper rows ran"
+grep -q '^skipped   variant sse2_paper: above the ISA limit c (--isa)' "$tmp/out" || err "--isa c: no skipped line"
+grep -qE '^count_facing +c_branchless' "$tmp/out" || err "--isa c: no c_branchless row"
+# --light: the fixed regime uses it, and the header prints it.
+expect_status 0 "--light directional" bench --quick --light 0,10,0,0 --routine calculate_facing
+grep -q -- '--light at (0, 10, 0, 0)' "$tmp/out" || err "--light: the header does not show it"
+
 [ $fail -eq 0 ] && echo "shadowvol CLI: $rows rows checked ok, argument errors and help behave"
 exit $fail

@@ -1,0 +1,300 @@
+/*
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "json_report.h"
+
+#include <cstdlib>
+
+#include "json_writer.h"
+#include "paper_results.h"
+#include "sysinfo.h"
+
+namespace svbench {
+
+namespace {
+
+void ratio(JsonWriter &j, const char *name, const Workload &w, Ratio which, double target) {
+    const RatioStats s = ratio_stats(w, which);
+    j.key(name);
+    j.begin_object(true);
+    if (target >= 0) {
+        j.key("target");
+        j.value(target);
+    }
+    j.key("mean");
+    j.value(s.mean);
+    j.key("min");
+    j.value(s.min);
+    j.key("max");
+    j.value(s.max);
+    j.end_object();
+}
+
+void model(JsonWriter &j, const ModelRun &m) {
+    const Workload &w = m.workload;
+    const LightOrigin &o = w.origin;
+    j.begin_object();
+    j.key("model");
+    j.value(w.name);
+    j.key("source");
+    j.value(w.source);
+    j.key("surfaces");
+    j.value(w.surfaces);
+    j.key("vertices");
+    j.value(w.numVerts);
+    j.key("triangles");
+    j.value(w.numTriangles);
+    j.key("edges");
+    j.value(w.numSilEdges);
+    j.key("dangling_edges");
+    j.value(w.numDangling);
+    j.key("closed");
+    j.value(w.closed);
+    j.key("lit");
+    j.value(o.lit);
+    j.key("lights");
+    j.value(w.numMoving);
+    if (o.lit) {
+        j.key("light_candidates");
+        j.value(o.candidates);
+    }
+    j.key("seed");
+    j.value((unsigned long long)o.seed);
+    j.key("runs");
+    j.value(m.table.runs);
+    j.key("warmup");
+    j.value(m.table.warmup);
+    ratio(j, "facing_ratio", w, Ratio::facing, o.targetFacing);
+    ratio(j, "silhouette_ratio", w, Ratio::silhouette, o.targetSilhouette);
+    ratio(j, "culled_ratio", w, Ratio::culled, o.targetCulled);
+    ratio(j, "turned_ratio", w, Ratio::turned, -1);
+    const Light &f = w.lights[(size_t)w.fixedLight];
+    j.key("fixed_light");
+    j.begin_object(true);
+    j.key("given");
+    j.value(o.fixedGiven && o.lit);
+    if (o.lit) {
+        j.key("position");
+        j.begin_array();
+        for (float c : {f.position.x, f.position.y, f.position.z, f.position.w}) {
+            j.value(c);
+        }
+        j.end_array();
+    }
+    j.key("facing_ratio");
+    j.value(light_ratio(w, f, Ratio::facing));
+    j.key("silhouette_ratio");
+    j.value(light_ratio(w, f, Ratio::silhouette));
+    j.key("culled_ratio");
+    j.value(light_ratio(w, f, Ratio::culled));
+    j.end_object();
+    j.end_object();
+}
+
+void paper(JsonWriter &j, const Row &r) {
+    const PaperFigures *pf = paper_figures(routine_name(r.routine), r.variant->name);
+    j.key("paper");
+    if (!pf) {
+        j.null();
+        return;
+    }
+    j.begin_object();
+    j.key("row");
+    j.value(pf->paperRow);
+    j.key("triangles");
+    j.value(kPaperTriangles);
+    j.key("edges");
+    j.value(kPaperSilEdges);
+    j.key("p4_130nm");
+    j.begin_object();
+    j.key("cycles");
+    j.value(pf->p4_130nm_total);
+    j.key("per_element");
+    j.value(std::strtod(pf->p4_130nm_per_element, nullptr));
+    j.end_object();
+    j.key("p4_90nm");
+    j.begin_object();
+    j.key("cycles");
+    j.value(pf->p4_90nm_total);
+    j.key("per_element");
+    j.value(std::strtod(pf->p4_90nm_per_element, nullptr));
+    j.end_object();
+    j.end_object();
+}
+
+/* A figure of a row that passed, else null: a failed row has none. */
+void figure(JsonWriter &j, const char *name, const Row &r, double v) {
+    j.key(name);
+    if (r.ok) {
+        j.value(v);
+    } else {
+        j.null();
+    }
+}
+
+void result(JsonWriter &j, const ModelRun &m, const Row &r, uint64_t step) {
+    const Workload &w = m.workload;
+    const double el = std::max(1, elements_of(r.routine, w));
+    j.begin_object(true);
+    j.key("model");
+    j.value(w.name);
+    j.key("triangles");
+    j.value(w.numTriangles);
+    j.key("edges");
+    j.value(w.numSilEdges);
+    j.key("vertices");
+    j.value(w.numVerts);
+    j.key("routine");
+    j.value(routine_name(r.routine));
+    j.key("variant");
+    j.value(r.variant->name);
+    j.key("regime");
+    j.value(r.moving ? "moving" : "fixed");
+    j.key("elements");
+    j.value(elements_of(r.routine, w));
+    j.key("element");
+    j.value(element_name(element_of(r.routine)));
+    j.key("runs");
+    j.value(m.table.runs);
+    j.key("batch");
+    j.value(std::max(1, r.batch));
+    figure(j, "ticks_min", r, r.min);
+    figure(j, "ticks_median", r, r.median);
+    figure(j, "ticks_per_element_min", r, r.min / el);
+    figure(j, "ticks_per_element_median", r, r.median / el);
+    const Row *ref = reference_row(m.table.rows, r);
+    j.key("speedup_vs_c_ref");
+    if (r.ok && ref && r.median > 0) {
+        j.value(ref->median / r.median);
+    } else {
+        j.null();
+    }
+    j.key("below_noise");
+    j.value(r.ok && (below_noise(r, step) || (ref && below_noise(*ref, step))));
+    j.key("checked");
+    j.value(r.ok);
+    if (!r.ok) {
+        j.key("failure");
+        j.value(r.failure);
+    }
+    paper(j, r);
+    j.end_object();
+}
+
+} // namespace
+
+std::string bench_json(const BenchRun &run) {
+    const MachineTiming &m = run.machine;
+    JsonWriter j;
+    j.begin_object();
+    j.key("schema");
+    j.value(kJsonSchema);
+    j.key("shadowvol_version");
+    j.value(project_version());
+
+    j.key("cpu");
+    j.begin_object();
+    j.key("model");
+    j.value(cpu_model());
+    j.key("isa");
+    j.begin_array(true);
+    for (const std::string &f : cpu_isa_list()) {
+        j.value(f);
+    }
+    j.end_array();
+    j.key("tsc_hz");
+    j.value(m.tscHz);
+    j.key("tsc_step_ticks");
+    j.value((unsigned long long)m.step);
+    j.key("invariant_tsc");
+    j.value(cpu_has_invariant_tsc());
+    j.key("pinned_cpu");
+    j.value(m.cpu);
+    j.end_object();
+
+    j.key("compiler");
+    j.value(compiler_version());
+    j.key("build");
+    j.value(build_flags());
+    j.key("commit");
+    j.value(git_commit());
+    j.key("timer");
+    j.value(timer_name(m.timer));
+    j.key("timer_sequence");
+    j.value(timer_sequence(m.timer));
+    j.key("overhead_ticks");
+    j.begin_object(true);
+    j.key("min");
+    j.value((unsigned long long)m.overhead.min);
+    j.key("median");
+    j.value((unsigned long long)m.overhead.median);
+    j.key("p90");
+    j.value((unsigned long long)m.overhead.p90);
+    j.key("tries");
+    j.value(m.overhead.tries);
+    j.end_object();
+    j.key("batch_threshold_ticks");
+    j.value((unsigned long long)m.batchThreshold);
+
+    j.key("options");
+    j.begin_object(true);
+    j.key("runs");
+    j.value(run.options.runs);
+    j.key("rounds");
+    j.value(run.options.rounds);
+    j.key("batch");
+    if (run.options.batch == 0) {
+        j.value("auto");
+    } else {
+        j.value(run.options.batch);
+    }
+    j.key("seed");
+    j.value((unsigned long long)run.seed);
+    j.key("isa_limit");
+    if (const char *limit = sv_isa_limit_name()) {
+        j.value(limit);
+    } else {
+        j.null();
+    }
+    j.end_object();
+
+    j.key("isa_level");
+    j.value(sv_isa_level_name());
+    j.key("variants");
+    j.begin_array(true);
+    for (const BenchVariant *v : run.options.variants) {
+        j.value(v->name);
+    }
+    j.end_array();
+    j.key("skipped_variants");
+    j.begin_array();
+    for (const SkippedVariant &s : run.skipped) {
+        j.begin_object(true);
+        j.key("variant");
+        j.value(s.name);
+        j.key("why");
+        j.value(s.why);
+        j.end_object();
+    }
+    j.end_array();
+
+    j.key("models");
+    j.begin_array();
+    for (const ModelRun &mr : run.models) {
+        model(j, mr);
+    }
+    j.end_array();
+
+    j.key("results");
+    j.begin_array();
+    for (const ModelRun &mr : run.models) {
+        for (const Row &r : mr.table.rows) {
+            result(j, mr, r, m.step);
+        }
+    }
+    j.end_array();
+    j.end_object();
+    return j.str();
+}
+
+} // namespace svbench

@@ -1,0 +1,55 @@
+/*
+ * The cycle table for scripts: `shadowvol bench --json FILE`.
+ *
+ * Schema "shadowvol-bench/1". The fields below are fixed; more may be added
+ * (a reader must ignore fields it does not know):
+ *
+ *   schema    "shadowvol-bench/1"
+ *   cpu       { model: string, isa: [string] (cpuid + xgetbv: what the CPU
+ *             has and the OS enables), tsc_hz: number }
+ *   compiler  string        commit  string        timer  "rdtscp" | "cpuid" | "lfence"
+ *   results   [ one object per row:
+ *     model           the file name ("character_1344.glb") or "synthetic"
+ *     triangles, edges (SilEdges), vertices: of the prepared surface
+ *     routine         calculate_facing | calculate_cull_bits | count_facing |
+ *                     count_facing_cull | create_sil_triangles |
+ *                     create_cap_triangles | create_shadow_volume |
+ *                     create_shadow_volume_cull
+ *     variant         a name of the variant table (c_ref, c_branchless,
+ *                     sse2_paper, ...)
+ *     regime          "moving" | "fixed"
+ *     elements        what per-element divides by: triangles; edges for
+ *                     create_sil_triangles; vertices for calculate_cull_bits
+ *     runs            timed regions (a call, or a batch of `batch` calls)
+ *     ticks_min, ticks_median, ticks_per_element_min,
+ *     ticks_per_element_median
+ *                     TSC ticks per call, the empty region's cost
+ *                     subtracted; null when the row failed its check
+ *     checked         true when every call of the row matched the reference
+ *   ]
+ *
+ * Beside them: build flags, overhead, options, per model the lights'
+ * actual ratios ("models"), and per row the batch, the speed-up over c_ref
+ * in the same regime, whether it is below the timer's noise, the paper's
+ * Pentium 4 figures (null where the paper has none) and the failure.
+ * Numbers are finite; strings are valid UTF-8.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_BENCH_JSON_REPORT_H
+#define SV_BENCH_JSON_REPORT_H
+
+#include <string>
+
+#include "bench_run.h"
+
+namespace svbench {
+
+constexpr const char *kJsonSchema = "shadowvol-bench/1";
+
+/* The document, ending in a newline. */
+std::string bench_json(const BenchRun &run);
+
+} // namespace svbench
+
+#endif

@@ -1,0 +1,351 @@
+/*
+ * CalculateFacing (appendix A) and CalculateCullBits (appendix B) with SSE2,
+ * AVX2 and AVX-512. The paper printed no SIMD for these two ("straight
+ * forward"), so they are C intrinsics, not listing ports; each is
+ * BIT-IDENTICAL to the reference C, for every input including NaN, Inf,
+ * -0.0 and subnormals:
+ *
+ *  - the same operations in the same order: ((a*x + b*y) + c*z) + d*w for
+ *    a facing test, ((a*x + b*y) + c*z) + d for a cull test, each product
+ *    and sum rounded to float (no FMA: this file is built with
+ *    -ffp-contract=off, and FMA intrinsics are not used);
+ *  - the same comparisons: "> 0.0f" and "< 0.0f" are ordered compares (false
+ *    for NaN), as the C operators are;
+ *  - the same MXCSR: FTZ/DAZ affect both sides alike.
+ *
+ * The trick is the transpose. Planes and positions are arrays of 16-byte
+ * structures (a, b, c, d) / (x, y, z, w); four of them are a 4x4 matrix,
+ * and a transpose turns four loads into the registers A = (a0 a1 a2 a3),
+ * B, C, D, so one mul/add chain evaluates four (8 with AVX2 in two 128-bit
+ * lanes, 16 with AVX-512 through two vpermt2ps levels) dot products in the
+ * reference's order. A horizontal add (haddps) would be cheaper but sums
+ * (ax+by) + (cz+dw): a different rounding, so it is not used.
+ *
+ * Cull bits: one pass over the vertices tests every plane that the box test
+ * left (the reference makes one pass per plane; the bits are independent,
+ * so the bytes are equal) and stores each vertex's byte once.
+ *
+ * Tails: the SSE2 and AVX2 versions finish with the scalar reference
+ * expression; the AVX-512 version uses masked loads and stores and reads
+ * nothing past the arrays.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <immintrin.h>
+#include <string.h>
+
+#include "facing_internal.h"
+#include "shadowvol.h"
+
+/* The reference's expressions, for tails (the same operations). */
+static inline uint8_t facing_one(const Plane *p, const Vec4 *l) {
+    return p->a * l->x + p->b * l->y + p->c * l->z + p->d * l->w > 0.0f;
+}
+
+static inline uint8_t cull_one(const Vec4 *v, const Plane planes[SV_NUM_LIGHT_PLANES],
+                               int frontBits) {
+    uint8_t bits = 0;
+    for (int i = 0; i < SV_NUM_LIGHT_PLANES; i++) {
+        if (frontBits & (1 << i)) continue;
+        const Plane *p = &planes[i];
+        bits |= (uint8_t)((p->a * v->x + p->b * v->y + p->c * v->z + p->d < 0.0f) << i);
+    }
+    return bits;
+}
+
+/* ---- SSE2 ---------------------------------------------------------------- */
+
+/* Four 16-byte rows -> columns (the classic 4x4 transpose). */
+#define TRANSPOSE4(r0, r1, r2, r3, c0, c1, c2, c3)                                  \
+    do {                                                                            \
+        __m128 t0_ = _mm_unpacklo_ps(r0, r1), t1_ = _mm_unpacklo_ps(r2, r3);        \
+        __m128 t2_ = _mm_unpackhi_ps(r0, r1), t3_ = _mm_unpackhi_ps(r2, r3);        \
+        c0 = _mm_movelh_ps(t0_, t1_);                                               \
+        c1 = _mm_movehl_ps(t1_, t0_);                                               \
+        c2 = _mm_movelh_ps(t2_, t3_);                                               \
+        c3 = _mm_movehl_ps(t3_, t2_);                                               \
+    } while (0)
+
+void sv_calculate_facing_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
+                              uint8_t *facing) {
+    if (numTriangles < 0) return;
+    const __m128 lx = _mm_set1_ps(light->x), ly = _mm_set1_ps(light->y);
+    const __m128 lz = _mm_set1_ps(light->z), lw = _mm_set1_ps(light->w);
+    const __m128 zero = _mm_setzero_ps();
+    const float *p = &planes[0].a;
+    int i = 0;
+    for (; i + 4 <= numTriangles; i += 4, p += 16) {
+        __m128 a, b, c, d;
+        TRANSPOSE4(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8),
+                   _mm_loadu_ps(p + 12), a, b, c, d);
+        __m128 s = _mm_add_ps(_mm_mul_ps(a, lx), _mm_mul_ps(b, ly));
+        s = _mm_add_ps(s, _mm_mul_ps(c, lz));
+        s = _mm_add_ps(s, _mm_mul_ps(d, lw));
+        const int m = _mm_movemask_ps(_mm_cmpgt_ps(s, zero));
+        /* Four mask bits -> four 0/1 bytes: multiply spreads bit k to byte k. */
+        const uint32_t bytes = ((uint32_t)(m & 0xF) * 0x00204081u) & 0x01010101u;
+        memcpy(facing + i, &bytes, 4);
+    }
+    for (; i < numTriangles; i++) facing[i] = facing_one(&planes[i], light);
+    facing[numTriangles] = 1; /* for dangling edges to reference */
+}
+
+int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
+                                const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                uint8_t *cullBits) {
+    if (numVerts < 0) return 0;
+    const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
+    if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    __m128 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
+        pd[SV_NUM_LIGHT_PLANES];
+    int live[SV_NUM_LIGHT_PLANES], nlive = 0;
+    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
+        if (frontBits & (1 << k)) continue;
+        pa[nlive] = _mm_set1_ps(lightPlanes[k].a);
+        pb[nlive] = _mm_set1_ps(lightPlanes[k].b);
+        pc[nlive] = _mm_set1_ps(lightPlanes[k].c);
+        pd[nlive] = _mm_set1_ps(lightPlanes[k].d);
+        live[nlive++] = k;
+    }
+    const __m128 zero = _mm_setzero_ps();
+    const float *v = &positions[0].x;
+    int j = 0;
+    for (; j + 4 <= numVerts; j += 4, v += 16) {
+        __m128 x, y, z, w;
+        TRANSPOSE4(_mm_loadu_ps(v), _mm_loadu_ps(v + 4), _mm_loadu_ps(v + 8),
+                   _mm_loadu_ps(v + 12), x, y, z, w);
+        (void)w;
+        uint32_t bytes = 0;
+        for (int k = 0; k < nlive; k++) {
+            __m128 s = _mm_add_ps(_mm_mul_ps(pa[k], x), _mm_mul_ps(pb[k], y));
+            s = _mm_add_ps(s, _mm_mul_ps(pc[k], z));
+            s = _mm_add_ps(s, pd[k]);
+            const uint32_t m = (uint32_t)_mm_movemask_ps(_mm_cmplt_ps(s, zero));
+            bytes |= ((m * 0x00204081u) & 0x01010101u) << live[k];
+        }
+        memcpy(cullBits + j, &bytes, 4);
+    }
+    for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, frontBits);
+    return 0;
+}
+
+/* ---- AVX2 (x86-64-v3) ---------------------------------------------------- */
+
+#define SV_TARGET_AVX2 __attribute__((target("avx2,bmi2")))
+
+/* Rows r0..r3 each hold two structures (low lane: s, high lane: s + 4);
+ * an in-lane transpose gives 8 lanes of a, b, c, d in the order
+ * (0 1 2 3 | 4 5 6 7). */
+#define TRANSPOSE4x2(r0, r1, r2, r3, c0, c1, c2, c3)                                \
+    do {                                                                            \
+        __m256 t0_ = _mm256_unpacklo_ps(r0, r1), t1_ = _mm256_unpacklo_ps(r2, r3);  \
+        __m256 t2_ = _mm256_unpackhi_ps(r0, r1), t3_ = _mm256_unpackhi_ps(r2, r3);  \
+        c0 = _mm256_castpd_ps(                                                      \
+            _mm256_unpacklo_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_)));      \
+        c1 = _mm256_castpd_ps(                                                      \
+            _mm256_unpackhi_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_)));      \
+        c2 = _mm256_castpd_ps(                                                      \
+            _mm256_unpacklo_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_)));      \
+        c3 = _mm256_castpd_ps(                                                      \
+            _mm256_unpackhi_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_)));      \
+    } while (0)
+
+/* Structures s and s + 4 of the 16-float rows at P, one per lane. */
+SV_TARGET_AVX2 static inline __m256 load_pair(const float *p, int s) {
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4 * s)),
+                                _mm_loadu_ps(p + 4 * (s + 4)), 1);
+}
+
+SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangles,
+                                             const Vec4 *light, uint8_t *facing) {
+    if (numTriangles < 0) return;
+    const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
+    const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
+    const __m256 zero = _mm256_setzero_ps();
+    const float *p = &planes[0].a;
+    int i = 0;
+    for (; i + 8 <= numTriangles; i += 8, p += 32) {
+        __m256 a, b, c, d;
+        TRANSPOSE4x2(load_pair(p, 0), load_pair(p, 1), load_pair(p, 2), load_pair(p, 3), a, b,
+                     c, d);
+        __m256 s = _mm256_add_ps(_mm256_mul_ps(a, lx), _mm256_mul_ps(b, ly));
+        s = _mm256_add_ps(s, _mm256_mul_ps(c, lz));
+        s = _mm256_add_ps(s, _mm256_mul_ps(d, lw));
+        const unsigned m = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s, zero, _CMP_GT_OQ));
+        /* Eight mask bits -> eight 0/1 bytes (BMI2 pdep). */
+        const unsigned long long bytes = _pdep_u64(m, 0x0101010101010101ull);
+        memcpy(facing + i, &bytes, 8);
+    }
+    for (; i < numTriangles; i++) facing[i] = facing_one(&planes[i], light);
+    facing[numTriangles] = 1;
+}
+
+SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVerts,
+                                               const Bounds *surfaceBounds,
+                                               const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                               uint8_t *cullBits) {
+    if (numVerts < 0) return 0;
+    const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
+    if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    __m256 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
+        pd[SV_NUM_LIGHT_PLANES];
+    int live[SV_NUM_LIGHT_PLANES], nlive = 0;
+    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
+        if (frontBits & (1 << k)) continue;
+        pa[nlive] = _mm256_set1_ps(lightPlanes[k].a);
+        pb[nlive] = _mm256_set1_ps(lightPlanes[k].b);
+        pc[nlive] = _mm256_set1_ps(lightPlanes[k].c);
+        pd[nlive] = _mm256_set1_ps(lightPlanes[k].d);
+        live[nlive++] = k;
+    }
+    const __m256 zero = _mm256_setzero_ps();
+    const float *v = &positions[0].x;
+    int j = 0;
+    for (; j + 8 <= numVerts; j += 8, v += 32) {
+        __m256 x, y, z, w;
+        TRANSPOSE4x2(load_pair(v, 0), load_pair(v, 1), load_pair(v, 2), load_pair(v, 3), x, y,
+                     z, w);
+        (void)w;
+        unsigned long long bytes = 0;
+        for (int k = 0; k < nlive; k++) {
+            __m256 s = _mm256_add_ps(_mm256_mul_ps(pa[k], x), _mm256_mul_ps(pb[k], y));
+            s = _mm256_add_ps(s, _mm256_mul_ps(pc[k], z));
+            s = _mm256_add_ps(s, pd[k]);
+            const unsigned m = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s, zero, _CMP_LT_OQ));
+            bytes |= _pdep_u64(m, 0x0101010101010101ull) << live[k];
+        }
+        memcpy(cullBits + j, &bytes, 8);
+    }
+    for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, frontBits);
+    return 0;
+}
+
+/* ---- AVX-512 (x86-64-v4: F, BW, VL) --------------------------------------- */
+
+#define SV_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq")))
+
+/* 16 structures (64 floats, in r0..r3) -> their four columns. Level 1:
+ * vpermt2ps gathers, from each pair of registers, the a and b (resp. c and
+ * d) of 8 structures; level 2: shuf_f32x4 joins the halves. */
+SV_TARGET_AVX512 static inline void transpose16(__m512 r0, __m512 r1, __m512 r2, __m512 r3,
+                                                __m512 *c0, __m512 *c1, __m512 *c2,
+                                                __m512 *c3) {
+    const __m512i ab = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25,
+                                         29);
+    const __m512i cd = _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23,
+                                         27, 31);
+    const __m512 ab01 = _mm512_permutex2var_ps(r0, ab, r1); /* a0..a7 | b0..b7 */
+    const __m512 cd01 = _mm512_permutex2var_ps(r0, cd, r1);
+    const __m512 ab23 = _mm512_permutex2var_ps(r2, ab, r3); /* a8..a15 | b8..b15 */
+    const __m512 cd23 = _mm512_permutex2var_ps(r2, cd, r3);
+    *c0 = _mm512_shuffle_f32x4(ab01, ab23, 0x44); /* low halves: a0..a15 */
+    *c1 = _mm512_shuffle_f32x4(ab01, ab23, 0xEE); /* high halves: b0..b15 */
+    *c2 = _mm512_shuffle_f32x4(cd01, cd23, 0x44);
+    *c3 = _mm512_shuffle_f32x4(cd01, cd23, 0xEE);
+}
+
+/* The 64 floats of 16 structures at P; only the first N structures are
+ * read (masked: nothing past them), the others are zero. */
+SV_TARGET_AVX512 static inline void load16(const float *p, int n, __m512 r[4]) {
+    for (int q = 0; q < 4; q++) {
+        const int have = n - 4 * q; /* structures in this register */
+        const __mmask16 m = have >= 4 ? (__mmask16)0xFFFF
+                            : have <= 0 ? (__mmask16)0
+                                        : (__mmask16)((1u << (4 * have)) - 1);
+        r[q] = _mm512_maskz_loadu_ps(m, p + 16 * q);
+    }
+}
+
+SV_TARGET_AVX512 void sv_calculate_facing_avx512(const Plane *planes, int numTriangles,
+                                                 const Vec4 *light, uint8_t *facing) {
+    if (numTriangles < 0) return;
+    const __m512 lx = _mm512_set1_ps(light->x), ly = _mm512_set1_ps(light->y);
+    const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
+    const __m512 zero = _mm512_setzero_ps();
+    const __m128i one = _mm_set1_epi8(1);
+    const float *p = &planes[0].a;
+    for (int i = 0; i < numTriangles; i += 16, p += 64) {
+        const int n = numTriangles - i < 16 ? numTriangles - i : 16;
+        __m512 r[4], a, b, c, d;
+        load16(p, n, r);
+        transpose16(r[0], r[1], r[2], r[3], &a, &b, &c, &d);
+        __m512 s = _mm512_add_ps(_mm512_mul_ps(a, lx), _mm512_mul_ps(b, ly));
+        s = _mm512_add_ps(s, _mm512_mul_ps(c, lz));
+        s = _mm512_add_ps(s, _mm512_mul_ps(d, lw));
+        const __mmask16 gt = _mm512_cmp_ps_mask(s, zero, _CMP_GT_OQ);
+        _mm_mask_storeu_epi8(facing + i, (__mmask16)((1u << n) - 1),
+                             _mm_maskz_mov_epi8(gt, one));
+    }
+    facing[numTriangles] = 1;
+}
+
+SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int numVerts,
+                                                   const Bounds *surfaceBounds,
+                                                   const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                                                   uint8_t *cullBits) {
+    if (numVerts < 0) return 0;
+    const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
+    if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    __m512 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
+        pd[SV_NUM_LIGHT_PLANES];
+    __m128i bit[SV_NUM_LIGHT_PLANES];
+    int nlive = 0;
+    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
+        if (frontBits & (1 << k)) continue;
+        pa[nlive] = _mm512_set1_ps(lightPlanes[k].a);
+        pb[nlive] = _mm512_set1_ps(lightPlanes[k].b);
+        pc[nlive] = _mm512_set1_ps(lightPlanes[k].c);
+        pd[nlive] = _mm512_set1_ps(lightPlanes[k].d);
+        bit[nlive++] = _mm_set1_epi8((char)(1 << k));
+    }
+    const __m512 zero = _mm512_setzero_ps();
+    const float *v = &positions[0].x;
+    for (int j = 0; j < numVerts; j += 16, v += 64) {
+        const int n = numVerts - j < 16 ? numVerts - j : 16;
+        __m512 r[4], x, y, z, w;
+        load16(v, n, r);
+        transpose16(r[0], r[1], r[2], r[3], &x, &y, &z, &w);
+        (void)w;
+        __m128i bytes = _mm_setzero_si128();
+        for (int k = 0; k < nlive; k++) {
+            __m512 s = _mm512_add_ps(_mm512_mul_ps(pa[k], x), _mm512_mul_ps(pb[k], y));
+            s = _mm512_add_ps(s, _mm512_mul_ps(pc[k], z));
+            s = _mm512_add_ps(s, pd[k]);
+            const __mmask16 lt = _mm512_cmp_ps_mask(s, zero, _CMP_LT_OQ);
+            bytes = _mm_mask_mov_epi8(bytes, lt, _mm_or_si128(bytes, bit[k]));
+        }
+        _mm_mask_storeu_epi8(cullBits + j, (__mmask16)((1u << n) - 1), bytes);
+    }
+    return 0;
+}
+
+/* ---- The table ----------------------------------------------------------- */
+
+static const sv_facing_variant facing_variants[] = {
+    {"c_ref", SV_ISA_NONE, sv_calculate_facing_c_ref, sv_calculate_cull_bits_c_ref},
+    {"sse2", SV_ISA_SSE2, sv_calculate_facing_sse2, sv_calculate_cull_bits_sse2},
+    {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2, sv_calculate_facing_avx2, sv_calculate_cull_bits_avx2},
+    {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, sv_calculate_facing_avx512,
+     sv_calculate_cull_bits_avx512},
+};
+
+const sv_facing_variant *sv_facing_variants(int *count) {
+    if (count) *count = (int)(sizeof facing_variants / sizeof facing_variants[0]);
+    return facing_variants;
+}
+
+const sv_facing_variant *sv_facing_variant_by_name(const char *name) {
+    for (size_t i = 0; name && i < sizeof facing_variants / sizeof facing_variants[0]; i++) {
+        if (strcmp(facing_variants[i].name, name) == 0) return &facing_variants[i];
+    }
+    return NULL;
+}
+
+const sv_facing_variant *sv_best_facing_variant(void) {
+    const unsigned isa = sv_cpu_isa();
+    size_t i = sizeof facing_variants / sizeof facing_variants[0];
+    while (i-- > 1) {
+        if ((facing_variants[i].isa & isa) == facing_variants[i].isa) return &facing_variants[i];
+    }
+    return &facing_variants[0];
+}
