@@ -53,6 +53,19 @@ static inline uint8_t cull_one(const Vec4 *v, const Plane planes[SV_NUM_LIGHT_PL
     return bits;
 }
 
+/* The planes the box test left (the ones each vertex must be tested
+ * against) and their bit numbers; returns how many. */
+static int live_planes(int frontBits, const Plane planes[SV_NUM_LIGHT_PLANES],
+                       Plane live[SV_NUM_LIGHT_PLANES], int bit[SV_NUM_LIGHT_PLANES]) {
+    int n = 0;
+    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
+        if (frontBits & (1 << k)) continue;
+        live[n] = planes[k];
+        bit[n++] = k;
+    }
+    return n;
+}
+
 /* ---- SSE2 ---------------------------------------------------------------- */
 
 /* Four 16-byte rows -> columns (the classic 4x4 transpose). */
@@ -96,16 +109,14 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
     if (numVerts < 0) return 0;
     const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
     if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    Plane lp[SV_NUM_LIGHT_PLANES];
+    int live[SV_NUM_LIGHT_PLANES];
+    const int nlive = live_planes(frontBits, lightPlanes, lp, live);
     __m128 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
         pd[SV_NUM_LIGHT_PLANES];
-    int live[SV_NUM_LIGHT_PLANES], nlive = 0;
-    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
-        if (frontBits & (1 << k)) continue;
-        pa[nlive] = _mm_set1_ps(lightPlanes[k].a);
-        pb[nlive] = _mm_set1_ps(lightPlanes[k].b);
-        pc[nlive] = _mm_set1_ps(lightPlanes[k].c);
-        pd[nlive] = _mm_set1_ps(lightPlanes[k].d);
-        live[nlive++] = k;
+    for (int k = 0; k < nlive; k++) {
+        pa[k] = _mm_set1_ps(lp[k].a), pb[k] = _mm_set1_ps(lp[k].b);
+        pc[k] = _mm_set1_ps(lp[k].c), pd[k] = _mm_set1_ps(lp[k].d);
     }
     const __m128 zero = _mm_setzero_ps();
     const float *v = &positions[0].x;
@@ -187,16 +198,14 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
     if (numVerts < 0) return 0;
     const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
     if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    Plane lp[SV_NUM_LIGHT_PLANES];
+    int live[SV_NUM_LIGHT_PLANES];
+    const int nlive = live_planes(frontBits, lightPlanes, lp, live);
     __m256 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
         pd[SV_NUM_LIGHT_PLANES];
-    int live[SV_NUM_LIGHT_PLANES], nlive = 0;
-    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
-        if (frontBits & (1 << k)) continue;
-        pa[nlive] = _mm256_set1_ps(lightPlanes[k].a);
-        pb[nlive] = _mm256_set1_ps(lightPlanes[k].b);
-        pc[nlive] = _mm256_set1_ps(lightPlanes[k].c);
-        pd[nlive] = _mm256_set1_ps(lightPlanes[k].d);
-        live[nlive++] = k;
+    for (int k = 0; k < nlive; k++) {
+        pa[k] = _mm256_set1_ps(lp[k].a), pb[k] = _mm256_set1_ps(lp[k].b);
+        pc[k] = _mm256_set1_ps(lp[k].c), pd[k] = _mm256_set1_ps(lp[k].d);
     }
     const __m256 zero = _mm256_setzero_ps();
     const float *v = &positions[0].x;
@@ -286,17 +295,16 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
     if (numVerts < 0) return 0;
     const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
     if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    Plane lp[SV_NUM_LIGHT_PLANES];
+    int live[SV_NUM_LIGHT_PLANES];
+    const int nlive = live_planes(frontBits, lightPlanes, lp, live);
     __m512 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
         pd[SV_NUM_LIGHT_PLANES];
     __m128i bit[SV_NUM_LIGHT_PLANES];
-    int nlive = 0;
-    for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
-        if (frontBits & (1 << k)) continue;
-        pa[nlive] = _mm512_set1_ps(lightPlanes[k].a);
-        pb[nlive] = _mm512_set1_ps(lightPlanes[k].b);
-        pc[nlive] = _mm512_set1_ps(lightPlanes[k].c);
-        pd[nlive] = _mm512_set1_ps(lightPlanes[k].d);
-        bit[nlive++] = _mm_set1_epi8((char)(1 << k));
+    for (int k = 0; k < nlive; k++) {
+        pa[k] = _mm512_set1_ps(lp[k].a), pb[k] = _mm512_set1_ps(lp[k].b);
+        pc[k] = _mm512_set1_ps(lp[k].c), pd[k] = _mm512_set1_ps(lp[k].d);
+        bit[k] = _mm_set1_epi8((char)(1 << live[k]));
     }
     const __m512 zero = _mm512_setzero_ps();
     const float *v = &positions[0].x;
