@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -146,6 +147,47 @@ void json_report(FILE *f, const sv::PrepareReport &r) {
                  is_closed(r) ? "true" : "false");
 }
 
+struct ModelArgs {
+    std::string model, mesh, json_path;
+};
+
+/* The options inspect and verify share: MODEL, --mesh, --json, --help.
+ * EXTRA takes the command's own options (returns true when it took one).
+ * Returns -1 to go on, or the exit status to return (0 after --help, 2 for
+ * a usage error, reported on stderr). */
+int parse_model_args(const char *command, int argc, char **argv, void (*usage)(FILE *),
+                     const std::function<bool(ArgReader &)> &extra, ModelArgs *out) {
+    try {
+        ArgReader a(argc, argv);
+        while (a.next()) {
+            if (a.is_flag("-h") || a.is_flag("--help")) {
+                usage(stdout);
+                return 0;
+            } else if (a.is("--mesh")) {
+                out->mesh = a.value();
+            } else if (a.is("--json")) {
+                out->json_path = a.value();
+            } else if (extra(a)) {
+                continue;
+            } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
+                usage_error("unknown option '" + a.arg() + "'");
+            } else if (out->model.empty()) {
+                out->model = a.arg();
+            } else {
+                usage_error("unexpected argument '" + a.arg() + "'");
+            }
+        }
+        if (out->model.empty()) {
+            usage_error(std::string("which model? (shadowvol ") + command + " MODEL)");
+        }
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "shadowvol %s: %s\nTry 'shadowvol %s --help'.\n", command,
+                     e.message.c_str(), command);
+        return kExitUsage;
+    }
+    return -1;
+}
+
 } // namespace
 
 /* ---- inspect ------------------------------------------------------------ */
@@ -180,36 +222,16 @@ void inspect_usage(FILE *out) {
 }
 
 int inspect_main(int argc, char **argv) {
-    std::string model, mesh, json_path;
-    try {
-        ArgReader a(argc, argv);
-        while (a.next()) {
-            if (a.is_flag("-h") || a.is_flag("--help")) {
-                inspect_usage(stdout);
-                return 0;
-            } else if (a.is("--mesh")) {
-                mesh = a.value();
-            } else if (a.is("--json")) {
-                json_path = a.value();
-            } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
-                usage_error("unknown option '" + a.arg() + "'");
-            } else if (model.empty()) {
-                model = a.arg();
-            } else {
-                usage_error("unexpected argument '" + a.arg() + "'");
-            }
-        }
-        if (model.empty()) usage_error("which model? (shadowvol inspect MODEL)");
-    } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol inspect: %s\nTry 'shadowvol inspect --help'.\n",
-                     e.message.c_str());
-        return kExitUsage;
-    }
+    ModelArgs args;
+    const int status = parse_model_args(
+        "inspect", argc, argv, inspect_usage, [](ArgReader &) { return false; }, &args);
+    if (status >= 0) return status;
+    const std::string &model = args.model;
 
     LoadedModel m;
-    if (!load_model("inspect", model, mesh, &m)) return kExitBadModel;
+    if (!load_model("inspect", model, args.mesh, &m)) return kExitBadModel;
     JsonOut json;
-    if (!json.open("inspect", json_path)) return kExitBadModel;
+    if (!json.open("inspect", args.json_path)) return kExitBadModel;
     FILE *out = json.f == stdout ? stderr : stdout;
 
     std::fprintf(out, "%s: %zu surface%s\n\n", model.c_str(), m.surfaces.size(),
@@ -332,62 +354,47 @@ void verify_usage(FILE *out) {
 }
 
 int verify_main(int argc, char **argv) {
-    std::string model, mesh, json_path;
+    ModelArgs args;
     int lights = kDefaultLights, points = kDefaultPoints;
     uint64_t seed = 1;
     std::vector<const sv_variant *> variants;
-    try {
-        ArgReader a(argc, argv);
-        while (a.next()) {
-            if (a.is_flag("-h") || a.is_flag("--help")) {
-                verify_usage(stdout);
-                return 0;
-            } else if (a.is("--lights")) {
-                lights = (int)a.integer(1, 100000);
-            } else if (a.is("--points")) {
-                points = (int)a.integer(1, 10000000);
-            } else if (a.is("--seed")) {
-                seed = a.seed();
-            } else if (a.is("--variant")) {
-                const std::string v = a.value();
-                const sv_variant *var = sv_variant_by_name(v.c_str());
-                if (!var) {
-                    int n = 0;
-                    const sv_variant *all = sv_variants(&n);
-                    std::string names;
-                    for (int i = 0; i < n; i++) names += (i ? ", " : "") + std::string(all[i].name);
-                    usage_error("unknown variant '" + v + "' (variants: " + names + ")");
-                }
-                if ((var->isa & sv_cpu_isa()) != var->isa) {
-                    usage_error("variant '" + v + "' needs an instruction set this CPU lacks");
-                }
-                if (std::find(variants.begin(), variants.end(), var) == variants.end()) {
-                    variants.push_back(var);
-                }
-            } else if (a.is("--mesh")) {
-                mesh = a.value();
-            } else if (a.is("--json")) {
-                json_path = a.value();
-            } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
-                usage_error("unknown option '" + a.arg() + "'");
-            } else if (model.empty()) {
-                model = a.arg();
-            } else {
-                usage_error("unexpected argument '" + a.arg() + "'");
+    auto extra = [&](ArgReader &a) {
+        if (a.is("--lights")) {
+            lights = (int)a.integer(1, 100000);
+        } else if (a.is("--points")) {
+            points = (int)a.integer(1, 10000000);
+        } else if (a.is("--seed")) {
+            seed = a.seed();
+        } else if (a.is("--variant")) {
+            const std::string v = a.value();
+            const sv_variant *var = sv_variant_by_name(v.c_str());
+            if (!var) {
+                int n = 0;
+                const sv_variant *all = sv_variants(&n);
+                std::string names;
+                for (int i = 0; i < n; i++) names += (i ? ", " : "") + std::string(all[i].name);
+                usage_error("unknown variant '" + v + "' (variants: " + names + ")");
             }
+            if ((var->isa & sv_cpu_isa()) != var->isa) {
+                usage_error("variant '" + v + "' needs an instruction set this CPU lacks");
+            }
+            if (std::find(variants.begin(), variants.end(), var) == variants.end()) {
+                variants.push_back(var);
+            }
+        } else {
+            return false;
         }
-        if (model.empty()) usage_error("which model? (shadowvol verify MODEL)");
-    } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol verify: %s\nTry 'shadowvol verify --help'.\n",
-                     e.message.c_str());
-        return kExitUsage;
-    }
+        return true;
+    };
+    const int status = parse_model_args("verify", argc, argv, verify_usage, extra, &args);
+    if (status >= 0) return status;
+    const std::string &model = args.model;
     if (variants.empty()) variants = sv::supported_variants();
 
     LoadedModel m;
-    if (!load_model("verify", model, mesh, &m)) return kExitBadModel;
+    if (!load_model("verify", model, args.mesh, &m)) return kExitBadModel;
     JsonOut json;
-    if (!json.open("verify", json_path)) return kExitBadModel;
+    if (!json.open("verify", args.json_path)) return kExitBadModel;
     FILE *out = json.f == stdout ? stderr : stdout;
 
     std::fprintf(out,
