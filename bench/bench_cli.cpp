@@ -12,15 +12,15 @@
 #include <string>
 #include <vector>
 
-#include <sys/stat.h>
-
 #include "bench_run.h"
 #include "cycle_table.h"
 #include "json_report.h"
 #include "lights.h"
 #include "model_list.h"
 #include "model_workload.h"
+#include "output_file.h"
 #include "routines.h"
+#include "scaling_cli.h"
 #include "synthetic_workload.h"
 #include "sysinfo.h"
 #include "table_report.h"
@@ -49,6 +49,8 @@ constexpr int kLights = 64;
  * kMinScaledRuns, so `--model all` stays within a minute or so. */
 constexpr int kReferenceTriangles = 1344;
 constexpr int kMinScaledRuns = 64;
+/* --max-triangles: the largest a mesh index (int) can count to. */
+constexpr long kMaxTriangles = 715827882; /* INT_MAX / 3 */
 
 constexpr int kExitCheckFailed = 1;
 constexpr int kExitUsage = 2;
@@ -169,6 +171,11 @@ struct CliOptions {
     Vec4 light{};
     LightTargets targets;
     std::string json;               /* --json FILE; "" none, "-" stdout */
+    bool scaling = false;           /* --scaling: scaling.h instead of the cycle table */
+    std::string plot;               /* --plot FILE (with --scaling) */
+    long maxTriangles = 0;          /* --max-triangles N (with --scaling) */
+    bool regimeGiven = false;       /* options the scaling run has no use for */
+    bool lightGiven = false;
     std::string isa;                /* --isa; "" none */
     std::vector<const BenchVariant *> variants; /* --variant, as given */
     bool help = false;
@@ -212,6 +219,7 @@ CliOptions parse(int argc, char **argv) {
             if (r == "moving" || r == "fixed" || r == "both") {
                 c.table.moving = r != "fixed";
                 c.table.fixed = r != "moving";
+                c.regimeGiven = r != "moving";
             } else {
                 bad("--regime must be moving, fixed or both, not '" + r + "'");
             }
@@ -265,6 +273,7 @@ CliOptions parse(int argc, char **argv) {
         } else if (opt == "--light") {
             c.light = parse_light(need());
             c.hasLight = true;
+            c.lightGiven = true;
         } else if (opt == "--facing-ratio") {
             c.targets.facing = parse_ratio(opt, need());
         } else if (opt == "--silhouette-ratio") {
@@ -274,12 +283,44 @@ CliOptions parse(int argc, char **argv) {
             if (c.json.empty()) {
                 bad("--json needs a file name, or - for standard output");
             }
-        } else if (hasValue && opt == "--quick") {
-            bad("--quick takes no value");
+        } else if (opt == "--scaling" && !hasValue) {
+            c.scaling = true;
+        } else if (opt == "--plot") {
+            c.plot = need();
+            if (c.plot.empty()) {
+                bad("--plot needs a file name, or - for standard output");
+            }
+        } else if (opt == "--max-triangles") {
+            c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
+        } else if (hasValue && (opt == "--quick" || opt == "--scaling")) {
+            bad(opt + " takes no value");
         } else if (arg.rfind("-", 0) == 0) {
             bad("unknown option '" + arg + "'");
         } else {
             bad("unexpected argument '" + arg + "'");
+        }
+    }
+    if (!c.scaling && !c.plot.empty()) {
+        bad("--plot draws the scaling run: add --scaling");
+    }
+    if (!c.scaling && c.maxTriangles) {
+        bad("--max-triangles limits the scaling run: add --scaling");
+    }
+    if (c.scaling) {
+        /* The scaling run has its own meshes and the moving light only. */
+        if (!c.models.empty()) {
+            bad("--model does not apply to --scaling (it runs the generated character at "
+                "growing sizes and the real characters of " SV_SHARED_MODELS_DIR ")");
+        }
+        if (c.regimeGiven) {
+            bad("--scaling measures the moving light only: --regime fixed or both does not "
+                "apply");
+        }
+        if (c.lightGiven) {
+            bad("--light sets the fixed light, which --scaling does not measure");
+        }
+        if (c.json == "-" && c.plot == "-") {
+            bad("--json - and --plot - cannot both go to standard output");
         }
     }
     if (c.timer == "rdtscp" && !cpu_has_rdtscp()) {
@@ -300,19 +341,51 @@ CliOptions parse(int argc, char **argv) {
 /* The variants to time, in the table's order, and why the others are not:
  * the library's sv_cpu_isa() decides, the ISA limit (--isa, SV_ISA)
  * included, as it does for dispatch and the tests. */
-void choose_variants(const CliOptions &c, BenchRun &run) {
+void choose_variants(const CliOptions &c, std::vector<const BenchVariant *> &chosen,
+                     std::vector<SkippedVariant> &skipped) {
     for (const BenchVariant &v : bench_variants()) {
         const bool asked =
             c.variants.empty() ||
             std::find(c.variants.begin(), c.variants.end(), &v) != c.variants.end();
         if ((v.isa & sv_cpu_isa_detected()) != v.isa) {
-            run.skipped.push_back({v.name, "this CPU lacks its instruction set"});
+            skipped.push_back({v.name, "this CPU lacks its instruction set"});
         } else if ((v.isa & sv_cpu_isa()) != v.isa) {
-            run.skipped.push_back({v.name, "above the ISA limit " + limit_source(c)});
+            skipped.push_back({v.name, "above the ISA limit " + limit_source(c)});
         } else if (asked) {
-            run.options.variants.push_back(&v);
+            chosen.push_back(&v);
         }
     }
+}
+
+TimerKind timer_of(const CliOptions &c) {
+    return c.timer == "rdtscp"   ? TimerKind::rdtscp
+           : c.timer == "cpuid"  ? TimerKind::cpuid
+           : c.timer == "lfence" ? TimerKind::lfence
+                                 : timer_auto();
+}
+
+/* `--scaling`: the options it takes, handed to scaling_cli.cpp. */
+int scaling(const CliOptions &c) {
+    ScalingCommand cmd;
+    ScalingOptions &o = cmd.options;
+    o.quick = c.quick;
+    o.runs = c.runs;
+    o.maxTriangles = c.maxTriangles;
+    o.seed = c.seed;
+    o.targets = c.targets;
+    o.batch = c.table.batch;
+    o.routines = c.table.routines.empty() ? default_scaling_routines() : c.table.routines;
+    o.sharedModels = SV_SHARED_MODELS_DIR;
+    choose_variants(c, o.variants, cmd.skipped);
+    cmd.json = c.json;
+    cmd.plot = c.plot;
+    cmd.timer = timer_of(c);
+    cmd.timerAuto = c.timer == "auto";
+    if (sv_isa_limit_name()) {
+        cmd.isaLimit = limit_source(c);
+    }
+    cmd.variantsChosen = !c.variants.empty();
+    return run_scaling(cmd);
 }
 
 int runs_for(int runs, int triangles) {
@@ -322,73 +395,6 @@ int runs_for(int runs, int triangles) {
     const long scaled = (long)runs * kReferenceTriangles / triangles;
     return (int)std::max<long>(std::min(runs, kMinScaledRuns), scaled);
 }
-
-/* A file for the JSON document, opened before the measurements so that a
- * name that cannot be written fails at once, and removed again when the run
- * ends without a document (a model that did not load, an internal error):
- * a script finds a whole document or none. */
-class JsonFile {
-public:
-    explicit JsonFile(const std::string &name) : name_(name) {
-        if (name.empty()) {
-            return;
-        }
-        f_ = name == "-" ? stdout : std::fopen(name.c_str(), "w");
-        if (!f_) {
-            bad("--json: cannot write " + name + ": " + std::strerror(errno));
-        }
-        struct stat st;
-        if (f_ != stdout && fstat(fileno(f_), &st) == 0 && S_ISREG(st.st_mode)) {
-            regular_ = true;
-            dev_ = st.st_dev;
-            ino_ = st.st_ino;
-        }
-    }
-    ~JsonFile() {
-        if (f_ && f_ != stdout) {
-            std::fclose(f_);
-            discard();
-        }
-    }
-    JsonFile(const JsonFile &) = delete;
-    JsonFile &operator=(const JsonFile &) = delete;
-    bool wanted() const { return f_ != nullptr; }
-    bool is_stdout() const { return f_ == stdout; }
-    /* False (with errno) when the document could not be written whole. */
-    bool write(const std::string &doc) {
-        const bool ok = std::fwrite(doc.data(), 1, doc.size(), f_) == doc.size() &&
-                        std::fflush(f_) == 0;
-        if (f_ != stdout) {
-            const bool closed = std::fclose(f_) == 0;
-            f_ = nullptr;
-            if (!(ok && closed)) {
-                const int e = errno;
-                discard(); /* no half document */
-                errno = e;
-            }
-            return ok && closed;
-        }
-        return ok;
-    }
-    const std::string &name() const { return name_; }
-
-private:
-    /* Removes the file, when NAME is that very regular file: never a
-     * device, a pipe, or a link such as /dev/stdout, whose name would be
-     * removed rather than what it points to. */
-    void discard() {
-        struct stat st;
-        if (regular_ && lstat(name_.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
-            st.st_dev == dev_ && st.st_ino == ino_) {
-            std::remove(name_.c_str());
-        }
-    }
-    std::string name_;
-    FILE *f_ = nullptr;
-    bool regular_ = false; /* what was opened is a regular file */
-    dev_t dev_ = 0;
-    ino_t ino_ = 0;
-};
 
 } // namespace
 
@@ -446,13 +452,37 @@ void bench_usage(FILE *out) {
         "                   (default 1)\n"
         "  -h, --help       this text\n"
         "\n"
+        "Scaling: shadowvol bench --scaling [--quick] [--plot FILE.svg] [--json FILE]\n"
+        "The cost per element as the mesh grows, moving light, every variant this CPU\n"
+        "runs: the generated character with each quad subdivided n x n (1344 n^2\n"
+        "triangles, n = 1 2 3 5 9 14 27: 1344 to 979776) and the real characters in\n"
+        "  %s\n"
+        "when that folder exists. Per routine (default: create_shadow_volume,\n"
+        "calculate_facing and the four kernels) a table of ticks per element, min and\n"
+        "median, a row per mesh, with the cache (L1D, L2, L3, DRAM) that holds the\n"
+        "mesh's working set; every call checked against c_ref. Under a minute on a\n"
+        "small VM; --quick (n = 1 3 9, fewer runs) a few seconds.\n"
+        "  --scaling        run it instead of the cycle table\n"
+        "  --plot FILE      also draw it as SVG: ticks per element against triangles (log\n"
+        "                   scale), a line per variant, the L1D/L2/L3 sizes marked where\n"
+        "                   the routine's working set fills them; - for standard output\n"
+        "  --json FILE      with --scaling: schema shadowvol-scaling/1\n"
+        "  --max-triangles N\n"
+        "                   leave out the meshes above N triangles\n"
+        "  --runs N         with --scaling: per row on a mesh of 1344 triangles or fewer\n"
+        "                   (default %d; --quick %d), in proportion fewer above (at\n"
+        "                   least %d; --quick %d)\n"
+        "  --routine, --variant, --isa, --timer, --batch, --seed, --facing-ratio and\n"
+        "  --silhouette-ratio apply as above; --model, --light and --regime do not.\n"
+        "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
         "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
         "could not be loaded.\n",
         kIsaLevels, kDefaultRuns, kQuickRuns, kMinScaledRuns,
         wrap(routine_list(), 58, "\n                     ").c_str(), variant_list().c_str(),
-        kMaxBatch);
+        kMaxBatch, SV_SHARED_MODELS_DIR, kDefaultScalingRuns, kQuickScalingRuns,
+        kMinScalingRuns, kMinQuickScalingRuns);
 }
 
 int bench_main(int argc, char **argv) {
@@ -463,6 +493,9 @@ int bench_main(int argc, char **argv) {
         if (c.help) {
             bench_usage(stdout);
             return 0;
+        }
+        if (c.scaling) {
+            return scaling(c);
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {
@@ -487,10 +520,10 @@ int bench_main(int argc, char **argv) {
         run.options.routines.assign(kAllRoutines, kAllRoutines + kNumRoutines);
     }
     std::sort(run.options.routines.begin(), run.options.routines.end());
-    choose_variants(c, run);
+    choose_variants(c, run.options.variants, run.skipped);
 
     try {
-        JsonFile json(c.json);
+        OutputFile json("--json", c.json);
         FILE *out = json.is_stdout() ? stderr : stdout;
 
         /* Every workload before any measurement: a model that does not load
@@ -513,11 +546,7 @@ int bench_main(int argc, char **argv) {
             run.models.push_back(std::move(mr));
         }
 
-        const TimerKind timer = c.timer == "rdtscp"   ? TimerKind::rdtscp
-                                : c.timer == "cpuid"  ? TimerKind::cpuid
-                                : c.timer == "lfence" ? TimerKind::lfence
-                                                      : timer_auto();
-        run.machine = measure_machine(timer, c.timer == "auto", c.quick ? 1000 : 5000, 0.05);
+        run.machine = measure_machine(timer_of(c), c.timer == "auto", c.quick ? 1000 : 5000, 0.05);
         print_run_header(out, run);
         for (ModelRun &m : run.models) {
             TableOptions o = run.options;
@@ -534,9 +563,8 @@ int bench_main(int argc, char **argv) {
                          json.name().c_str(), std::strerror(errno));
             return kExitCheckFailed;
         }
-    } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol bench: %s\nTry 'shadowvol bench --help'.\n",
-                     e.message.c_str());
+    } catch (const OutputFileError &e) {
+        std::fprintf(stderr, "shadowvol bench: %s\nTry 'shadowvol bench --help'.\n", e.what());
         return kExitUsage;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());

@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "cache_info.h"
 #include "expected.h"
 
 namespace svbench {
@@ -219,15 +220,15 @@ uint64_t saturating_sub(uint64_t a, uint64_t b) {
  * would take the row's working set out of L1 at B = 2 or 3, so they run one
  * call per region unless --batch forces a size. They take over 70 TSC
  * steps a call here, which a single call resolves. */
-constexpr size_t kDefaultL1Bytes = 32 * 1024; /* when sysconf does not know */
+constexpr size_t kDefaultL1Bytes = 32 * 1024; /* when neither sysconf nor sysfs knows */
 
 size_t cache_lines(size_t bytes) {
     return (bytes + 63) / 64 * 64;
 }
 
 size_t l1d_bytes() {
-    const long l1 = sysconf(_SC_LEVEL1_DCACHE_SIZE);
-    return l1 > 0 ? (size_t)l1 : kDefaultL1Bytes;
+    const size_t l1 = cache_sizes().l1d.bytes;
+    return l1 ? l1 : kDefaultL1Bytes;
 }
 
 bool may_batch(Routine r) {

@@ -37,8 +37,7 @@ void merge(const sv::GltfModel &m, std::vector<float> &positions, std::vector<ui
 
 } // namespace
 
-Workload make_model_workload(const std::string &path, const LightTargets &targets,
-                             int numLights, uint64_t seed, const Vec4 *fixed) {
+Workload load_model_surface(const std::string &path) {
     sv::GltfModel model;
     std::vector<float> positions;
     std::vector<uint32_t> indices;
@@ -60,6 +59,12 @@ Workload make_model_workload(const std::string &path, const LightTargets &target
     }
     Workload w = workload_from_surface(prepared, file_name(path), path);
     w.surfaces = (int)model.surfaces.size();
+    return w;
+}
+
+Workload make_model_workload(const std::string &path, const LightTargets &targets,
+                             int numLights, uint64_t seed, const Vec4 *fixed) {
+    Workload w = load_model_surface(path);
     place_lights(w, targets, numLights, seed, fixed);
     return w;
 }

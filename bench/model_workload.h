@@ -23,10 +23,14 @@
 
 namespace svbench {
 
-/* Loads PATH, merges and prepares its surfaces and places NUM_LIGHTS
- * lights (lights.h; FIXED, when not null, is the fixed light). Throws
- * WorkloadError naming the file and the problem when it cannot be loaded,
- * prepared, or has no triangle. */
+/* Loads PATH, merges and prepares its surfaces: the mesh arrays, no
+ * lights yet (place_lights adds them). Throws WorkloadError naming the file
+ * and the problem when it cannot be loaded or prepared, or has no
+ * triangle. */
+Workload load_model_surface(const std::string &path);
+
+/* load_model_surface, then place_lights with NUM_LIGHTS lights (lights.h;
+ * FIXED, when not null, is the fixed light). Throws WorkloadError. */
 Workload make_model_workload(const std::string &path, const LightTargets &targets,
                              int numLights, uint64_t seed, const Vec4 *fixed);
 

@@ -68,6 +68,26 @@ printf 'not a glTF file\n' >"$tmp/broken.glb"
 expect_status 3 "--model not glTF" bench --model "$tmp/broken.glb"
 expect_status 3 "--model folder without glTF" bench --model "$tmp"
 
+# --scaling: its options need it, and the cycle table's fixed-light options do not apply.
+expect_status 0 "bench --help mentions --scaling" bench --help
+grep -q -- '--scaling' "$tmp/out" || err "bench --help does not describe --scaling"
+expect_status 2 "--plot without --scaling" bench --plot "$tmp/p.svg"
+expect_status 2 "--max-triangles without --scaling" bench --max-triangles 5000
+expect_status 2 "--scaling --max-triangles 0" bench --scaling --max-triangles 0
+expect_status 2 "--scaling --regime fixed" bench --scaling --regime fixed
+expect_status 2 "--scaling --model" bench --scaling --model "$tmp/x.glb"
+expect_status 2 "--scaling --light" bench --scaling --light 0,10,0,0
+expect_status 2 "--scaling with a value" bench --scaling=yes
+expect_status 2 "--scaling --json - --plot -" bench --scaling --json - --plot -
+expect_status 2 "--scaling --plot into a missing folder" bench --scaling --plot "$tmp/no/such/dir/p.svg" --json "$tmp/s.json"
+[ -e "$tmp/s.json" ] && err "--scaling: a run that failed left a JSON file behind"
+# The smallest scaling run: one routine, the meshes up to 2000 triangles.
+expect_status 0 "--scaling --quick" bench --scaling --quick --max-triangles 2000 --routine count_facing --plot "$tmp/s.svg"
+grep -qE '^character_1344 +1344 ' "$tmp/out" || err "--scaling: no row of the generated character"
+grep -qE '^character_12096 ' "$tmp/out" && err "--scaling: --max-triangles 2000 ran a larger mesh"
+grep -q '^left out  character_12096' "$tmp/out" || err "--scaling: the header does not say what was left out"
+grep -q '<polyline' "$tmp/s.svg" || err "--scaling --plot: no polyline in the SVG"
+
 # --isa c: the C variants only, and the header says why the others are not run.
 expect_status 0 "--isa c" bench --quick --isa c --routine count_facing --regime fixed
 grep -qE '^count_facing +sse2_paper' "$tmp/out" && err "--isa c: sse2_paper rows ran"

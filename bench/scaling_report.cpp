@@ -1,0 +1,208 @@
+/*
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "scaling_report.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "sysinfo.h"
+#include "timer.h"
+#include "working_set.h"
+
+namespace svbench {
+
+namespace {
+
+constexpr int kCell = 17; /* "123.45 / 130.12" and a margin */
+
+std::string pct(double ratio) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.1f%%", 100.0 * ratio);
+    return s;
+}
+
+/* The variants that have a row of ROUTINE in some mesh, in table order. */
+std::vector<const BenchVariant *> columns(const ScalingRun &run, Routine routine) {
+    std::vector<const BenchVariant *> v;
+    for (const BenchVariant *b : run.options.variants) {
+        bool any = false;
+        for (const ScalingMesh &m : run.meshes) {
+            any = any || scaling_row(m, routine, b) != nullptr;
+        }
+        if (any) {
+            v.push_back(b);
+        }
+    }
+    return v;
+}
+
+void print_table(FILE *out, const ScalingRun &run, Routine routine) {
+    const std::vector<const BenchVariant *> vars = columns(run, routine);
+    if (vars.empty()) {
+        return;
+    }
+    const WorkingSet paper = working_set(routine, paper_shape());
+    std::fprintf(out, "\n%s: ticks per %s, min / median, moving light\n", routine_name(routine),
+                 element_name(element_of(routine)));
+    std::fprintf(out, "  working set %s at the paper's ratios\n",
+                 working_set_formula(paper).c_str());
+    std::fprintf(out, "%-22s %9s %11s %4s ", "mesh", "triangles", "working set", "fits");
+    for (const BenchVariant *v : vars) {
+        std::fprintf(out, " %*s", kCell, v->name);
+    }
+    std::fprintf(out, "  checked\n");
+    for (const ScalingMesh &m : run.meshes) {
+        const Workload &w = m.workload;
+        const double ws = working_set_bytes(routine, w);
+        std::fprintf(out, "%-22.22s %9d %11s %4s ", m.spec.name.c_str(), w.numTriangles,
+                     format_bytes(ws).c_str(), smallest_cache_holding(cache_sizes(), ws));
+        bool allOk = true, any = false;
+        for (const BenchVariant *v : vars) {
+            const Row *r = scaling_row(m, routine, v);
+            char cell[48];
+            if (!r) {
+                std::snprintf(cell, sizeof cell, "-");
+            } else if (!r->ok) {
+                std::snprintf(cell, sizeof cell, "FAILED");
+            } else {
+                const double el = std::max(1, elements_of(routine, w));
+                const bool noisy = below_noise(*r, run.machine.step);
+                std::snprintf(cell, sizeof cell, "%s%.2f / %.2f", noisy ? "~" : "", r->min / el,
+                              r->median / el);
+            }
+            any = any || r;
+            allOk = allOk && (!r || r->ok);
+            std::fprintf(out, " %*s", kCell, cell);
+        }
+        std::fprintf(out, "  %s\n", !any ? "-" : allOk ? "ok" : "FAILED");
+    }
+}
+
+} // namespace
+
+const char *smallest_cache_holding(const CacheSizes &c, double bytes) {
+    bool known = false;
+    for (const CacheLevel &l : c) {
+        if (l.bytes) {
+            known = true;
+            if (bytes <= (double)l.bytes) {
+                return l.name;
+            }
+        }
+    }
+    return known ? "DRAM" : "?";
+}
+
+void print_scaling_header(FILE *out, const ScalingRun &run) {
+    const MachineTiming &m = run.machine;
+    const ScalingOptions &o = run.options;
+    std::fprintf(out,
+                 "shadowvol %s bench --scaling: cost per element as the mesh grows, moving "
+                 "light\n",
+                 project_version().c_str());
+    std::fprintf(out, "cpu       %s%s\n", cpu_model().c_str(),
+                 m.cpu >= 0 ? (" (measuring thread pinned to cpu " + std::to_string(m.cpu) + ")")
+                                  .c_str()
+                            : " (could not pin the measuring thread: expect noise)");
+    std::fprintf(out, "isa       %s (cpuid + xgetbv)\n", cpu_isa_flags().c_str());
+    std::fprintf(out, "caches    %s\n", cache_summary(cache_sizes()).c_str());
+    std::fprintf(out, "variants ");
+    for (const BenchVariant *v : o.variants) {
+        std::fprintf(out, " %s", v->name);
+    }
+    std::fprintf(out, " (%sISA level %s", run.variantsChosen ? "--variant; " : "",
+                 sv_isa_level_name());
+    if (!run.isaLimit.empty()) {
+        std::fprintf(out, "; limit: %s", run.isaLimit.c_str());
+    }
+    std::fprintf(out, ")\n");
+    for (const SkippedVariant &s : run.skipped) {
+        std::fprintf(out, "skipped   variant %s: %s\n", s.name.c_str(), s.why.c_str());
+    }
+    std::fprintf(out, "routines ");
+    for (Routine r : o.routines) {
+        std::fprintf(out, " %s", routine_name(r));
+    }
+    std::fprintf(out, "\n");
+    std::fprintf(out,
+                 "tsc       %.3f GHz, steps of %llu ticks; unit: ticks, not core cycles\n",
+                 m.tscHz * 1e-9, (unsigned long long)m.step);
+    std::fprintf(out, "timer     %s: %s, the empty region's cost subtracted\n",
+                 timer_name(m.timer), timer_sequence(m.timer));
+    std::fprintf(out, "build     %s, %s, commit %s\n", compiler_version().c_str(),
+                 build_flags().c_str(), git_commit().c_str());
+    std::fprintf(out,
+                 "meshes    the generated character, each quad subdivided n x n (1344 n^2 "
+                 "triangles, n =");
+    for (const ScalingMesh &sm : run.meshes) {
+        if (sm.spec.generated) {
+            std::fprintf(out, " %d", sm.spec.subdivision);
+        }
+    }
+    std::fprintf(out, "%s)\n          %s\n", o.quick ? "; --quick" : "", run.realModels.c_str());
+    for (const std::string &s : run.leftOut) {
+        std::fprintf(out, "left out  %s\n", s.c_str());
+    }
+    std::fprintf(out,
+                 "lights    per mesh %d point lights up to %d triangles, %d x %d / T above "
+                 "(at least %d),\n          searched for facing %s and silhouette %s (seed "
+                 "%llu); the moving light rotates through them\n",
+                 kScalingLights, kFullLightTriangles, kScalingLights, kFullLightTriangles,
+                 kMinScalingLights, pct(o.targets.facing).c_str(),
+                 pct(o.targets.silhouette).c_str(), (unsigned long long)o.seed);
+    const int base = scaling_runs(o, kScalingReferenceTriangles);
+    std::fprintf(out,
+                 "runs      %d timed calls per row on a mesh of %d triangles or fewer, %d x %d / "
+                 "T above (at least %d),\n          in 4 rounds; every call checked against "
+                 "c_ref outside the timed region\n",
+                 base, kScalingReferenceTriangles, base, kScalingReferenceTriangles,
+                 std::min(base, o.quick ? kMinQuickScalingRuns : kMinScalingRuns));
+    std::fflush(out);
+}
+
+void print_scaling_mesh(FILE *out, const ScalingMesh &m, bool first) {
+    const Workload &w = m.workload;
+    if (first) {
+        std::fprintf(out, "\n%-22s %9s %9s %9s %6s %7s %10s %11s %4s %5s %7s\n", "mesh",
+                     "triangles", "SilEdges", "vertices", "lights", "facing", "silhouette",
+                     "ws volume", "fits", "runs", "seconds");
+    }
+    const double ws = working_set_bytes(Routine::create_shadow_volume, w);
+    std::fprintf(out, "%-22.22s %9d %9d %9d %6d %7s %10s %11s %4s %5d %7.1f\n",
+                 m.spec.name.c_str(), w.numTriangles, w.numSilEdges, w.numVerts, w.numMoving,
+                 pct(ratio_stats(w, Ratio::facing).mean).c_str(),
+                 pct(ratio_stats(w, Ratio::silhouette).mean).c_str(), format_bytes(ws).c_str(),
+                 smallest_cache_holding(cache_sizes(), ws), m.runs, m.seconds);
+    std::fflush(out);
+}
+
+void print_scaling_tables(FILE *out, const ScalingRun &run) {
+    for (Routine r : run.options.routines) {
+        print_table(out, run, r);
+    }
+    std::fprintf(
+        out,
+        "\nfacing, silhouette: the mean over the mesh's lights. ws volume, working set: the "
+        "bytes one call\n  touches (bench/working_set.h), from the mesh's own counts; fits: "
+        "the smallest cache that holds\n  them (an L3 shared by several cores, or split in "
+        "slices, may be reported whole). Per element:\n  per triangle; create_sil_triangles per "
+        "SilEdge; calculate_cull_bits per vertex. min: the fastest call;\n  median: the lowest "
+        "of the 4 rounds' medians; ~: the median call is below %llu x the TSC step or the\n  "
+        "spread (IQR) of the row's empty regions: mostly timer noise. Units: TSC ticks.\n",
+        (unsigned long long)kNoiseFactor);
+    bool first = true;
+    for (const ScalingMesh &m : run.meshes) {
+        for (const Row &r : m.table.rows) {
+            if (!r.ok) {
+                std::fprintf(out, "%sFAILED %s %s %s (moving light): %s\n", first ? "\n" : "",
+                             m.spec.name.c_str(), routine_name(r.routine), r.variant->name,
+                             r.failure.c_str());
+                first = false;
+            }
+        }
+    }
+    std::fflush(out);
+}
+
+} // namespace svbench
