@@ -87,7 +87,7 @@ void sv_calculate_facing_sse2(const Plane *planes, int numTriangles, const Vec4 
     const __m128 zero = _mm_setzero_ps();
     const float *p = &planes[0].a;
     int i = 0;
-    for (; i + 4 <= numTriangles; i += 4, p += 16) {
+    for (; i <= numTriangles - 4; i += 4, p += 16) {
         __m128 a, b, c, d;
         TRANSPOSE4(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8),
                    _mm_loadu_ps(p + 12), a, b, c, d);
@@ -121,7 +121,7 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
     const __m128 zero = _mm_setzero_ps();
     const float *v = &positions[0].x;
     int j = 0;
-    for (; j + 4 <= numVerts; j += 4, v += 16) {
+    for (; j <= numVerts - 4; j += 4, v += 16) {
         __m128 x, y, z, w;
         TRANSPOSE4(_mm_loadu_ps(v), _mm_loadu_ps(v + 4), _mm_loadu_ps(v + 8),
                    _mm_loadu_ps(v + 12), x, y, z, w);
@@ -175,7 +175,7 @@ SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangl
     const __m256 zero = _mm256_setzero_ps();
     const float *p = &planes[0].a;
     int i = 0;
-    for (; i + 8 <= numTriangles; i += 8, p += 32) {
+    for (; i <= numTriangles - 8; i += 8, p += 32) {
         __m256 a, b, c, d;
         TRANSPOSE4x2(load_pair(p, 0), load_pair(p, 1), load_pair(p, 2), load_pair(p, 3), a, b,
                      c, d);
@@ -210,7 +210,7 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
     const __m256 zero = _mm256_setzero_ps();
     const float *v = &positions[0].x;
     int j = 0;
-    for (; j + 8 <= numVerts; j += 8, v += 32) {
+    for (; j <= numVerts - 8; j += 8, v += 32) {
         __m256 x, y, z, w;
         TRANSPOSE4x2(load_pair(v, 0), load_pair(v, 1), load_pair(v, 2), load_pair(v, 3), x, y,
                      z, w);
@@ -258,9 +258,8 @@ SV_TARGET_AVX512 static inline void transpose16(__m512 r0, __m512 r1, __m512 r2,
 SV_TARGET_AVX512 static inline void load16(const float *p, int n, __m512 r[4]) {
     for (int q = 0; q < 4; q++) {
         const int have = n - 4 * q; /* structures in this register */
-        const __mmask16 m = have >= 4 ? (__mmask16)0xFFFF
-                            : have <= 0 ? (__mmask16)0
-                                        : (__mmask16)((1u << (4 * have)) - 1);
+        const unsigned bits = have >= 4 ? 0xFFFFu : have <= 0 ? 0u : (1u << (4 * have)) - 1;
+        const __mmask16 m = (__mmask16)bits;
         r[q] = _mm512_maskz_loadu_ps(m, p + 16 * q);
     }
 }
@@ -273,8 +272,11 @@ SV_TARGET_AVX512 void sv_calculate_facing_avx512(const Plane *planes, int numTri
     const __m512 zero = _mm512_setzero_ps();
     const __m128i one = _mm_set1_epi8(1);
     const float *p = &planes[0].a;
-    for (int i = 0; i < numTriangles; i += 16, p += 64) {
-        const int n = numTriangles - i < 16 ? numTriangles - i : 16;
+    /* size_t and a count of what is left: no index passes numTriangles,
+     * and none overflows for counts near INT_MAX. */
+    for (size_t i = 0, left = (size_t)numTriangles; left > 0; i += 16, p += 64) {
+        const int n = left < 16 ? (int)left : 16;
+        left -= (size_t)n;
         __m512 r[4], a, b, c, d;
         load16(p, n, r);
         transpose16(r[0], r[1], r[2], r[3], &a, &b, &c, &d);
@@ -308,8 +310,9 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
     }
     const __m512 zero = _mm512_setzero_ps();
     const float *v = &positions[0].x;
-    for (int j = 0; j < numVerts; j += 16, v += 64) {
-        const int n = numVerts - j < 16 ? numVerts - j : 16;
+    for (size_t j = 0, left = (size_t)numVerts; left > 0; j += 16, v += 64) {
+        const int n = left < 16 ? (int)left : 16;
+        left -= (size_t)n;
         __m512 r[4], x, y, z, w;
         load16(v, n, r);
         transpose16(r[0], r[1], r[2], r[3], &x, &y, &z, &w);

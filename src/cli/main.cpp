@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "bench_cli.h"
+#include "accuracy_cli.h"
 #include "model_cli.h"
 
 #ifndef SV_PROJECT_VERSION
@@ -28,7 +29,6 @@ struct Command {
     void (*usage)(FILE *out);
 };
 
-/* accuracy joins here when it is written. */
 const Command kCommands[] = {
     {"bench", "the cycle table of every routine and variant, beside the paper's Pentium 4",
      svbench::bench_main, svbench::bench_usage},
@@ -36,6 +36,8 @@ const Command kCommands[] = {
      svcli::inspect_main, svcli::inspect_usage},
     {"verify", "prove a model's shadow volumes closed and right in space, for every variant",
      svcli::verify_main, svcli::verify_usage},
+    {"accuracy", "speed against accuracy of the facing decision, per variant, model and light",
+     svcli::accuracy_main, svcli::accuracy_usage},
 };
 
 const Command *find_command(const char *name) {
