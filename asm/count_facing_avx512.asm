@@ -1,2 +1,126 @@
-; count_facing_avx512.asm: being written (issue 6); no functions yet.
+; count_facing_avx512.asm: CountFacing with AVX-512 (x86-64-v4).
+;
+; Computes: the number of facing bytes set, n = sum(facing[0 .. n-1]),
+;   exactly what section 4's C and appendix C compute for facing bytes of
+;   0 or 1.
+; Approach: appendix C's idea (add bytes in byte lanes, widen rarely) at
+;   64 bytes per instruction. The main loop adds 256 bytes per iteration
+;   with four vpaddb (load + add, one uop each) into four byte accumulators;
+;   a lane gets at most one 1 per iteration, so after at most 62
+;   iterations the four are summed (<= 248 per lane) and vpsadbw against
+;   zero widens the 64 lanes into 8 qword sums. Then 0-3 whole vectors
+;   (bits 7 and 6 of the count) and the last 0-63 bytes, with a zero-masked
+;   vmovdqu8 whose mask (bzhi of all ones) covers exactly the bytes left:
+;   masked-off bytes are neither read nor able to fault, so the routine
+;   reads exactly facing[0 .. n-1] and needs no alignment and no scalar
+;   tail. One vpsadbw and a horizontal add at the end.
+;
+; int sv_count_facing_avx512(const uint8_t *facing, int numTriangles)
+;
+; Register map:
+;   rdi  facing, advanced as bytes are added; eax numTriangles (its low
+;        8 bits: the last vectors and bytes)
+;   edx  256-byte blocks not yet added; ecx blocks left in this chunk
+;   zmm0 zero (vpsadbw), then the total; zmm1-zmm4 byte accumulators;
+;   zmm5 the masked last bytes; zmm6 qword sums of the full chunks;
+;   k1 the last bytes' mask
+;
+; Contracts: facing bytes 0 or 1 (the routine sums byte values; a lane of
+;   the byte accumulators holds at most 62 + 1 ones). No alignment.
+;   numTriangles >= 0; a negative count returns 0 and reads nothing (the
+;   test is on the 32-bit value: erratum C-7 does not arise).
+;
+; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
+;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
+;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
+;   class), TSC 2.097 GHz, ticks):
+;   moving light 15.5 min / 19.2 median per call (batches of 23; sse2_paper
+;   29.2 / 31.0, c_ref 322 / 323); fixed light 11.9 / 13.7 (sse2_paper 27.4
+;   / 28.3). In a loop over 23 copies in L1, without the bench's per-call
+;   work: 9.1 (sse2_paper 26.5). 1344 bytes are 21 zmm loads; moving, the
+;   copies come partly from L2 (64 B per cycle: about 12 ticks).
+;
+; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+
 %include "sv_abi.inc"
+
+FUNCTION sv_count_facing_avx512
+        mov     eax, arg2d                      ; numTriangles (upper half ignored)
+        vpxord  xmm0, xmm0, xmm0                ; zero, for vpsadbw
+        test    eax, eax
+        jle     .zero                           ; negative or zero: read nothing
+        vpxord  xmm1, xmm1, xmm1
+        vpxord  xmm2, xmm2, xmm2
+        vpxord  xmm3, xmm3, xmm3
+        vpxord  xmm4, xmm4, xmm4
+        vpxord  xmm6, xmm6, xmm6                ; qword totals of full chunks
+        mov     edx, eax
+        shr     edx, 8                          ; whole 256-byte blocks
+        jz      .vectors
+
+.chunk:                                         ; at most 62 blocks per chunk
+        mov     ecx, 62
+        cmp     edx, ecx
+        cmovb   ecx, edx
+        sub     edx, ecx
+.loop256:
+        vpaddb  zmm1, zmm1, [rdi+0*64]
+        vpaddb  zmm2, zmm2, [rdi+1*64]
+        vpaddb  zmm3, zmm3, [rdi+2*64]
+        vpaddb  zmm4, zmm4, [rdi+3*64]
+        add     rdi, 256
+        dec     ecx
+        jnz     .loop256
+        test    edx, edx
+        jz      .vectors
+        ; 62 blocks: widen (4 x 62 = 248 per lane fits a byte), go on
+        vpaddb  zmm1, zmm1, zmm2
+        vpaddb  zmm3, zmm3, zmm4
+        vpaddb  zmm1, zmm1, zmm3
+        vpsadbw zmm1, zmm1, zmm0
+        vpaddq  zmm6, zmm6, zmm1
+        vpxord  xmm1, xmm1, xmm1
+        vpxord  xmm2, xmm2, xmm2
+        vpxord  xmm3, xmm3, xmm3
+        vpxord  xmm4, xmm4, xmm4
+        jmp     .chunk
+
+.vectors:                                       ; 0-3 whole vectors, then 0-63 bytes
+        test    al, 128
+        jz      .v1
+        vpaddb  zmm2, zmm2, [rdi+0*64]
+        vpaddb  zmm3, zmm3, [rdi+1*64]
+        add     rdi, 128
+.v1:
+        test    al, 64
+        jz      .v0
+        vpaddb  zmm4, zmm4, [rdi]
+        add     rdi, 64
+.v0:
+        and     eax, 63
+        mov     rdx, -1
+        bzhi    rdx, rdx, rax                   ; the low rax bits
+        kmovq   k1, rdx
+        vmovdqu8 zmm5{k1}{z}, [rdi]             ; reads only the bytes left
+        vpaddb  zmm1, zmm1, zmm5                ; lanes now <= 63 each
+        vpaddb  zmm1, zmm1, zmm2
+        vpaddb  zmm3, zmm3, zmm4
+        vpaddb  zmm1, zmm1, zmm3                ; <= 252
+        vpsadbw zmm1, zmm1, zmm0                ; 8 qword sums
+        vpaddq  zmm0, zmm1, zmm6                ; + the earlier chunks
+        ; horizontal sum of the 8 qwords (the total is below 2^31)
+        vextracti64x4 ymm1, zmm0, 1
+        vpaddq  ymm0, ymm0, ymm1
+        vextracti128 xmm1, ymm0, 1
+        vpaddq  xmm0, xmm0, xmm1
+        vpshufd xmm1, xmm0, SHUFFLE_D(2, 3, 0, 1)
+        vpaddq  xmm0, xmm0, xmm1
+        vmovd   eax, xmm0
+        vzeroupper
+        ret
+
+.zero:
+        xor     eax, eax
+        vzeroupper
+        ret
+ENDFUNCTION

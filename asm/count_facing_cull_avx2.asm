@@ -1,2 +1,240 @@
-; count_facing_cull_avx2.asm: being written (issue 6); no functions yet.
+; count_facing_cull_avx2.asm: CountFacingCull for x86-64-v3 (AVX2, BMI2,
+; POPCNT).
+;
+; Computes: for each triangle i with facing[i] == 0, c = cullBits[i0] &
+;   cullBits[i1] & cullBits[i2]; if c != 0 (all eight bits count), facing[i]
+;   = 1. Returns the number of facing bytes set afterwards. Exactly section
+;   5's C, including a cull byte shared in bit 7 only (the sse2_paper limit
+;   D-5 is not copied: the AND is tested for zero, not compared signed).
+; Approach: not a port. Section 5's C skips the cull lookups of facing
+;   triangles with a branch the predictor cannot learn for a moving light;
+;   appendix D looks up all three cull bytes of EVERY triangle. This does
+;   the lookups only for the non-facing ones, without a branch per triangle:
+;   two passes over chunks of up to 992 triangles (the frame stays below a
+;   page, so no stack probe is needed).
+;   1. List: 32 facing bytes at a time, vpcmpeqb against zero + vpmovmskb
+;      give a 32-bit mask of the non-facing triangles; per mask byte, a
+;      256-entry table of packed bit positions (vpmovzxbd straight from
+;      memory) plus the block's first triangle number are stored to a list
+;      on the stack, and popcnt advances the list end: a branch-free
+;      left-pack of the non-facing triangle numbers.
+;   2. Cull: for each listed triangle t, its three vertex numbers (one
+;      qword split by movsxd / sar, one movsxd), their three cull bytes
+;      ANDed (`and r8b, [cullBits + v]` sets ZF) and facing[t] = (c != 0)
+;      with setnz. Four per iteration; the list is padded with copies of
+;      its last entry, which are harmless (the same byte is stored again
+;      with the same value).
+;   Gathers were measured first: vpgatherdd costs ~1.2-1.5 cycles per
+;   element on this Zen 5-class core, scalar byte loads 0.25 (4 loads per
+;   cycle), so the lookups stay scalar; the work saved is that of the
+;   facing triangles (about half of them). Pass 2 is the cost: a chain of
+;   three dependent loads (list entry, vertex numbers, cull bytes) and ~11
+;   instructions per non-facing triangle, ~2.3 cycles each here.
+;   The count is that of facing afterwards: a tail call of
+;   sv_count_facing_avx2 (which is cheaper than keeping it exact across the
+;   padded list).
+;
+; int sv_count_facing_cull_avx2(uint8_t *facing, int numTriangles,
+;                               const int *indices, const uint8_t *cullBits)
+;
+; Register map:
+;   r12 facing       r13 numTriangles (64-bit, > 0)   r14 indices
+;   r15 cullBits     rbx first triangle of the chunk  rbp list entries
+;   rsi triangle of the current 32-block (pass 1), list index (pass 2)
+;   r11 the position table; rax, rcx, rdx, rdi, r8-r10 scratch
+;   ymm5 zero; ymm6 the current 8-block's first triangle, broadcast;
+;   ymm7 eight, broadcast; ymm0, ymm1 scratch
+;   [rsp] the list: LIST_ENTRIES dwords
+;
+; Contracts: no alignment; facing bytes 0 or 1; indices valid vertex numbers
+;   into cullBits (read with movsxd, as C indexes with an int);
+;   numTriangles >= 0 (negative or zero: returns 0, touches nothing). Reads
+;   exactly facing[0 .. n-1] (the last partial 32-block is loaded as the 32
+;   bytes ending at facing + n when n >= 32, else byte by byte), the indices
+;   and cull bytes of the non-facing triangles only; writes only facing
+;   bytes that were 0. Stack: < 4 KiB.
+;
+; Measured cost (`shadowvol bench`, the
+;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
+;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
+;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
+;   moving light 1197-1218 / 1260-1281 (sse2_paper 1512-1533 / 1596-1617,
+;   c_ref 1365-1407 / 1554-1596); fixed light 1134-1155 / 1155 (sse2_paper
+;   1512-1533 / 1575-1596, c_ref 1239 / 1239-1260). Pass 1 alone (with the
+;   count) ~300; with pass 2 but without its facing store ~1090: above the
+;   ~770 that twice sse2_paper's speed would need.
+;
+; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+
 %include "sv_abi.inc"
+
+extern sv_count_facing_avx2
+
+%define CHUNK        992                  ; triangles per list (a multiple of 32)
+%define LIST_ENTRIES (CHUNK + 16)         ; + 8 (a block's store) + 3 (padding)
+%define FRAME        (LIST_ENTRIES*4 + 8) ; + 6 pushes + return: < 4096
+
+RODATA
+align 64
+; positions[m]: the indices of the set bits of m, in increasing order, one
+; per byte, then zero bytes.
+positions:
+%assign m 0
+%rep 256
+    %assign v 0
+    %assign sh 0
+    %assign b 0
+    %rep 8
+        %if (m >> b) & 1
+            %assign v v | (b << sh)
+            %assign sh sh + 8
+        %endif
+        %assign b b + 1
+    %endrep
+        dq v
+    %assign m m + 1
+%endrep
+align 4
+eight:  dd 8
+
+; EMIT8: left-packs the triangles of one mask byte (in eax, zero-extended)
+; onto the list and moves the base on by 8.
+%macro EMIT8 0
+        vpmovzxbd ymm1, [r11 + rax*8]
+        popcnt  eax, eax
+        vpaddd  ymm1, ymm1, ymm6
+        vmovdqu [rsp + rbp*4], ymm1
+        add     ebp, eax
+        vpaddd  ymm6, ymm6, ymm7
+%endmacro
+
+; EMIT32: the four bytes of the mask in edx.
+%macro EMIT32 0
+        movzx   eax, dl
+        EMIT8
+        movzx   eax, dh
+        EMIT8
+        shr     edx, 16
+        movzx   eax, dl
+        EMIT8
+        movzx   eax, dh
+        EMIT8
+%endmacro
+
+; CULL1 k: list entry k of the current group of four.
+%macro CULL1 1
+        mov     eax, [rsp + rsi*4 + %1*4]      ; t
+        lea     rcx, [rax + rax*2]             ; 3t
+        mov     rdi, [r14 + rcx*4]             ; i0 | i1 << 32
+        movsxd  rcx, dword [r14 + rcx*4 + 8]   ; i2
+        movsxd  rdx, edi                       ; i0
+        sar     rdi, 32                        ; i1
+        movzx   r8d, byte [r15 + rdx]
+        and     r8b, [r15 + rdi]
+        and     r8b, [r15 + rcx]
+        setnz   r8b
+        mov     [r12 + rax], r8b
+%endmacro
+
+FUNCTION sv_count_facing_cull_avx2
+        mov     eax, arg2d
+        test    eax, eax
+        jg      .start
+        xor     eax, eax                ; negative or zero: 0, nothing touched
+        ret
+.start:
+        push    rbx
+        push    rbp
+        push    r12
+        push    r13
+        push    r14
+        push    r15
+        sub     rsp, FRAME
+        mov     r12, arg1q
+        mov     r13d, eax               ; n, zero-extended
+        mov     r14, arg3q
+        mov     r15, arg4q
+        lea     r11, [positions]
+        vpxor   xmm5, xmm5, xmm5
+        vpbroadcastd ymm7, [eight]
+        xor     ebx, ebx                ; chunk start
+
+.chunk:
+        ; ---- pass 1: list the non-facing triangles of [rbx, rbx + len)
+        xor     ebp, ebp
+        mov     rsi, rbx
+        vmovd   xmm6, ebx
+        vpbroadcastd ymm6, xmm6
+        lea     r9, [rbx + CHUNK]
+        cmp     r9, r13
+        cmova   r9, r13                 ; chunk end
+        lea     r10, [rsi + 32]
+        cmp     r10, r9
+        ja      .partial
+.block32:
+        vpcmpeqb ymm0, ymm5, [r12 + rsi]
+        vpmovmskb edx, ymm0             ; bit j: facing[rsi + j] == 0
+        EMIT32
+        add     rsi, 32
+        lea     r10, [rsi + 32]
+        cmp     r10, r9
+        jbe     .block32
+.partial:
+        mov     rcx, r9
+        sub     rcx, rsi                ; 0..31 triangles left (only at the end)
+        jz      .pass2
+        cmp     r13, 32
+        jb      .tiny
+        ; the 32 bytes ending at facing + n; keep the bits of the last rcx
+        vpcmpeqb ymm0, ymm5, [r12 + r13 - 32]
+        vpmovmskb edx, ymm0
+        neg     ecx
+        add     ecx, 32
+        shrx    edx, edx, ecx
+        EMIT32
+        jmp     .pass2
+.tiny:                                  ; n < 32: the mask bit by bit, from the top
+        xor     edx, edx
+.tinybit:
+        cmp     byte [r12 + rcx - 1], 1 ; CF = (facing == 0)
+        adc     edx, edx
+        dec     rcx
+        jnz     .tinybit
+        EMIT32
+
+        ; ---- pass 2: the cull test for each listed triangle
+.pass2:
+        test    ebp, ebp
+        jz      .next_chunk
+        mov     eax, [rsp + rbp*4 - 4]  ; pad to a multiple of 4 with the last
+        mov     [rsp + rbp*4], eax
+        mov     [rsp + rbp*4 + 4], eax
+        mov     [rsp + rbp*4 + 8], eax
+        xor     esi, esi
+.cull4:
+        CULL1   0
+        CULL1   1
+        CULL1   2
+        CULL1   3
+        add     esi, 4
+        cmp     esi, ebp
+        jb      .cull4
+
+.next_chunk:
+        add     rbx, CHUNK
+        cmp     rbx, r13
+        jb      .chunk
+
+        ; ---- the count of facing bytes set now
+        mov     rdi, r12
+        mov     esi, r13d
+        add     rsp, FRAME
+        pop     r15
+        pop     r14
+        pop     r13
+        pop     r12
+        pop     rbp
+        pop     rbx
+        vzeroupper
+        jmp     sv_count_facing_avx2 wrt ..plt
+ENDFUNCTION

@@ -1,2 +1,273 @@
-; create_sil_triangles_avx2.asm: being written (issue 6); no functions yet.
+; create_sil_triangles_avx2.asm: CreateSilTriangles for x86-64-v3 (AVX2,
+; POPCNT).
+;
+; Computes: for each SilEdge whose facing bytes f1 = facing[p1] and
+;   f2 = facing[p2] differ, the two triangles of section 6's C, in its order:
+;     f1 = 1:  v1, v2+1, v2,   v1,   v1+1, v2+1
+;     f1 = 0:  v1, v2,   v2+1, v1+1, v1,   v2+1
+;   Returns the number of indices written (6 per silhouette edge).
+; Approach: not a port. Appendix E writes six indices for EVERY edge and
+;   advances only on silhouette edges (about 10-20% of them); here the
+;   edges are first sorted out, then only silhouette edges are written.
+;   Chunks of up to 992 edges, two phases each:
+;   1. Flags, 16 edges per iteration: per edge one qword load of (p1, p2),
+;      movsxd / sar to split it, movzx f1, `xor r8b, [facing + p2]`, and
+;      lea m = 2m + (f1 ^ f2) folds the flag into an 8-bit mask (bit 7 - k
+;      for edge k of 8). The mask indexes a 256-entry table of packed edge
+;      numbers (vpmovzxbd from memory), the group's first number is added,
+;      32 bytes are stored to a list on the stack and popcnt moves the list
+;      end: a branch-free left-pack of the silhouette edges.
+;   2. Emit, two listed edges per iteration: vpermd, with the edge's
+;      32-byte window as its memory operand (16 bytes loaded for a list's
+;      last entry, the only one that can be the array's last edge), spreads
+;      (v1, v2) to (v1, v2, v2, v1, v1, v2, -, -); on a silhouette edge
+;      f1 = 1 - f2, so the +1s depend on f2 alone: vpxor with the 32 bytes
+;      at xor_by_f2 + 8 * f2, two overlapping rows of one table,
+;      (0,1,0,0,1,1) for f2 = 0 and (0,0,1,1,0,1) for f2 = 1 (v even: ^1 is
+;      +1). The output advances 24 bytes per edge, so no store waits on a
+;      pointer chain; each store is 32 bytes but the list's last, which is
+;      16 + 8, so nothing lands past the count returned.
+;   Measured on the way (this Zen 5-class core; ticks for the 2016-edge
+;   character, moving light): one 32-byte store per edge with a
+;   conditionally advanced pointer (the C's scheme in AVX2) 2900;
+;   vpgatherdd for the facing bytes costs ~1.2-1.5 cycles per element
+;   against 0.25 for a scalar byte load; phase 1 alone runs at ~1.1
+;   cycles per edge (about 7 instructions per edge at ~6 per cycle): the
+;   two look-ups per edge are the floor of this routine.
+;
+; int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
+;                                  const SilEdge *silEdges, int numSilEdges)
+;
+; Register map:
+;   r12 output position     r13 shadowIndices     r14 silEdges
+;   r15 the packed-positions table     rsi facing
+;   rbx first edge of the chunk (pointer)   rdi end of the edges
+;   rdx current edge (phase 1)   r10 end of the chunk (less a group)
+;   rbp list entries; rax, rcx masks / list index; r8, r9 p1, p2, flags
+;   r11 xor_by_f2
+;   ymm6 2 * (current group's first edge number), broadcast; ymm7 16,
+;   broadcast; ymm14 idx_lo; ymm0-ymm2 scratch
+;   [rsp] the list: 2 * edge number (so that [r14 + entry*8] is the edge)
+;
+; Contracts: no alignment; output room for 6 * numSilEdges ints (nothing is
+;   written past 6 * (silhouette edges)); facing bytes 0 or 1; v1, v2 even;
+;   p1, p2 valid indices into facing (sign-extended: int). numSilEdges >= 0
+;   (negative or zero: returns 0, touches nothing). Reads nothing outside
+;   the numSilEdges edges but the facing bytes they name. Stack: < 4 KiB
+;   (no probe needed).
+;
+; Measured cost (`shadowvol bench`, the
+;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
+;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
+;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
+;   moving light 1869-1974 / 1911-2079 (sse2_paper 3339-3360 / 3381-3402,
+;   c_ref 2163-2247 / 3087-3549); fixed light 1911-2079 / 1932-2100
+;   (sse2_paper 3381-3402 / 3402-3423, c_ref 2058-2079 / 2079-2100); with
+;   `--timer lfence` (no VM exit per call) 1785 / 1827. Phase 1 alone:
+;   ~1200 of it.
+;
+; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+
 %include "sv_abi.inc"
+
+%define CHUNK        992                  ; edges per list: a multiple of 16
+%define LIST_ENTRIES (CHUNK + 16)         ; + 8 for a group's 32-byte store
+%define FRAME        (LIST_ENTRIES*4 + 8) ; + 6 pushes + return: < 4096
+
+RODATA
+align 32
+idx_lo:     dd 2, 3, 3, 2, 2, 3, 2, 3
+; rows at +0 (f2 = 0) and +8 (f2 = 1), 8 dwords each
+xor_by_f2:  dd 0, 1, 0, 0, 1, 1, 0, 1, 0, 0
+step16:     dd 16
+align 64
+; positions[m]: for the mask m = sum of flag_k << (7 - k), the numbers 2k of
+; the edges whose flag is set, in increasing k, one per byte, then zeros.
+positions:
+%assign m 0
+%rep 256
+    %assign v 0
+    %assign sh 0
+    %assign b 7
+    %rep 8
+        %if (m >> b) & 1
+            %assign v v | ((2 * (7 - b)) << sh)
+            %assign sh sh + 8
+        %endif
+        %assign b b - 1
+    %endrep
+        dq v
+    %assign m m + 1
+%endrep
+
+; FIRST off: starts a mask in eax with the flag of the edge at rdx + off.
+%macro FIRST 1
+        mov     r9, [rdx + %1]                 ; p1 | p2 << 32
+        movsxd  r8, r9d
+        sar     r9, 32
+        movzx   eax, byte [rsi + r8]
+        xor     al, [rsi + r9]                 ; f1 ^ f2
+%endmacro
+; NEXT off: appends the flag of the edge at rdx + off to the mask in rax.
+%macro NEXT 1
+        mov     r9, [rdx + %1]
+        movsxd  r8, r9d
+        sar     r9, 32
+        movzx   r8d, byte [rsi + r8]
+        xor     r8b, [rsi + r9]
+        lea     rax, [r8 + rax*2]
+%endmacro
+; MASK8 off: the mask of the 8 edges at rdx + off, in eax.
+%macro MASK8 1
+        FIRST   %1
+        NEXT    %1 + 16
+        NEXT    %1 + 32
+        NEXT    %1 + 48
+        NEXT    %1 + 64
+        NEXT    %1 + 80
+        NEXT    %1 + 96
+        NEXT    %1 + 112
+%endmacro
+; PACK8 mask, ymm: appends the group's silhouette edges to the list.
+%macro PACK8 2
+        vpmovzxbd %2, [r15 + %1*8]
+        popcnt  %1, %1
+        vpaddd  %2, %2, ymm6
+        vpaddd  ymm6, ymm6, ymm7
+        vmovdqu [rsp + rbp*4], %2
+        add     rbp, %1
+%endmacro
+; EMIT1 k, src, out: list entry eax + k (its edge: edx) into ymm out. src:
+; the edge's 32-byte window (memory; never for the last edge of the
+; array) or ymm0 after a 16-byte load.
+%macro EMIT1 3
+        mov     edx, [rsp + rax*4 + %1*4]      ; 2 * edge number
+        movsxd  r9, dword [r14 + rdx*8 + 4]
+        movzx   r9d, byte [rsi + r9]           ; f2
+        vpermd  %3, ymm14, %2                  ; v1 v2 v2 v1 v1 v2 - -
+        vpxor   %3, %3, [r11 + r9*8]
+%endmacro
+
+FUNCTION sv_create_sil_triangles_avx2
+        movsxd  rcx, arg4d
+        test    rcx, rcx
+        jg      .start
+        xor     eax, eax                ; negative or zero: 0, nothing touched
+        ret
+.start:
+        push    rbx
+        push    rbp
+        push    r12
+        push    r13
+        push    r14
+        push    r15
+        sub     rsp, FRAME
+        mov     r12, rdi
+        mov     r13, rdi
+        mov     r14, rdx
+        lea     r15, [positions]
+        lea     r11, [xor_by_f2]
+        vpbroadcastd ymm7, [step16]
+        vmovdqa ymm14, [idx_lo]
+        mov     rbx, rdx
+        shl     rcx, 4
+        lea     rdi, [rdx + rcx]        ; end of the edges
+
+.chunk:
+        ; ---- phase 1: list the silhouette edges of [rbx, chunk end)
+        xor     ebp, ebp
+        lea     r10, [rbx + CHUNK*16]
+        cmp     r10, rdi
+        cmova   r10, rdi
+        mov     rdx, rbx
+        mov     rax, rbx
+        sub     rax, r14
+        shr     rax, 3                  ; 2 * first edge number (< 2^32)
+        vmovd   xmm6, eax
+        vpbroadcastd ymm6, xmm6
+        sub     r10, 256
+        cmp     rdx, r10
+        ja      .group8
+.group16:
+        MASK8   0
+        mov     ecx, eax
+        MASK8   128
+        PACK8   rcx, ymm1
+        PACK8   rax, ymm2
+        add     rdx, 256
+        cmp     rdx, r10
+        jbe     .group16
+.group8:
+        add     r10, 128
+        cmp     rdx, r10
+        ja      .rest
+        MASK8   0
+        PACK8   rax, ymm1
+        add     rdx, 128
+.rest:                                  ; the last 0..7 edges (of the array)
+        add     r10, 128
+        cmp     rdx, r10
+        jae     .emit
+.rest1:
+        movsxd  r8, dword [rdx]
+        movsxd  r9, dword [rdx + 4]
+        movzx   r8d, byte [rsi + r8]
+        xor     r8b, [rsi + r9]
+        mov     rax, rdx
+        sub     rax, r14
+        shr     rax, 3
+        mov     [rsp + rbp*4], eax
+        add     rbp, r8
+        add     rdx, 16
+        cmp     rdx, r10
+        jb      .rest1
+
+        ; ---- phase 2: six indices per listed edge, in order
+.emit:
+        mov     rbx, rdx                ; the next chunk
+        sub     ebp, 1                  ; index of the last entry
+        jb      .next                   ; none
+        xor     eax, eax
+.emit2:                                 ; all but the last: 32-byte stores
+        lea     ecx, [rax + 2]
+        cmp     ecx, ebp
+        ja      .emit1
+        EMIT1   0, [r14 + rdx*8], ymm1  ; (never the array's last edge)
+        EMIT1   1, [r14 + rdx*8], ymm2
+        vmovdqu [r12], ymm1
+        vmovdqu [r12 + 24], ymm2
+        add     r12, 48
+        add     eax, 2
+        jmp     .emit2
+.emit1:
+        cmp     eax, ebp
+        jae     .emitlast
+        EMIT1   0, [r14 + rdx*8], ymm1
+        vmovdqu [r12], ymm1
+        add     r12, 24
+        inc     eax
+.emitlast:                              ; 16 bytes in; exactly six ints out
+        mov     edx, [rsp + rax*4]
+        vmovdqu xmm0, [r14 + rdx*8]     ; p1 p2 v1 v2
+        EMIT1   0, ymm0, ymm1
+        vmovdqu [r12], xmm1
+        vextracti128 xmm2, ymm1, 1
+        vmovq   [r12 + 16], xmm2
+        add     r12, 24
+.next:
+        cmp     rbx, rdi
+        jb      .chunk
+
+        mov     rax, r12                ; return (end - shadowIndices) / 4
+        sub     rax, r13
+        shr     rax, 2
+        add     rsp, FRAME
+        pop     r15
+        pop     r14
+        pop     r13
+        pop     r12
+        pop     rbp
+        pop     rbx
+        vzeroupper
+        ret
+ENDFUNCTION

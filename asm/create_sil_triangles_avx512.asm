@@ -1,2 +1,444 @@
-; create_sil_triangles_avx512.asm: being written (issue 6); no functions yet.
+; create_sil_triangles_avx512.asm: CreateSilTriangles with AVX-512
+; (x86-64-v4).
+;
+; Computes: for each SilEdge whose facing bytes f1 = facing[p1],
+;   f2 = facing[p2] differ, in edge order, the six indices of section 6's C:
+;     f1 = 1:  v1, v2+1, v2,   v1,   v1+1, v2+1
+;     f1 = 0:  v1, v2,   v2+1, v1+1, v1,   v2+1
+;   i.e. v1, v2^f1, v2^f2, v1^f2, v1^f1, v2^1 (v even, f1 ^ f2 = 1).
+;   Returns the number of indices written (6 per silhouette edge).
+; Approach: not a port. Appendix E writes six ints for every edge; here the
+;   facing lookups are done sixteen edges at a time in vector registers,
+;   and only the silhouette edges (12-20% of them on a character) are
+;   written. Chunks of up to 224 edges, three passes each:
+;   A. Pairs: four loads take 16 edges, two vpermi2q their (p1, p2) qwords,
+;      which go to the stack; vpminud / vpmaxud keep the chunk's lowest and
+;      highest triangle number lo, hi.
+;   B. Lists: when hi - (lo rounded down to 64) < 2048, the facing bytes
+;      lo64 .. hi are in a circular bitmap of 2048 bits in zmm28-zmm31
+;      (byte p at bit p mod 2048: vptestmb per 64 bytes, the last load
+;      masked so that nothing past facing[hi] is read). The window slides:
+;      bytes already there from earlier chunks are kept, only new ones are
+;      added (SilEdges come sorted by p1), so a mesh of under 2048
+;      triangles reads each facing byte about once. A lookup of 16 triangle
+;      numbers p is eight instructions: vpsrld p by 5 (the bitmap dword,
+;      mod 64), two masked vpermi2d (dwords 0-31 and 32-63), vprorvd by p
+;      (the bit to bit 0; the rotate takes the count mod 32), vptestmd.
+;      On the reference machine (AMD Zen 5 class) this is the cheap way:
+;      vpgatherdd zmm costs about 13 cycles for 16 lanes whatever the mask,
+;      and blocks the load ports meanwhile. Chunks spanning more triangles
+;      (large meshes whose SilEdges, sorted by p1, meet far-away p2) look
+;      the bytes up with scalar movzx instead, shifting them into the
+;      masks with lea.
+;      Either way: F1, F2 (bit t: f1, f2 of edge t), S = F1 ^ F2;
+;      vpcompressd (to a register: the memory form is several times slower
+;      on Zen) packs the byte offsets of the silhouette edges and 64 * f1
+;      into two lists on the stack; popcnt advances them.
+;   C. Output: per listed pair of edges, vpbroadcastq of each (v1, v2),
+;      one vpermt2d into (v1 v2 v2 v1 v1 v2) twice, a vpxord of the ^1
+;      patterns of their f1 (a 4-entry table), one masked store of twelve
+;      ints. Writes exactly 6 ints per silhouette edge, nothing past them.
+;   The only data-dependent branches: pass C's loop exit (once per chunk),
+;   and per chunk the choice of lookup (by its triangle numbers, not by
+;   the facing data).
+;
+; int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
+;                                    const SilEdge *silEdges, int numSilEdges)
+;
+; Register map:
+;   rdi  facing; rdx the chunk's edges; rax edges after this chunk
+;   r8   output pointer; r12 edges in the chunk; r13 list length
+;   r14  0x55555555 (pext: even bits); r15 the ^1 pattern table
+;   rbx  block counter (scalar lookups: r9, and rbx is F2); r11 offset of
+;        the block's pairs; rcx, rsi, r10 scratch (F1, F2, S)
+;   rbp  the frame: rsp 64-byte aligned below it; shadowIndices and the
+;        bitmap's window [lo64, end) in its first slots
+;   zmm0-zmm3 16 edges; zmm4, zmm5 their (p1, p2) pairs; zmm6-zmm9 lookup
+;   scratch; zmm10, zmm11 list entries; zmm12-zmm15 min / max; zmm25 pass
+;   C's permute; zmm26 byte offsets of the block's
+;   edges; zmm27 (p1, p2) qword picks; zmm28-zmm31 the bitmap
+;   k1-k6 scratch; k6 twelve ints and k7 six ints in pass C
+;
+; Contracts: facing bytes 0 or 1 (only bit 0 is looked up); v1, v2 even
+;   (v ^ 1 = v + 1, as in appendix E); 0 <= p1, p2 <= numTriangles
+;   (facing has numTriangles + 1 bytes; the routine reads facing bytes
+;   between the smallest and the largest triangle number of a chunk only,
+;   give or take the 64-byte rounding down of the smallest). Output room
+;   for 6 * numSilEdges ints; exactly the returned count is written. No
+;   alignment anywhere. numSilEdges >= 0 (negative returns 0, touches
+;   nothing). Stack: 7.6 KiB.
+;
+; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
+;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
+;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
+;   class), TSC 2.097 GHz, ticks):
+;   moving light 1638 / 1680 for 2016 SilEdges, 12% on the silhouette
+;   (sse2_paper 3339 / 3381, c_ref 2121 / 2226); fixed light 1596 / 1638
+;   (sse2_paper 3339 / 3360). Per SilEdge about 0.8 ticks; larger meshes
+;   (`shadowvol bench --scaling --quick`, per SilEdge): 0.9 on spot.glb
+;   (23062 triangles, every chunk in a bitmap window; c_ref 1.5), 1.4 on
+;   koala.glb (99994, scalar lookups; c_ref 1.6), 1.1 on the generated
+;   108864-triangle character (scalar lookups; c_ref 1.0: 1.4% of its
+;   edges are on the silhouette, and its branch is rarely mispredicted).
+;
+; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+
 %include "sv_abi.inc"
+
+section .rodata align=64
+align 64
+sil_qpick_p:                            ; the (p1, p2) qword of each edge
+        dq 0, 2, 4, 6, 8, 10, 12, 14
+sil_off:                                ; byte offsets of edges 0-15
+%assign i 0
+%rep 16
+        dd 16*i
+%assign i i+1
+%endrep
+; Two edges' outputs from (v1, v2) of a (first table) and of b (second).
+sil_pair: dd 0, 1, 1, 0, 0, 1, 16, 17, 17, 16, 16, 17, 0, 0, 0, 0
+; The ^1 patterns of two edges' twelve ints, at 128 * f1a + 64 * f1b:
+; f1 = 0: 0, 0, 1, 1, 0, 1;  f1 = 1: 0, 1, 0, 0, 1, 1 (then 4 zeros).
+sil_pat2:
+%assign fa 0
+%rep 2
+%assign fb 0
+%rep 2
+%if fa == 0
+        dd 0, 0, 1, 1, 0, 1
+%else
+        dd 0, 1, 0, 0, 1, 1
+%endif
+%if fb == 0
+        dd 0, 0, 1, 1, 0, 1
+%else
+        dd 0, 1, 0, 0, 1, 1
+%endif
+        dd 0, 0, 0, 0
+%assign fb fb+1
+%endrep
+%assign fa fa+1
+%endrep
+sil_c32:  dd 32
+sil_c1:   dd 1
+sil_c64:  dd 64
+sil_c256: dd 256
+
+; Frame (below rbp, rsp 64-byte aligned): a few slots, the bitmap, the
+; (p1, p2) pairs of one chunk and its two lists: 7.5 KiB, so its two pages
+; are touched in order (a stack probe, as compilers do for frames over a
+; page: a thread's guard page is not skipped).
+%define SIL_CHUNK   448                         ; edges per chunk (x 16)
+%define SIL_BASE    0                           ; shadowIndices
+%define SIL_WLO     8                           ; bitmap window: first byte (x 64)
+%define SIL_WEND    16                          ;   and one past its last
+%define SIL_BM      64                          ; 256 bytes: 2048 facing bits
+%define SIL_PP      (SIL_BM + 256)              ; SIL_CHUNK qwords
+%define SIL_LA      (SIL_PP + SIL_CHUNK * 8)    ; (SIL_CHUNK + 16) dwords
+%define SIL_LB      (SIL_LA + (SIL_CHUNK + 16) * 4)
+%define SIL_FRAME   (SIL_LB + (SIL_CHUNK + 16) * 4)
+
+; Pass A over one block of 16 edges at rbx (%1 = 1: the last 1-15 edges,
+; rcx = their number): their (p1, p2) pairs to [rsp+SIL_PP+r11], their
+; minima into zmm14, zmm15 and maxima into zmm12, zmm13.
+%macro SIL_PAIRS 1
+%if %1 == 0
+        vmovdqu32 zmm0, [rbx+0*64]
+        vmovdqu32 zmm1, [rbx+1*64]
+        vmovdqu32 zmm2, [rbx+2*64]
+        vmovdqu32 zmm3, [rbx+3*64]
+%else
+        shl     ecx, 2                          ; dwords left (<= 60)
+        mov     r10, -1
+        bzhi    r10, r10, rcx
+        kmovq   k1, r10
+        kshiftrq k2, k1, 16
+        kshiftrq k3, k1, 32
+        kshiftrq k4, k1, 48
+        vmovdqu32 zmm0{k1}{z}, [rbx+0*64]       ; missing edges: all zero, p1 = p2
+        vmovdqu32 zmm1{k2}{z}, [rbx+1*64]
+        vmovdqu32 zmm2{k3}{z}, [rbx+2*64]
+        vmovdqu32 zmm3{k4}{z}, [rbx+3*64]
+        shr     ecx, 1                          ; pair dwords left (<= 30)
+        mov     r10d, -1
+        bzhi    r10d, r10d, ecx
+        kmovd   k1, r10d
+        kshiftrd k2, k1, 16
+%endif
+        vmovdqa64 zmm4, zmm27
+        vmovdqa64 zmm5, zmm27
+        vpermi2q zmm4, zmm0, zmm1               ; (p1, p2) of edges 0-7
+        vpermi2q zmm5, zmm2, zmm3               ; (p1, p2) of edges 8-15
+        vpmaxud zmm12, zmm12, zmm4
+        vpmaxud zmm13, zmm13, zmm5
+%if %1 == 0
+        vpminud zmm14, zmm14, zmm4
+        vpminud zmm15, zmm15, zmm5
+%else
+        vpminud zmm14{k1}, zmm14, zmm4          ; the edges that exist
+        vpminud zmm15{k2}, zmm15, zmm5
+%endif
+        vmovdqa64 [rsp+SIL_PP+r11+0], zmm4
+        vmovdqa64 [rsp+SIL_PP+r11+64], zmm5
+%endmacro
+
+; The largest (%1 = vpmaxud) or smallest (vpminud) lane of zmm %2 | %3
+; into %4 (32-bit register); %2, %3 are destroyed.
+%macro SIL_REDUCE 4
+        %1      zmm%2, zmm%2, zmm%3
+        vextracti64x4 ymm%3, zmm%2, 1
+        %1      ymm%2, ymm%2, ymm%3
+        vextracti128 xmm%3, ymm%2, 1
+        %1      xmm%2, xmm%2, xmm%3
+        vpshufd xmm%3, xmm%2, SHUFFLE_D(2, 3, 0, 1)
+        %1      xmm%2, xmm%2, xmm%3
+        vpshufd xmm%3, xmm%2, SHUFFLE_D(1, 0, 3, 2)
+        %1      xmm%2, xmm%2, xmm%3
+        vmovd   %4, xmm%2
+%endmacro
+
+; Facing bits of the 16 triangle numbers in %1 (each in the window) into
+; mask %2, from the circular bitmap in zmm28-zmm31: bit p mod 2048, i.e.
+; dword (p >> 5) mod 64 (dwords 0-15, 16-31, 32-47, 48-63), bit p mod 32.
+; %3, %4: scratch vectors; k5, k6 scratch.
+%macro SIL_BITS 4
+        vpsrld  %3, %1, 5                       ; dword of the bit (mod 64 below)
+        vptestmd k5, %3, [sil_c32]{1to16}       ; dwords 32-63
+        knotw   k6, k5
+        vmovdqa64 %4, %3
+        vpermi2d %4{k6}, zmm28, zmm29           ; lanes of dwords 0-31 (mod 32)
+        vpermi2d %4{k5}, zmm30, zmm31           ; the others (index kept)
+        vprorvd %4, %4, %1                      ; bit p % 32 to bit 0
+        vptestmd %2, %4, [sil_c1]{1to16}
+%endmacro
+
+; The two lists from F1 (ecx) and F2 (r10d) of the block: byte offsets of
+; the silhouette edges (zmm26: this block's) and 64 * f1, at r13.
+%macro SIL_EMIT 0
+        xor     r10d, ecx                       ; S (a missing edge has p1 = p2)
+        kmovw   k3, r10d
+        kmovw   k4, ecx
+        vpcompressd zmm10{k3}{z}, zmm26         ; offsets of the silhouette edges
+        vpbroadcastd zmm11{k4}{z}, [sil_c64]    ; 64 * f1
+        vpcompressd zmm11{k3}{z}, zmm11
+        vmovdqu32 [rsp+SIL_LA+r13*4], zmm10
+        vmovdqu32 [rsp+SIL_LB+r13*4], zmm11
+        popcnt  r10d, r10d
+        add     r13, r10
+        vpaddd  zmm26, zmm26, [sil_c256]{1to16}
+%endmacro
+
+; Scalar lookup of pair %1 (edge %1) of the block's pairs at r11.
+%macro SIL_SCALAR 1
+        movsxd  r10, dword [rsp+SIL_PP+r11+%1*8+0]
+        movsxd  rsi, dword [rsp+SIL_PP+r11+%1*8+4]
+        movzx   r10d, byte [rdi+r10]            ; f1
+        movzx   esi, byte [rdi+rsi]             ; f2
+        lea     ecx, [r10+rcx*2]                ; F1 = F1 * 2 + f1
+        lea     ebx, [rsi+rbx*2]                ; F2 = F2 * 2 + f2
+%endmacro
+
+FUNCTION sv_create_sil_triangles_avx512
+        mov     r8, arg1q                       ; output pointer
+        mov     eax, arg4d                      ; numSilEdges
+        test    eax, eax
+        jle     .zero                           ; negative or zero: touch nothing
+
+        push    rbx
+        push    rbp
+        push    r12
+        push    r13
+        push    r14
+        push    r15
+        mov     rbp, rsp
+        sub     rsp, 4096
+        or      qword [rsp], 0                  ; probe the first page
+        sub     rsp, SIL_FRAME - 4096
+        and     rsp, -64
+        mov     [rsp+SIL_BASE], r8              ; (the second page)
+        mov     rdi, rsi                        ; facing
+        xor     ecx, ecx
+        mov     [rsp+SIL_WLO], rcx              ; no window yet
+        mov     [rsp+SIL_WEND], rcx
+        vmovdqa64 zmm27, [sil_qpick_p]
+        vmovdqa64 zmm25, [sil_pair]
+        mov     r14d, 0x55555555
+        lea     r15, [sil_pat2]
+
+.chunk:                                         ; rdx: the chunk's edges
+        mov     r12, rax
+        mov     ecx, SIL_CHUNK
+        cmp     r12, rcx
+        cmova   r12, rcx                        ; edges in this chunk
+        sub     rax, r12                        ; edges after it
+
+        ; Pass A: pairs, their minimum and maximum.
+        vpxord  xmm12, xmm12, xmm12
+        vpxord  xmm13, xmm13, xmm13
+        vpternlogd zmm14, zmm14, zmm14, 0xFF
+        vpternlogd zmm15, zmm15, zmm15, 0xFF
+        mov     rbx, rdx
+        xor     r11d, r11d                      ; pairs offset
+        mov     rcx, r12
+        sub     rcx, 16
+        jb      .a_tail
+.a_loop:
+        SIL_PAIRS 0
+        add     rbx, 256
+        add     r11, 128
+        sub     rcx, 16
+        jae     .a_loop
+.a_tail:
+        add     rcx, 16                         ; 0-15 (only in the last chunk)
+        jz      .a_done
+        SIL_PAIRS 1
+.a_done:
+        SIL_REDUCE vpmaxud, 12, 13, r10d        ; hi
+        SIL_REDUCE vpminud, 14, 15, esi         ; lo
+        and     esi, -64                        ; lo64
+        mov     ecx, r10d
+        sub     ecx, esi
+        cmp     ecx, 2048
+        jae     .scalar                         ; too wide for the bitmap
+        lea     r11d, [r10+1]                   ; the bytes needed end here
+        mov     rcx, [rsp+SIL_WEND]
+        cmp     rsi, [rsp+SIL_WLO]
+        jb      .window                         ; below the window: a new one
+        cmp     rsi, rcx
+        jae     .window                         ; above it: a new one
+        mov     [rsp+SIL_WLO], rsi              ; lo64 .. old end: still there
+        cmp     r11, rcx
+        jbe     .b                              ; the window covers lo .. hi
+        mov     rsi, rcx                        ; extend it: from the 64 bytes
+        and     esi, -64                        ; that hold its last byte
+        jmp     .fill
+.window:
+        mov     [rsp+SIL_WLO], rsi              ; a new window at lo64
+.fill:  ; the bits of facing[rsi .. r11) (rsi a multiple of 64) into the
+        ; circular bitmap: byte p at bit p mod 2048, 64 bytes per vptestmb;
+        ; the last load masked: nothing past facing[hi] is read. What it
+        ; overwrites lies below lo64 (hi + 1 - lo64 <= 2048).
+        mov     [rsp+SIL_WEND], r11
+        sub     r11d, esi                       ; bytes, 1 .. 2048
+        mov     ecx, esi
+        shr     ecx, 3                          ; its bitmap qword, times 8
+        add     rsi, rdi
+.fill64:
+        mov     ebx, 64
+        cmp     r11d, ebx
+        cmovb   ebx, r11d                       ; min(bytes left, 64)
+        mov     r10, -1
+        bzhi    r10, r10, rbx                   ; (bzhi reads 8 bits of the count)
+        kmovq   k1, r10
+        vmovdqu8 zmm0{k1}{z}, [rsi]
+        vptestmb k1, zmm0, zmm0
+        and     ecx, 255
+        kmovq   [rsp+SIL_BM+rcx], k1
+        add     ecx, 8
+        add     rsi, 64
+        sub     r11d, 64
+        jg      .fill64
+        vmovdqa64 zmm28, [rsp+SIL_BM+0*64]      ; (bits outside lo64 .. hi: never
+        vmovdqa64 zmm29, [rsp+SIL_BM+1*64]      ;  looked up)
+        vmovdqa64 zmm30, [rsp+SIL_BM+2*64]
+        vmovdqa64 zmm31, [rsp+SIL_BM+3*64]
+
+.b:     ; Pass B with the bitmap.
+        xor     r13d, r13d                      ; list length
+        vmovdqa64 zmm26, [sil_off]              ; 16 * t
+        xor     r11d, r11d
+        lea     rbx, [r12+15]
+        shr     rbx, 4                          ; blocks (the last may be partial)
+.b_loop:
+        vmovdqa64 zmm4, [rsp+SIL_PP+r11+0]
+        vmovdqa64 zmm5, [rsp+SIL_PP+r11+64]
+        SIL_BITS zmm4, k1, zmm6, zmm7
+        SIL_BITS zmm5, k2, zmm8, zmm9
+        kunpckwd k1, k2, k1                     ; bit 2t: f1, 2t+1: f2 of edge t
+        kmovd   r10d, k1
+        pext    ecx, r10d, r14d                 ; F1
+        shr     r10d, 1
+        pext    r10d, r10d, r14d                ; F2
+        SIL_EMIT
+        add     r11, 128
+        sub     rbx, 1
+        jnz     .b_loop
+        jmp     .c
+
+.scalar:        ; Pass B with scalar lookups (a chunk too wide for the bitmap)
+        xor     r13d, r13d
+        vmovdqa64 zmm26, [sil_off]
+        xor     r11d, r11d
+        lea     r9, [r12+15]
+        shr     r9, 4                           ; blocks (the last may be partial)
+.s_loop:
+        xor     ecx, ecx                        ; F1 (fresh: no dependency
+        xor     ebx, ebx                        ; F2  from block to block)
+%assign t 15
+%rep 16
+        SIL_SCALAR t
+%assign t t-1
+%endrep
+        mov     r10d, ebx
+        SIL_EMIT
+        add     r11, 128
+        sub     r9, 1
+        jnz     .s_loop
+
+.c:     ; Pass C: the six ints of each listed edge, two edges at a time
+        mov     ecx, 0xFFF
+        kmovw   k6, ecx                         ; twelve ints
+        mov     ecx, 0x3F
+        kmovw   k7, ecx                         ; six ints
+        xor     ecx, ecx
+        sub     r13, 2
+        jb      .c_one
+.c_loop:
+        mov     r10d, [rsp+SIL_LA+rcx*4]        ; byte offsets of edges a, b
+        mov     r11d, [rsp+SIL_LA+rcx*4+4]
+        vpbroadcastq zmm0, [rdx+r10+8]          ; (v1, v2) of a, eight times
+        vpbroadcastq zmm1, [rdx+r11+8]          ; of b
+        mov     r10d, [rsp+SIL_LB+rcx*4]        ; 64 * f1 of a, b
+        mov     r11d, [rsp+SIL_LB+rcx*4+4]
+        lea     r10, [r11+r10*2]                ; their pattern pair
+        vpermt2d zmm0, zmm25, zmm1              ; a: v1 v2 v2 v1 v1 v2, then b's
+        vpxord  zmm0, zmm0, [r15+r10]           ; the ^1 patterns of f1a, f1b
+        vmovdqu32 [r8]{k6}, zmm0                ; twelve ints
+        add     r8, 48
+        add     rcx, 2
+        cmp     rcx, r13
+        jbe     .c_loop
+.c_one:
+        add     r13, 2
+        cmp     rcx, r13
+        jae     .c_done
+        mov     r10d, [rsp+SIL_LA+rcx*4]        ; an odd one left
+        mov     r11d, [rsp+SIL_LB+rcx*4]
+        vpbroadcastq zmm0, [rdx+r10+8]
+        vpermt2d zmm0, zmm25, zmm0
+        vpxord  zmm0, zmm0, [r15+r11*2]         ; (f1, 0): lanes 0-5 are f1's
+        vmovdqu32 [r8]{k7}, zmm0                ; six ints
+        add     r8, 24
+.c_done:
+        shl     r12, 4
+        add     rdx, r12                        ; next chunk
+        test    rax, rax
+        jnz     .chunk
+
+        mov     rax, r8
+        sub     rax, [rsp+SIL_BASE]
+        shr     rax, 2                          ; ints written
+        mov     rsp, rbp
+        pop     r15
+        pop     r14
+        pop     r13
+        pop     r12
+        pop     rbp
+        pop     rbx
+        vzeroupper
+        ret
+
+.zero:
+        xor     eax, eax
+        ret
+ENDFUNCTION

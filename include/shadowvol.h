@@ -299,9 +299,23 @@ int sv_create_cap_triangles_c_branchless(int *shadowIndices, const uint8_t *faci
 int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
                                        const int *indices, int numIndices);
 
-/* AVX2 variant (asm/..._avx2.asm): declarations go here. */
+/* AVX2 variant (x86-64-v3, asm/..._avx2.asm): no alignment needed; all 8 cull bits. */
+int sv_count_facing_avx2(const uint8_t *facing, int numTriangles);
+int sv_count_facing_cull_avx2(uint8_t *facing, int numTriangles,
+                              const int *indices, const uint8_t *cullBits);
+int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
+                                 const SilEdge *silEdges, int numSilEdges);
+int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
+                                 const int *indices, int numIndices);
 
-/* AVX-512 variant (asm/..._avx512.asm): declarations go here. */
+/* AVX-512 variant (asm/..._avx512.asm; x86-64-v4, no alignment needs). */
+int sv_count_facing_avx512(const uint8_t *facing, int numTriangles);
+int sv_count_facing_cull_avx512(uint8_t *facing, int numTriangles,
+                                const int *indices, const uint8_t *cullBits);
+int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
+                                   const SilEdge *silEdges, int numSilEdges);
+int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing,
+                                   const int *indices, int numIndices);
 
 /* ---- Contracts -----------------------------------------------------------
  * Each sv_check_* returns SV_OK or the first violated contract (SV_E_*), for

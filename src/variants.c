@@ -21,8 +21,16 @@ static const sv_variant variants[] = {
     {"sse2_paper", SV_ISA_SSE2, sv_count_facing_sse2_paper,
      sv_count_facing_cull_sse2_paper, sv_create_sil_triangles_sse2_paper,
      sv_create_cap_triangles_sse2_paper, 16, 16, 8},
-    /* AVX2 variant (asm/..._avx2.asm) goes here. */
-    /* AVX-512 variant (asm/..._avx512.asm) goes here. */
+    /* x86-64-v3, no alignment: unaligned 32-byte loads, left-packing by
+     * table and popcnt (asm/..._avx2.asm). */
+    {"avx2", SV_ISA_AVX2, sv_count_facing_avx2, sv_count_facing_cull_avx2,
+     sv_create_sil_triangles_avx2, sv_create_cap_triangles_avx2, 1, 1, 1},
+    /* x86-64-v4 (asm/..._avx512.asm): vpcompressd left-packing, facing
+     * bits looked up in registers (sil), a list of the non-facing
+     * triangles (cull), masked tails; no alignment needed anywhere. */
+    {"avx512", SV_ISA_AVX512 | SV_ISA_AVX2 | SV_ISA_SSE2, sv_count_facing_avx512,
+     sv_count_facing_cull_avx512, sv_create_sil_triangles_avx512,
+     sv_create_cap_triangles_avx512, 1, 1, 1},
 };
 
 const sv_variant *sv_variants(int *count) {

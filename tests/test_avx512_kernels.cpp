@@ -1,0 +1,325 @@
+// What the differential suite does not reach, written with the AVX-512
+// kernels (asm/*_avx512.asm) in mind and run on every variant the CPU has:
+//  - cull bytes with bit 7 (the differential tests stay in bits 0..6 for
+//    sse2_paper's documented limit D-5; every other variant must cull on
+//    any shared bit, as section 5's C does);
+//  - counts far beyond 600, where the AVX-512 kernels change chunk or
+//    block-accumulator (count_facing: 62 x 256 bytes; count_facing_cull:
+//    960 triangles; create_sil_triangles: 448 edges);
+//  - create_sil_triangles with triangle numbers around 2048, where the
+//    AVX-512 kernel leaves its in-register facing bitmap for scalar
+//    lookups;
+//  - every input array ending at an unmapped page, and starting right after
+//    one: masked loads and tails must read nothing outside the arrays
+//    (guard bytes only catch writes).
+//
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include "test_support.h"
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+
+using namespace svtest;
+
+namespace {
+
+// `bytes` of memory between two unmapped pages, placed against the upper
+// one (at_end) or the lower one: a read one byte outside faults.
+class FencedBuffer {
+public:
+    FencedBuffer(size_t bytes, bool at_end) {
+        page_ = (size_t)sysconf(_SC_PAGESIZE);
+        const size_t pages = (bytes + page_ - 1) / page_ + 2;
+        len_ = pages * page_;
+        map_ = (uint8_t *)mmap(nullptr, len_, PROT_READ | PROT_WRITE,
+                               MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        EXPECT_NE((void *)map_, MAP_FAILED);
+        EXPECT_EQ(mprotect(map_, page_, PROT_NONE), 0);
+        EXPECT_EQ(mprotect(map_ + len_ - page_, page_, PROT_NONE), 0);
+        data_ = at_end ? map_ + len_ - page_ - bytes : map_ + page_;
+    }
+    ~FencedBuffer() { munmap(map_, len_); }
+    FencedBuffer(const FencedBuffer &) = delete;
+    FencedBuffer &operator=(const FencedBuffer &) = delete;
+    template <class T> T *as() { return reinterpret_cast<T *>(data_); }
+
+private:
+    size_t page_, len_;
+    uint8_t *map_, *data_;
+};
+
+bool aligned(const void *p, unsigned alignment) {
+    return (uintptr_t)p % std::max(alignment, 1u) == 0;
+}
+
+std::vector<uint8_t> random_facing(Rng &rng, int n) {
+    const double p = rng.unit();
+    std::vector<uint8_t> f((size_t)n);
+    for (auto &b : f) b = rng.chance(p) ? 1 : 0;
+    return f;
+}
+
+// Random cull bytes over all 8 bits; a fraction of them 0x80 exactly, so
+// that many triangles share bit 7 and nothing else.
+std::vector<uint8_t> cull_bytes_8bit(Rng &rng, int numVerts) {
+    const double p = rng.unit();
+    std::vector<uint8_t> c((size_t)numVerts);
+    for (auto &b : c) {
+        if (rng.chance(0.3)) {
+            b = 0x80;
+            continue;
+        }
+        uint8_t v = 0;
+        for (int bit = 0; bit < 8; bit++)
+            if (rng.chance(p)) v |= (uint8_t)(1u << bit);
+        b = v;
+    }
+    return c;
+}
+
+std::vector<SilEdge> random_edges(Rng &rng, int n, int numTriangles, int numVerts) {
+    std::vector<SilEdge> edges((size_t)n);
+    for (auto &e : edges) {
+        e.p1 = (int)rng.below((uint32_t)numTriangles + 1);
+        e.p2 = rng.chance(0.1) ? numTriangles : (int)rng.below((uint32_t)numTriangles + 1);
+        e.v1 = 2 * (int)rng.below((uint32_t)numVerts);
+        e.v2 = 2 * (int)rng.below((uint32_t)numVerts);
+    }
+    return edges;
+}
+
+int check_count_facing(Rng &rng, const sv_variant *v, const std::vector<uint8_t> &facing,
+                       uint8_t *buf) {
+    std::copy(facing.begin(), facing.end(), buf);
+    return checked_call(rng, (const void *)v->count_facing, ptr_arg(buf),
+                        int_arg((int)facing.size(), rng));
+}
+
+} // namespace
+
+TEST(Avx512Kernels, CullOnAnySharedBitBit7Included) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.CullBit7");
+    for (int n = 0; n <= 300; n++) {
+        std::vector<uint8_t> facing = random_facing(rng, n);
+        const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n + 1));
+        std::vector<int> indices((size_t)3 * n);
+        for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
+        std::vector<uint8_t> cull = cull_bytes_8bit(rng, numVerts);
+        std::vector<uint8_t> expected_facing = facing;
+        const int expected =
+            sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
+        for (const sv_variant *v : runnable_variants()) {
+            if (std::string(v->name) == "sse2_paper") continue; // limit D-5, pinned in test_errata
+            GuardedBuffer fbuf((size_t)n, 0);
+            std::copy(facing.begin(), facing.end(), fbuf.data());
+            int got = checked_call(rng, (const void *)v->count_facing_cull, ptr_arg(fbuf.data()),
+                                   int_arg(n, rng), ptr_arg(indices.data()), ptr_arg(cull.data()));
+            ASSERT_EQ(got, expected) << v->name << " n=" << n;
+            ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
+                << v->name << ": facing differs, n=" << n;
+            ASSERT_TRUE(fbuf.guards_intact()) << v->name << " n=" << n;
+        }
+    }
+}
+
+TEST(Avx512Kernels, LargeCounts) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.LargeCounts");
+    for (const sv_variant *v : runnable_variants()) {
+        // CountFacing: around one and two full chunks of 62 x 256 bytes,
+        // and all ones (the largest lane sums).
+        for (int n : {15871, 15872, 15873, 31744, 31745, 40000}) {
+            for (bool all_ones : {false, true}) {
+                std::vector<uint8_t> facing = random_facing(rng, n);
+                if (all_ones) std::fill(facing.begin(), facing.end(), 1);
+                GuardedBuffer buf((size_t)n, 0);
+                ASSERT_EQ(check_count_facing(rng, v, facing, buf.data()),
+                          sv_count_facing_c_ref(facing.data(), n))
+                    << v->name << " n=" << n;
+            }
+        }
+        // CountFacingCull over several lists of 960; CapTriangles and
+        // SilTriangles over many blocks and chunks.
+        for (int n : {959, 960, 961, 1920, 5000}) {
+            std::vector<uint8_t> facing = random_facing(rng, n);
+            const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n));
+            std::vector<int> indices((size_t)3 * n);
+            for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
+            std::vector<uint8_t> cull = cull_bytes_8bit(rng, numVerts);
+            if (std::string(v->name) == "sse2_paper")
+                for (auto &c : cull) c &= 0x7F; // limit D-5
+            std::vector<uint8_t> expected_facing = facing;
+            const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n,
+                                                            indices.data(), cull.data());
+            GuardedBuffer fbuf((size_t)n, 0);
+            std::copy(facing.begin(), facing.end(), fbuf.data());
+            ASSERT_EQ(checked_call(rng, (const void *)v->count_facing_cull, ptr_arg(fbuf.data()),
+                                   int_arg(n, rng), ptr_arg(indices.data()),
+                                   ptr_arg(cull.data())),
+                      expected)
+                << v->name << " n=" << n;
+            ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
+                << v->name << ": facing differs, n=" << n;
+            ASSERT_TRUE(fbuf.guards_intact()) << v->name << " n=" << n;
+
+            std::vector<int> expected_out((size_t)6 * n + 6);
+            const int expected_caps = sv_create_cap_triangles_c_ref(
+                expected_out.data(), facing.data(), indices.data(), 3 * n);
+            GuardedBuffer ibuf(indices.size() * sizeof(int), 0);
+            std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+            GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+            ASSERT_EQ(checked_call(rng, (const void *)v->create_cap_triangles, ptr_arg(out.data()),
+                                   ptr_arg(facing.data()), ptr_arg(ibuf.data()),
+                                   int_arg(3 * n, rng)),
+                      expected_caps)
+                << v->name << " n=" << n;
+            ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected_caps,
+                                   out.as<int>()))
+                << v->name << ": cap indices differ, n=" << n;
+            ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n;
+        }
+        for (int n : {447, 448, 449, 896, 5000}) {
+            for (int numTriangles : {n / 2, 1500, 5000}) {
+                std::vector<uint8_t> facing = random_facing(rng, numTriangles + 1);
+                facing[(size_t)numTriangles] = 1;
+                std::vector<SilEdge> edges = random_edges(rng, n, numTriangles, 1 << 20);
+                std::vector<int> expected_out((size_t)6 * n + 6);
+                const int expected = sv_create_sil_triangles_c_ref(
+                    expected_out.data(), facing.data(), edges.data(), n);
+                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
+                                       ptr_arg(out.data()), ptr_arg(facing.data()),
+                                       ptr_arg(edges.data()), int_arg(n, rng)),
+                          expected)
+                    << v->name << " n=" << n << " triangles=" << numTriangles;
+                ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected,
+                                       out.as<int>()))
+                    << v->name << ": sil indices differ, n=" << n;
+                ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n;
+            }
+        }
+    }
+}
+
+// The largest triangle number M decides between the AVX-512 kernel's
+// bitmap (M < 2048) and its scalar lookups; the facing array has exactly
+// M + 1 bytes and ends at an unmapped page.
+TEST(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.SilBitmapLimit");
+    for (const sv_variant *v : runnable_variants()) {
+        for (int maxP : {0, 1, 63, 64, 2046, 2047, 2048, 2049, 4095, 100000}) {
+            for (int n : {1, 15, 16, 17, 100, 449}) {
+                std::vector<uint8_t> facing = random_facing(rng, maxP + 1);
+                std::vector<SilEdge> edges = random_edges(rng, n, maxP, 1 << 20);
+                edges[rng.below((uint32_t)n)].p2 = maxP; // M exactly
+                FencedBuffer fbuf((size_t)maxP + 1, true);
+                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+                FencedBuffer ebuf(edges.size() * sizeof(SilEdge), true);
+                std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
+                std::vector<int> expected_out((size_t)6 * n + 6);
+                const int expected = sv_create_sil_triangles_c_ref(
+                    expected_out.data(), facing.data(), edges.data(), n);
+                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
+                                       ptr_arg(out.data()), ptr_arg(fbuf.as<uint8_t>()),
+                                       ptr_arg(ebuf.as<SilEdge>()), int_arg(n, rng)),
+                          expected)
+                    << v->name << " n=" << n << " M=" << maxP;
+                ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected,
+                                       out.as<int>()))
+                    << v->name << ": indices differ, n=" << n << " M=" << maxP;
+                ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n << " M=" << maxP;
+            }
+        }
+    }
+}
+
+// Every input array placed against an unmapped page, above it and below
+// it: a read outside any array faults. Variants whose alignment needs the
+// placement does not meet are skipped for that placement.
+TEST(Avx512Kernels, InputsAtPageEdgesReadNothingOutside) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.PageEdges");
+    std::vector<int> counts;
+    for (int n = 0; n <= 80; n++) counts.push_back(n);
+    for (int n : {127, 128, 129, 255, 256, 257, 1000, 1344}) counts.push_back(n);
+    for (bool at_end : {true, false}) {
+        for (int n : counts) {
+            std::vector<uint8_t> facing = random_facing(rng, n);
+            const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n + 1));
+            std::vector<int> indices((size_t)3 * n);
+            for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
+            if (n > 0) indices[rng.below((uint32_t)(3 * n))] = numVerts - 1;
+            std::vector<uint8_t> cull = cull_bytes_8bit(rng, numVerts);
+            for (auto &c : cull) c &= 0x7F; // every variant, sse2_paper included
+            const int numTriangles = (int)rng.below(2u * (uint32_t)n + 2);
+            std::vector<uint8_t> sil_facing = random_facing(rng, numTriangles + 1);
+            sil_facing[(size_t)numTriangles] = 1;
+            std::vector<SilEdge> edges = random_edges(rng, n, numTriangles, 1 << 20);
+
+            FencedBuffer fbuf((size_t)n, at_end), ibuf(indices.size() * sizeof(int), at_end),
+                cbuf((size_t)numVerts, at_end), sfbuf((size_t)numTriangles + 1, at_end),
+                ebuf(edges.size() * sizeof(SilEdge), at_end);
+            std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+            std::copy(cull.begin(), cull.end(), cbuf.as<uint8_t>());
+            std::copy(sil_facing.begin(), sil_facing.end(), sfbuf.as<uint8_t>());
+            std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
+
+            std::vector<uint8_t> cull_facing = facing;
+            const int expected_cull = sv_count_facing_cull_c_ref(cull_facing.data(), n,
+                                                                 indices.data(), cull.data());
+            std::vector<int> expected_caps((size_t)6 * n + 6), expected_sil((size_t)6 * n + 6);
+            const int n_caps = sv_create_cap_triangles_c_ref(expected_caps.data(), facing.data(),
+                                                             indices.data(), 3 * n);
+            const int n_sil = sv_create_sil_triangles_c_ref(
+                expected_sil.data(), sil_facing.data(), edges.data(), n);
+
+            for (const sv_variant *v : runnable_variants()) {
+                const std::string where = std::string(v->name) + " n=" + std::to_string(n) +
+                                          (at_end ? " (arrays end at a page)"
+                                                  : " (arrays start at a page)");
+                if (aligned(fbuf.as<uint8_t>(), v->align_facing)) {
+                    ASSERT_EQ(check_count_facing(rng, v, facing, fbuf.as<uint8_t>()),
+                              sv_count_facing_c_ref(facing.data(), n))
+                        << where;
+                }
+                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+                ASSERT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
+                                       ptr_arg(fbuf.as<uint8_t>()), int_arg(n, rng),
+                                       ptr_arg(ibuf.as<int>()), ptr_arg(cbuf.as<uint8_t>())),
+                          expected_cull)
+                    << where;
+                ASSERT_TRUE(std::equal(cull_facing.begin(), cull_facing.end(),
+                                       fbuf.as<uint8_t>()))
+                    << where;
+
+                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+                if (aligned(ibuf.as<int>(), v->align_indices)) {
+                    ASSERT_EQ(checked_call(rng, (const void *)v->create_cap_triangles,
+                                           ptr_arg(out.data()), ptr_arg(fbuf.as<uint8_t>()),
+                                           ptr_arg(ibuf.as<int>()), int_arg(3 * n, rng)),
+                              n_caps)
+                        << where;
+                    ASSERT_TRUE(std::equal(expected_caps.begin(), expected_caps.begin() + n_caps,
+                                           out.as<int>()))
+                        << where;
+                    ASSERT_TRUE(out.guards_intact()) << where;
+                }
+                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
+                                       ptr_arg(out.data()), ptr_arg(sfbuf.as<uint8_t>()),
+                                       ptr_arg(ebuf.as<SilEdge>()), int_arg(n, rng)),
+                          n_sil)
+                    << where;
+                ASSERT_TRUE(
+                    std::equal(expected_sil.begin(), expected_sil.begin() + n_sil, out.as<int>()))
+                    << where;
+                ASSERT_TRUE(out.guards_intact()) << where;
+            }
+        }
+    }
+}
