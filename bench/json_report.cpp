@@ -183,15 +183,9 @@ void result(JsonWriter &j, const ModelRun &m, const Row &r, uint64_t step) {
 
 } // namespace
 
-std::string bench_json(const BenchRun &run) {
-    const MachineTiming &m = run.machine;
-    JsonWriter j;
-    j.begin_object();
-    j.key("schema");
-    j.value(kJsonSchema);
+void write_machine_fields(JsonWriter &j, const MachineTiming &m) {
     j.key("shadowvol_version");
     j.value(project_version());
-
     j.key("cpu");
     j.begin_object();
     j.key("model");
@@ -211,7 +205,6 @@ std::string bench_json(const BenchRun &run) {
     j.key("pinned_cpu");
     j.value(m.cpu);
     j.end_object();
-
     j.key("compiler");
     j.value(compiler_version());
     j.key("build");
@@ -220,6 +213,15 @@ std::string bench_json(const BenchRun &run) {
     j.value(git_commit());
     j.key("timer");
     j.value(timer_name(m.timer));
+}
+
+std::string bench_json(const BenchRun &run) {
+    const MachineTiming &m = run.machine;
+    JsonWriter j;
+    j.begin_object();
+    j.key("schema");
+    j.value(kJsonSchema);
+    write_machine_fields(j, m);
     j.key("timer_sequence");
     j.value(timer_sequence(m.timer));
     j.key("overhead_ticks");

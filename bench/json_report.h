@@ -42,6 +42,7 @@
 #include <string>
 
 #include "bench_run.h"
+#include "json_writer.h"
 
 namespace svbench {
 
@@ -49,6 +50,12 @@ constexpr const char *kJsonSchema = "shadowvol-bench/1";
 
 /* The document, ending in a newline. */
 std::string bench_json(const BenchRun &run);
+
+/* The fields every shadowvol-* benchmark document shares, written into the
+ * open object J: "shadowvol_version", "cpu" {model, isa, tsc_hz,
+ * tsc_step_ticks, invariant_tsc, pinned_cpu}, "compiler", "build",
+ * "commit", "timer". */
+void write_machine_fields(JsonWriter &j, const MachineTiming &m);
 
 } // namespace svbench
 

@@ -3,6 +3,8 @@
  */
 #include "scaling_json.h"
 
+#include "json_report.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -137,34 +139,8 @@ std::string scaling_json(const ScalingRun &run) {
     j.begin_object();
     j.key("schema");
     j.value(kScalingJsonSchema);
-    j.key("shadowvol_version");
-    j.value(project_version());
-
-    j.key("cpu");
-    j.begin_object();
-    j.key("model");
-    j.value(cpu_model());
-    j.key("isa");
-    j.begin_array(true);
-    for (const std::string &f : cpu_isa_list()) {
-        j.value(f);
-    }
-    j.end_array();
-    j.key("tsc_hz");
-    j.value(m.tscHz);
-    j.key("pinned_cpu");
-    j.value(m.cpu);
-    j.end_object();
+    write_machine_fields(j, m);
     caches(j);
-
-    j.key("compiler");
-    j.value(compiler_version());
-    j.key("build");
-    j.value(build_flags());
-    j.key("commit");
-    j.value(git_commit());
-    j.key("timer");
-    j.value(timer_name(m.timer));
 
     j.key("options");
     j.begin_object(true);
