@@ -332,7 +332,7 @@ enum sv_status {
     SV_E_INDEX_RANGE = -5,     /* a triangle/vertex number outside its array */
     SV_E_ODD_VERTEX = -6,      /* a SilEdge vertex number is odd */
     SV_E_CAPACITY = -7,        /* output room below the documented bound */
-    SV_E_OVERFLOW = -8,        /* the output size does not fit in an int */
+    SV_E_OVERFLOW = -8,        /* an index count (input 3 * numTriangles, or the output) does not fit in an int */
     SV_E_CPU = -9              /* the CPU lacks the variant's instruction set */
 };
 const char *sv_status_string(int status);

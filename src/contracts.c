@@ -19,7 +19,7 @@ const char *sv_status_string(int status) {
     case SV_E_INDEX_RANGE: return "a triangle or vertex number is outside its array";
     case SV_E_ODD_VERTEX: return "a SilEdge vertex number is odd (they must be doubled)";
     case SV_E_CAPACITY: return "the output buffer is smaller than the documented bound";
-    case SV_E_OVERFLOW: return "the output would have more than INT_MAX indices";
+    case SV_E_OVERFLOW: return "more than INT_MAX indices (in the input, 3 * numTriangles, or in the output)";
     case SV_E_CPU: return "this CPU lacks the variant's instruction set";
     default: return status >= 0 ? "ok" : "unknown error";
     }
@@ -94,7 +94,9 @@ int sv_count_facing_cull_checked(const sv_variant *v, uint8_t *facing, int numTr
                                  const int *indices, const uint8_t *cullBits, int numVerts) {
     int s = check_variant(v);
     if (s) return s;
-    if (numTriangles < 0 || numVerts < 0 || numTriangles > INT_MAX / 3) return SV_E_COUNT;
+    if (numTriangles < 0 || numVerts < 0) return SV_E_COUNT;
+    /* 3 * numTriangles indices must be an int. */
+    if (numTriangles > INT_MAX / 3) return SV_E_OVERFLOW;
     if (numTriangles > 0 && (!facing || !indices || !cullBits)) return SV_E_NULL;
     if ((s = check_facing_bytes(facing, numTriangles))) return s;
     if ((s = check_vertex_indices(indices, 3 * numTriangles, numVerts))) return s;

@@ -117,8 +117,10 @@ PreparedSurface prepare_surface(const float *positions, std::size_t num_vertices
     // ---- Weld: sort by canonical bits, number groups by first input vertex.
     std::vector<WeldKey> keys(num_vertices);
     for (int i = 0; i < nv; i++) {
-        keys[i] = {canonical_bits(positions[3 * i]), canonical_bits(positions[3 * i + 1]),
-                   canonical_bits(positions[3 * i + 2]), i};
+        // size_t: 3 * i overflows int above 715,827,882 vertices.
+        const std::size_t k = 3 * (std::size_t)i;
+        keys[i] = {canonical_bits(positions[k]), canonical_bits(positions[k + 1]),
+                   canonical_bits(positions[k + 2]), i};
     }
     std::sort(keys.begin(), keys.end(), [](const WeldKey &a, const WeldKey &b) {
         if (a.x != b.x) return a.x < b.x;
@@ -145,7 +147,7 @@ PreparedSurface prepare_surface(const float *positions, std::size_t num_vertices
         if (leader[i] == i) {
             s.remap[i] = welded++;
             for (int c = 0; c < 3; c++) {
-                float f = positions[3 * i + c];
+                float f = positions[3 * (std::size_t)i + (std::size_t)c];
                 s.positions.push_back(f == 0.0f ? 0.0f : f);
             }
         } else {
@@ -178,9 +180,10 @@ PreparedSurface prepare_surface(const float *positions, std::size_t num_vertices
     // ---- Planes.
     s.planes.resize(nt);
     for (int t = 0; t < nt; t++) {
-        const float *p0 = &s.positions[3 * s.indices[3 * t]];
-        const float *p1 = &s.positions[3 * s.indices[3 * t + 1]];
-        const float *p2 = &s.positions[3 * s.indices[3 * t + 2]];
+        const std::size_t i3 = 3 * (std::size_t)t;
+        const float *p0 = &s.positions[3 * (std::size_t)s.indices[i3]];
+        const float *p1 = &s.positions[3 * (std::size_t)s.indices[i3 + 1]];
+        const float *p2 = &s.positions[3 * (std::size_t)s.indices[i3 + 2]];
         s.planes[t] = triangle_plane(p0, p1, p2);
         const Plane &p = s.planes[t];
         if (p.a == 0.0f && p.b == 0.0f && p.c == 0.0f && p.d == 0.0f) {

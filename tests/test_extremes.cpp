@@ -660,7 +660,7 @@ TEST(Extreme, CountsThatWouldOverflowIntAreRejected) {
                   SV_E_OVERFLOW);
         // numIndices = 3 * numTriangles > INT_MAX for the culling count.
         EXPECT_EQ(sv_count_facing_cull_checked(v, facing, INT_MAX / 3 + 1, indices, facing, 3),
-                  SV_E_COUNT);
+                  SV_E_OVERFLOW);
         // Room below the bound is refused before anything is written.
         EXPECT_EQ(sv_create_sil_triangles_checked(v, out, 64, facing, 0, &edge, 11),
                   SV_E_CAPACITY);
