@@ -68,7 +68,9 @@ for r in d["results"]:
     for f in ("misclassified_fraction", "silhouette_changed_fraction", "uncertain_fraction",
               "flicker_fraction"):
         assert 0.0 <= r[f] <= 1.0, (key, f)
-    assert r["ticks_per_triangle"] > 0, key
+    # >= 0, not > 0: the empty region is subtracted, and on a busy machine a
+    # fast variant's median can come out at 0 (clamped). No timing asserts.
+    assert r["ticks_per_triangle"] >= 0, key
     assert r["contract_violations"] == 0
     if r["variant"].startswith("exact"):
         assert r["misclassified"] == 0 and r["silhouette_changed"] == 0

@@ -68,7 +68,8 @@ TEST(Contracts, CountFacingCullRefusesIndicesOutOfRange) {
     EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, 2, indices, cull, 4), 1);
     EXPECT_EQ(facing[0], 1);
     EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, -2, indices, cull, 4), SV_E_COUNT);
-    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, INT_MAX, indices, cull, 4), SV_E_COUNT)
+    EXPECT_EQ(sv_count_facing_cull_checked(paper(), facing, INT_MAX, indices, cull, 4),
+              SV_E_OVERFLOW)
         << "3 * numTriangles would overflow int";
 }
 
