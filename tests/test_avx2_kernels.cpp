@@ -336,25 +336,10 @@ TEST(Avx2Kernels, LongArrays) {
 // offsets above 2^31 bytes, list entries up to 2^28. Only the last edge is
 // a silhouette edge.
 TEST(Avx2Kernels, SilTrianglesOffsetsAbove2GiB) {
-    const size_t chunk = 2u << 20;
     const size_t edges = (size_t)1 << 27;
-    const size_t total = edges * sizeof(SilEdge);
-    const size_t chunks = total / chunk;
-    uint8_t *base = (uint8_t *)mmap(nullptr, total, PROT_NONE,
-                                    MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    ASSERT_NE((void *)base, MAP_FAILED);
-    int fd = memfd_create("sv_zero_edges_avx2", 0);
-    ASSERT_GE(fd, 0);
-    ASSERT_EQ(ftruncate(fd, (off_t)chunk), 0);
-    for (size_t i = 0; i + 1 < chunks; i++) {
-        ASSERT_NE(mmap(base + i * chunk, chunk, PROT_READ, MAP_SHARED | MAP_FIXED, fd, 0),
-                  MAP_FAILED);
-    }
-    uint8_t *last = base + (chunks - 1) * chunk;
-    ASSERT_NE(mmap(last, chunk, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED,
-                   -1, 0),
-              MAP_FAILED);
-    SilEdge *e = (SilEdge *)base;
+    HugeSilEdgeArray huge(edges);
+    ASSERT_TRUE(huge.ok());
+    SilEdge *e = huge.data();
     e[edges - 1] = SilEdge{0, 1, 4, 6};
     e[edges - 2] = SilEdge{1, 0, 8, 10}; // and the one before it
     uint8_t facing[2] = {0, 1};
@@ -364,6 +349,4 @@ TEST(Avx2Kernels, SilTrianglesOffsetsAbove2GiB) {
         EXPECT_EQ(v->create_sil_triangles(out, facing, e, (int)edges), 12) << v->name;
         EXPECT_EQ(0, memcmp(out, expected, sizeof expected)) << v->name;
     }
-    munmap(base, total);
-    close(fd);
 }

@@ -299,25 +299,10 @@ TEST(Errata, NegativeCountsWriteNothing) {
 // mapped 1023 times (edges {0, 0, 0, 0}: never a silhouette) plus a private
 // last chunk whose final edge is a silhouette edge. The port must find it.
 TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
-    const size_t chunk = 2u << 20;
     const size_t edges = (size_t)1 << 27;
-    const size_t total = edges * sizeof(SilEdge);
-    const size_t chunks = total / chunk;
-    uint8_t *base = (uint8_t *)mmap(nullptr, total, PROT_NONE,
-                                    MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    ASSERT_NE((void *)base, MAP_FAILED);
-    int fd = memfd_create("sv_zero_edges", 0);
-    ASSERT_GE(fd, 0);
-    ASSERT_EQ(ftruncate(fd, (off_t)chunk), 0);
-    for (size_t i = 0; i + 1 < chunks; i++) {
-        ASSERT_NE(mmap(base + i * chunk, chunk, PROT_READ, MAP_SHARED | MAP_FIXED, fd, 0),
-                  MAP_FAILED);
-    }
-    uint8_t *last = base + (chunks - 1) * chunk;
-    ASSERT_NE(mmap(last, chunk, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED,
-                   -1, 0),
-              MAP_FAILED);
-    SilEdge *e = (SilEdge *)base;
+    HugeSilEdgeArray huge(edges);
+    ASSERT_TRUE(huge.ok());
+    SilEdge *e = huge.data();
     e[edges - 1] = SilEdge{0, 1, 4, 6};
     uint8_t facing[2] = {0, 1};
     alignas(16) int out[12];
@@ -325,6 +310,4 @@ TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
     EXPECT_EQ(sv_create_sil_triangles_sse2_paper(out, facing, e, n), 6);
     const int expected[6] = {4, 6, 7, 5, 4, 7};
     EXPECT_EQ(0, memcmp(out, expected, sizeof expected));
-    munmap(base, total);
-    close(fd);
 }

@@ -1,6 +1,9 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include "test_support.h"
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -144,6 +147,35 @@ std::vector<const sv_variant *> runnable_variants() {
         }
     }
     return out;
+}
+
+HugeSilEdgeArray::HugeSilEdgeArray(size_t edges)
+    : edges_(edges), bytes_(edges * sizeof(SilEdge)) {
+    const size_t chunk = 2u << 20;
+    if (bytes_ == 0 || bytes_ % chunk != 0) return;
+    const size_t chunks = bytes_ / chunk;
+    void *base = mmap(nullptr, bytes_, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE,
+                      -1, 0);
+    if (base == MAP_FAILED) return;
+    base_ = (uint8_t *)base;
+    fd_ = memfd_create("sv_zero_edges", 0);
+    if (fd_ < 0 || ftruncate(fd_, (off_t)chunk) != 0) return;
+    for (size_t i = 0; i + 1 < chunks; i++) {
+        if (mmap(base_ + i * chunk, chunk, PROT_READ, MAP_SHARED | MAP_FIXED, fd_, 0) ==
+            MAP_FAILED) {
+            return;
+        }
+    }
+    if (mmap(base_ + (chunks - 1) * chunk, chunk, PROT_READ | PROT_WRITE,
+             MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED, -1, 0) == MAP_FAILED) {
+        return;
+    }
+    ok_ = true;
+}
+
+HugeSilEdgeArray::~HugeSilEdgeArray() {
+    if (base_) munmap(base_, bytes_);
+    if (fd_ >= 0) close(fd_);
 }
 
 } // namespace svtest

@@ -50,6 +50,28 @@ private:
     const char *saved_;
 };
 
+// 2^27-or-so SilEdges without 2 GiB of memory: one zeroed 2 MiB memfd
+// mapped read-only over and over (edges {0, 0, 0, 0}: never a silhouette),
+// and a private writable last chunk for the edges a test sets. For offsets
+// above 2^31 bytes in the silhouette kernels. EDGES * sizeof(SilEdge) must
+// be a multiple of 2 MiB. ok() is false if the mappings failed.
+class HugeSilEdgeArray {
+public:
+    explicit HugeSilEdgeArray(size_t edges);
+    ~HugeSilEdgeArray();
+    HugeSilEdgeArray(const HugeSilEdgeArray &) = delete;
+    HugeSilEdgeArray &operator=(const HugeSilEdgeArray &) = delete;
+    bool ok() const { return ok_; }
+    SilEdge *data() { return reinterpret_cast<SilEdge *>(base_); }
+    size_t size() const { return edges_; }
+
+private:
+    size_t edges_, bytes_;
+    uint8_t *base_ = nullptr;
+    int fd_ = -1;
+    bool ok_ = false;
+};
+
 // A generator for one test: the run's seed mixed with the test's name, so
 // tests do not share a stream and each is reproducible on its own.
 Rng rng_for(const char *test_name);
