@@ -9,6 +9,7 @@
 #include "test_support.h"
 
 #include "shadowvol_mesh.h"
+#include "shadowvol_verify.h"
 
 #include <algorithm>
 #include <cmath>
@@ -152,31 +153,6 @@ void check_structure(const sv::PreparedSurface &s) {
     }
 }
 
-// Every directed edge of the index list appears as often as its reverse.
-// Returns an empty string or the first unbalanced edge.
-std::string unbalanced_edge(const int *si, int n) {
-    std::vector<uint64_t> fwd, bwd;
-    for (int t = 0; t < n; t += 3) {
-        for (int c = 0; c < 3; c++) {
-            uint32_t a = (uint32_t)si[t + c], b = (uint32_t)si[t + (c + 1) % 3];
-            (a < b ? fwd : bwd).push_back(a < b ? ((uint64_t)a << 32 | b) : ((uint64_t)b << 32 | a));
-        }
-    }
-    if (fwd.size() != bwd.size()) {
-        return "forward and backward edge counts differ: " + std::to_string(fwd.size()) + " vs " +
-               std::to_string(bwd.size());
-    }
-    std::sort(fwd.begin(), fwd.end());
-    std::sort(bwd.begin(), bwd.end());
-    for (size_t i = 0; i < fwd.size(); i++) {
-        if (fwd[i] != bwd[i]) {
-            uint64_t k = std::min(fwd[i], bwd[i]);
-            return "edge " + std::to_string(k >> 32) + " <-> " + std::to_string(k & 0xffffffffu) +
-                   " unbalanced";
-        }
-    }
-    return "";
-}
 
 float rnd(Rng &rng, float lo, float hi) { return lo + (hi - lo) * (float)rng.unit(); }
 
@@ -240,11 +216,10 @@ void check_closed_for(const sv::PreparedSurface &s, const Vec4 &light, Cull cull
         ASSERT_LE((size_t)n, cap);
         ASSERT_EQ(n % 3, 0);
         ASSERT_EQ(out[cap], -7) << "wrote past the capacity";
-        for (int i = 0; i < n; i++) {
-            ASSERT_TRUE(out[i] >= 0 && out[i] < 2 * nv) << "index " << i;
-        }
-        std::string bad = unbalanced_edge(out.data(), n);
-        ASSERT_EQ(bad, "") << "volume not closed";
+        // Indices in [0, 2 * nv) and every directed edge as often as its
+        // reverse: the verifier's own closure check.
+        const sv::ClosureResult closure = sv::check_closure(out.data(), n, nv);
+        ASSERT_TRUE(closure.closed) << "volume not closed: " << closure.problem;
         std::vector<int> got(out.begin(), out.begin() + n);
         if (!have_ref) {
             ref = got;
