@@ -67,6 +67,7 @@
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
+%include "avx2_left_pack.inc"
 
 extern sv_count_facing_avx2
 
@@ -79,47 +80,11 @@ align 64
 ; positions[m]: the indices of the set bits of m, in increasing order, one
 ; per byte, then zero bytes.
 positions:
-%assign m 0
-%rep 256
-    %assign v 0
-    %assign sh 0
-    %assign b 0
-    %rep 8
-        %if (m >> b) & 1
-            %assign v v | (b << sh)
-            %assign sh sh + 8
-        %endif
-        %assign b b + 1
-    %endrep
-        dq v
-    %assign m m + 1
-%endrep
+        SET_BIT_POSITIONS 1, 0
 align 4
 eight:  dd 8
 
-; EMIT8: left-packs the triangles of one mask byte (in eax, zero-extended)
-; onto the list and moves the base on by 8.
-%macro EMIT8 0
-        vpmovzxbd ymm1, [r11 + rax*8]
-        popcnt  eax, eax
-        vpaddd  ymm1, ymm1, ymm6
-        vmovdqu [rsp + rbp*4], ymm1
-        add     ebp, eax
-        vpaddd  ymm6, ymm6, ymm7
-%endmacro
-
-; EMIT32: the four bytes of the mask in edx.
-%macro EMIT32 0
-        movzx   eax, dl
-        EMIT8
-        movzx   eax, dh
-        EMIT8
-        shr     edx, 16
-        movzx   eax, dl
-        EMIT8
-        movzx   eax, dh
-        EMIT8
-%endmacro
+; EMIT8 / EMIT32: asm/avx2_left_pack.inc (r11 = the table above).
 
 ; CULL1 k: list entry k of the current group of four.
 %macro CULL1 1

@@ -64,6 +64,7 @@
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
+%include "avx2_left_pack.inc"
 
 %define CHUNK        992                  ; triangles per list: a multiple of 32
 %define LIST_ENTRIES (CHUNK + 16)         ; + 8 for an 8-block's 32-byte store
@@ -78,44 +79,9 @@ align 64
 ; positions3[m]: 3 * the indices of the set bits of m, in increasing order,
 ; one per byte, then zero bytes.
 positions3:
-%assign m 0
-%rep 256
-    %assign v 0
-    %assign sh 0
-    %assign b 0
-    %rep 8
-        %if (m >> b) & 1
-            %assign v v | ((3 * b) << sh)
-            %assign sh sh + 8
-        %endif
-        %assign b b + 1
-    %endrep
-        dq v
-    %assign m m + 1
-%endrep
+        SET_BIT_POSITIONS 3, 0
 
-; EMIT8: appends the casting triangles of one mask byte (in eax,
-; zero-extended) to the list and moves the base on by 8 triangles.
-%macro EMIT8 0
-        vpmovzxbd ymm1, [r11 + rax*8]
-        popcnt  eax, eax
-        vpaddd  ymm1, ymm1, ymm6
-        vmovdqu [rsp + rbp*4], ymm1
-        add     ebp, eax
-        vpaddd  ymm6, ymm6, ymm7
-%endmacro
-; EMIT32: the four bytes of the mask in edx.
-%macro EMIT32 0
-        movzx   eax, dl
-        EMIT8
-        movzx   eax, dh
-        EMIT8
-        shr     edx, 16
-        movzx   eax, dl
-        EMIT8
-        movzx   eax, dh
-        EMIT8
-%endmacro
+; EMIT8 / EMIT32: asm/avx2_left_pack.inc (r11 = the table above).
 ; CAP1 k, ymm: the six indices of list entry eax + k, from its 32-byte
 ; window of indices.
 %macro CAP1 2

@@ -69,6 +69,7 @@
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
+%include "avx2_left_pack.inc"
 
 %define CHUNK        992                  ; edges per list: a multiple of 16
 %define LIST_ENTRIES (CHUNK + 16)         ; + 8 for a group's 32-byte store
@@ -84,21 +85,7 @@ align 64
 ; positions[m]: for the mask m = sum of flag_k << (7 - k), the numbers 2k of
 ; the edges whose flag is set, in increasing k, one per byte, then zeros.
 positions:
-%assign m 0
-%rep 256
-    %assign v 0
-    %assign sh 0
-    %assign b 7
-    %rep 8
-        %if (m >> b) & 1
-            %assign v v | ((2 * (7 - b)) << sh)
-            %assign sh sh + 8
-        %endif
-        %assign b b - 1
-    %endrep
-        dq v
-    %assign m m + 1
-%endrep
+        SET_BIT_POSITIONS 2, 1
 
 ; FIRST off: starts a mask in eax with the flag of the edge at rdx + off.
 %macro FIRST 1
