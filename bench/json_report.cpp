@@ -215,6 +215,17 @@ void write_machine_fields(JsonWriter &j, const MachineTiming &m) {
     j.value(timer_name(m.timer));
 }
 
+void write_isa_fields(JsonWriter &j, const std::vector<const BenchVariant *> &variants) {
+    j.key("isa_level");
+    j.value(sv_isa_level_name());
+    j.key("variants");
+    j.begin_array(true);
+    for (const BenchVariant *v : variants) {
+        j.value(v->name);
+    }
+    j.end_array();
+}
+
 std::string bench_json(const BenchRun &run) {
     const MachineTiming &m = run.machine;
     JsonWriter j;
@@ -260,14 +271,7 @@ std::string bench_json(const BenchRun &run) {
     }
     j.end_object();
 
-    j.key("isa_level");
-    j.value(sv_isa_level_name());
-    j.key("variants");
-    j.begin_array(true);
-    for (const BenchVariant *v : run.options.variants) {
-        j.value(v->name);
-    }
-    j.end_array();
+    write_isa_fields(j, run.options.variants);
     j.key("skipped_variants");
     j.begin_array();
     for (const SkippedVariant &s : run.skipped) {

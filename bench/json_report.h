@@ -40,6 +40,7 @@
 #define SV_BENCH_JSON_REPORT_H
 
 #include <string>
+#include <vector>
 
 #include "bench_run.h"
 #include "json_writer.h"
@@ -56,6 +57,10 @@ std::string bench_json(const BenchRun &run);
  * tsc_step_ticks, invariant_tsc, pinned_cpu}, "compiler", "build",
  * "commit", "timer". */
 void write_machine_fields(JsonWriter &j, const MachineTiming &m);
+
+/* "isa_level" (the highest level sv_cpu_isa() reaches) and "variants" (the
+ * names of VARIANTS, the ones this run measured). */
+void write_isa_fields(JsonWriter &j, const std::vector<const BenchVariant *> &variants);
 
 } // namespace svbench
 

@@ -163,14 +163,7 @@ std::string scaling_json(const ScalingRun &run) {
         j.null();
     }
     j.end_object();
-    j.key("isa_level");
-    j.value(sv_isa_level_name());
-    j.key("variants");
-    j.begin_array(true);
-    for (const BenchVariant *v : run.options.variants) {
-        j.value(v->name);
-    }
-    j.end_array();
+    write_isa_fields(j, run.options.variants);
 
     j.key("working_set");
     j.begin_array();
