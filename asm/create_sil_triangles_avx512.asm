@@ -10,7 +10,7 @@
 ; Approach: not a port. Appendix E writes six ints for every edge; here the
 ;   facing lookups are done sixteen edges at a time in vector registers,
 ;   and only the silhouette edges (12-20% of them on a character) are
-;   written. Chunks of up to 224 edges, three passes each:
+;   written. Chunks of up to 448 edges, three passes each:
 ;   A. Pairs: four loads take 16 edges, two vpermi2q their (p1, p2) qwords,
 ;      which go to the stack; vpminud / vpmaxud keep the chunk's lowest and
 ;      highest triangle number lo, hi.
@@ -26,14 +26,27 @@
 ;      (the bit to bit 0; the rotate takes the count mod 32), vptestmd.
 ;      On the reference machine (AMD Zen 5 class) this is the cheap way:
 ;      vpgatherdd zmm costs about 13 cycles for 16 lanes whatever the mask,
-;      and blocks the load ports meanwhile. Chunks spanning more triangles
-;      (large meshes whose SilEdges, sorted by p1, meet far-away p2) look
-;      the bytes up with scalar movzx instead, shifting them into the
-;      masks with lea.
-;      Either way: F1, F2 (bit t: f1, f2 of edge t), S = F1 ^ F2;
+;      and blocks the load ports meanwhile. F1, F2 (bit t: f1, f2 of edge
+;      t), S = F1 ^ F2;
 ;      vpcompressd (to a register: the memory form is several times slower
 ;      on Zen) packs the byte offsets of the silhouette edges and 64 * f1
 ;      into two lists on the stack; popcnt advances them.
+;      A chunk spanning more triangles (large meshes, whose SilEdges,
+;      sorted by p1, meet far-away p2) is handed whole to
+;      sv_create_sil_triangles_avx2 (scalar lookups), an ordinary call:
+;      scalar lookups folded sixteen at a time into masks here cost ~1.4
+;      ticks per edge on koala.glb (99994 triangles), the AVX2 kernel's
+;      ~0.95, and on the 980k-triangle character this variant then lost
+;      to c_ref's volume (5.13 against 5.12 ticks per triangle).
+;   Whole calls of more than 3072 SilEdges (SIL_AVX2_ABOVE: a closed mesh
+;   of more than 2048 triangles) go to the AVX2 kernel at entry, a tail
+;   call: there its scalar lookups beat the window, which slides and
+;   refills (`shadowvol bench --scaling --quick`, ticks per edge, avx2 /
+;   this path: RobotExpressive 4967 edges 1.04 / 1.10, CesiumMan 7008
+;   0.83 / 1.03, the 12096-triangle character 0.79 / 0.90, spot.glb 0.76 /
+;   0.86, koala.glb 0.94 / 1.28), while on the smaller meshes this path
+;   wins (RiggedFigure 0.98 / 0.88, Fox 0.95 / 0.88, the character 0.93 /
+;   0.84, spot_lowres 2481 edges 0.91 / 0.91).
 ;   C. Output: per listed pair of edges, vpbroadcastq of each (v1, v2),
 ;      one vpermt2d into (v1 v2 v2 v1 v1 v2) twice, a vpxord of the ^1
 ;      patterns of their f1 (a 4-entry table), one masked store of twelve
@@ -45,11 +58,12 @@
 ; int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
 ;                                    const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map:
+; Register map (across the AVX2 call: rax, rdx, rdi, r8 saved in the frame,
+; zmm25, zmm27-zmm31 reloaded):
 ;   rdi  facing; rdx the chunk's edges; rax edges after this chunk
 ;   r8   output pointer; r12 edges in the chunk; r13 list length
 ;   r14  0x55555555 (pext: even bits); r15 the ^1 pattern table
-;   rbx  block counter (scalar lookups: r9, and rbx is F2); r11 offset of
+;   rbx  block counter; r11 offset of
 ;        the block's pairs; rcx, rsi, r10 scratch (F1, F2, S)
 ;   rbp  the frame: rsp 64-byte aligned below it; shadowIndices and the
 ;        bitmap's window [lo64, end) in its first slots
@@ -84,6 +98,8 @@
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
+
+extern sv_create_sil_triangles_avx2
 
 section .rodata align=64
 align 64
@@ -129,9 +145,17 @@ sil_c256: dd 256
 ; are touched in order (a stack probe, as compilers do for frames over a
 ; page: a thread's guard page is not skipped).
 %define SIL_CHUNK   448                         ; edges per chunk (x 16)
+; Above this many SilEdges (a closed mesh of more than ~2048 triangles,
+; whose facing bytes no longer fit the window at once) the AVX2 kernel is
+; faster on every mesh measured, and the call goes there (header).
+%define SIL_AVX2_ABOVE 3072
 %define SIL_BASE    0                           ; shadowIndices
 %define SIL_WLO     8                           ; bitmap window: first byte (x 64)
 %define SIL_WEND    16                          ;   and one past its last
+%define SIL_SAVE_AFTER  24                      ; across the AVX2 call (.scalar):
+%define SIL_SAVE_EDGES  32                      ;   edges after the chunk, the
+%define SIL_SAVE_FACING 40                      ;   chunk, facing, the output
+%define SIL_SAVE_OUT    48                      ;   pointer
 %define SIL_BM      64                          ; 256 bytes: 2048 facing bits
 %define SIL_PP      (SIL_BM + 256)              ; SIL_CHUNK qwords
 %define SIL_LA      (SIL_PP + SIL_CHUNK * 8)    ; (SIL_CHUNK + 16) dwords
@@ -228,21 +252,13 @@ sil_c256: dd 256
         vpaddd  zmm26, zmm26, [sil_c256]{1to16}
 %endmacro
 
-; Scalar lookup of pair %1 (edge %1) of the block's pairs at r11.
-%macro SIL_SCALAR 1
-        movsxd  r10, dword [rsp+SIL_PP+r11+%1*8+0]
-        movsxd  rsi, dword [rsp+SIL_PP+r11+%1*8+4]
-        movzx   r10d, byte [rdi+r10]            ; f1
-        movzx   esi, byte [rdi+rsi]             ; f2
-        lea     ecx, [r10+rcx*2]                ; F1 = F1 * 2 + f1
-        lea     ebx, [rsi+rbx*2]                ; F2 = F2 * 2 + f2
-%endmacro
-
 FUNCTION sv_create_sil_triangles_avx512
         mov     r8, arg1q                       ; output pointer
         mov     eax, arg4d                      ; numSilEdges
         test    eax, eax
         jle     .zero                           ; negative or zero: touch nothing
+        cmp     eax, SIL_AVX2_ABOVE
+        jg      .avx2                           ; a large mesh: the AVX2 kernel
 
         push    rbx
         push    rbp
@@ -365,25 +381,31 @@ FUNCTION sv_create_sil_triangles_avx512
         jnz     .b_loop
         jmp     .c
 
-.scalar:        ; Pass B with scalar lookups (a chunk too wide for the bitmap)
-        xor     r13d, r13d
-        vmovdqa64 zmm26, [sil_off]
-        xor     r11d, r11d
-        lea     r9, [r12+15]
-        shr     r9, 4                           ; blocks (the last may be partial)
-.s_loop:
-        xor     ecx, ecx                        ; F1 (fresh: no dependency
-        xor     ebx, ebx                        ; F2  from block to block)
-%assign t 15
-%rep 16
-        SIL_SCALAR t
-%assign t t-1
-%endrep
-        mov     r10d, ebx
-        SIL_EMIT
-        add     r11, 128
-        sub     r9, 1
-        jnz     .s_loop
+.scalar:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
+        ; (its scalar lookups, ~0.8-1.0 ticks per edge, measured faster on
+        ; such chunks than sixteen lookups folded into masks here, ~1.4).
+        ; An ordinary System V call: what must survive goes to the frame,
+        ; and the vector registers kept across chunks are reloaded after.
+        mov     [rsp+SIL_SAVE_AFTER], rax
+        mov     [rsp+SIL_SAVE_EDGES], rdx
+        mov     [rsp+SIL_SAVE_FACING], rdi
+        mov     [rsp+SIL_SAVE_OUT], r8
+        mov     rsi, rdi                        ; facing
+        mov     rdi, r8                         ; output
+        mov     ecx, r12d                       ; edges in the chunk (<= 448)
+        call    sv_create_sil_triangles_avx2 wrt ..plt
+        mov     r8, [rsp+SIL_SAVE_OUT]
+        lea     r8, [r8+rax*4]                  ; past the ints it wrote
+        mov     rax, [rsp+SIL_SAVE_AFTER]
+        mov     rdx, [rsp+SIL_SAVE_EDGES]
+        mov     rdi, [rsp+SIL_SAVE_FACING]
+        vmovdqa64 zmm27, [sil_qpick_p]
+        vmovdqa64 zmm25, [sil_pair]
+        vmovdqa64 zmm28, [rsp+SIL_BM+0*64]      ; the window, as it was
+        vmovdqa64 zmm29, [rsp+SIL_BM+1*64]
+        vmovdqa64 zmm30, [rsp+SIL_BM+2*64]
+        vmovdqa64 zmm31, [rsp+SIL_BM+3*64]
+        jmp     .c_done
 
 .c:     ; Pass C: the six ints of each listed edge, two edges at a time
         mov     ecx, 0xFFF
@@ -441,4 +463,6 @@ FUNCTION sv_create_sil_triangles_avx512
 .zero:
         xor     eax, eax
         ret
+.avx2:  ; same arguments, same registers: a tail call
+        jmp     sv_create_sil_triangles_avx2 wrt ..plt
 ENDFUNCTION

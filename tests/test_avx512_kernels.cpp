@@ -238,6 +238,43 @@ TEST(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
     }
 }
 
+// The AVX-512 kernel's chunks of 448 edges: a chunk whose triangle numbers
+// span more than its 2048-bit window is handed to the AVX2 kernel by an
+// ordinary call, and the next chunk must find its window (kept in
+// zmm28-zmm31) and the output position as they were; whole calls above
+// 3072 edges go to the AVX2 kernel at entry. Here every chunk but one stays
+// inside triangles 0..999, and one edge of the middle chunk (or of the
+// first, or the last) names triangle 5000.
+TEST(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.SilWideChunk");
+    constexpr int kFar = 5000;
+    for (const sv_variant *v : runnable_variants()) {
+        for (int n : {3 * 448, 3 * 448 + 5, 3072, 3073, 6 * 448}) {
+            for (int wideChunk : {0, 1, 2}) {
+                std::vector<SilEdge> edges = random_edges(rng, n, 999, 1 << 20);
+                std::sort(edges.begin(), edges.end(),
+                          [](const SilEdge &a, const SilEdge &b) { return a.p1 < b.p1; });
+                edges[(size_t)wideChunk * 448 + rng.below(448)].p2 = kFar;
+                std::vector<uint8_t> facing = random_facing(rng, kFar + 1);
+                std::vector<int> expected_out((size_t)6 * n + 6);
+                const int expected = sv_create_sil_triangles_c_ref(
+                    expected_out.data(), facing.data(), edges.data(), n);
+                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
+                                       ptr_arg(out.data()), ptr_arg(facing.data()),
+                                       ptr_arg(edges.data()), int_arg(n, rng)),
+                          expected)
+                    << v->name << " n=" << n << " wide chunk " << wideChunk;
+                ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected,
+                                       out.as<int>()))
+                    << v->name << ": indices differ, n=" << n << " wide chunk " << wideChunk;
+                ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n;
+            }
+        }
+    }
+}
+
 // Every input array placed against an unmapped page, above it and below
 // it: a read outside any array faults. Variants whose alignment needs the
 // placement does not meet are skipped for that placement.
