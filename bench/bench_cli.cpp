@@ -15,6 +15,7 @@
 #include "bench_run.h"
 #include "cycle_table.h"
 #include "json_report.h"
+#include "machine_limits.h"
 #include "lights.h"
 #include "model_list.h"
 #include "model_workload.h"
@@ -172,6 +173,7 @@ struct CliOptions {
     LightTargets targets;
     std::string json;               /* --json FILE; "" none, "-" stdout */
     bool scaling = false;           /* --scaling: scaling.h instead of the cycle table */
+    bool limits = false;            /* --limits: machine_limits.h after each table */
     std::string plot;               /* --plot FILE (with --scaling) */
     long maxTriangles = 0;          /* --max-triangles N (with --scaling) */
     bool regimeGiven = false;       /* options the scaling run has no use for */
@@ -285,6 +287,8 @@ CliOptions parse(int argc, char **argv) {
             }
         } else if (opt == "--scaling" && !hasValue) {
             c.scaling = true;
+        } else if (opt == "--limits" && !hasValue) {
+            c.limits = true;
         } else if (opt == "--plot") {
             c.plot = need();
             if (c.plot.empty()) {
@@ -292,7 +296,7 @@ CliOptions parse(int argc, char **argv) {
             }
         } else if (opt == "--max-triangles") {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
-        } else if (hasValue && (opt == "--quick" || opt == "--scaling")) {
+        } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits")) {
             bad(opt + " takes no value");
         } else if (arg.rfind("-", 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -305,6 +309,9 @@ CliOptions parse(int argc, char **argv) {
     }
     if (!c.scaling && c.maxTriangles) {
         bad("--max-triangles limits the scaling run: add --scaling");
+    }
+    if (c.scaling && c.limits) {
+        bad("--limits prints floors after the cycle table; it does not apply to --scaling");
     }
     if (c.scaling) {
         /* The scaling run has its own meshes and the moving light only. */
@@ -450,6 +457,10 @@ void bench_usage(FILE *out) {
         "                   per call\n"
         "  --seed N         seed of the light search and of the synthetic patterns\n"
         "                   (default 1)\n"
+        "  --limits         after each model's table: this core's best loads, gather\n"
+        "                   lanes and bytes per tick, and from them each routine's\n"
+        "                   floor (its unavoidable memory traffic) beside the best\n"
+        "                   variant and the goals (bench/machine_limits.h)\n"
         "  -h, --help       this text\n"
         "\n"
         "Scaling: shadowvol bench --scaling [--quick] [--plot FILE.svg] [--json FILE]\n"
@@ -548,6 +559,10 @@ int bench_main(int argc, char **argv) {
 
         run.machine = measure_machine(timer_of(c), c.timer == "auto", c.quick ? 1000 : 5000, 0.05);
         print_run_header(out, run);
+        MachineLimits limits;
+        if (c.limits) {
+            limits = measure_machine_limits();
+        }
         for (ModelRun &m : run.models) {
             TableOptions o = run.options;
             o.runs = runs_for(o.runs, m.workload.numTriangles);
@@ -555,6 +570,9 @@ int bench_main(int argc, char **argv) {
             o.warmup = std::min(m.workload.numMoving, perRound); /* up to one turn of lights */
             m.table = run_cycle_table(o, run.machine, m.workload);
             print_model(out, run, m);
+            if (c.limits) {
+                print_limits(out, limits, m.workload, m.table);
+            }
         }
         print_notes(out, run);
 

@@ -97,5 +97,29 @@ grep -qE '^count_facing +c_branchless' "$tmp/out" || err "--isa c: no c_branchle
 expect_status 0 "--light directional" bench --quick --light 0,10,0,0 --routine calculate_facing
 grep -q -- '--light at (0, 10, 0, 0)' "$tmp/out" || err "--light: the header does not show it"
 
+# --limits: the machine's rates and a floor per routine after the table.
+expect_status 2 "--limits --scaling" bench --limits --scaling
+expect_status 2 "--limits with a value" bench --limits=yes
+expect_status 0 "--limits" bench --quick --limits --regime moving --routine count_facing --routine create_sil_triangles --routine create_shadow_volume
+grep -q '^limits: ' "$tmp/out" || err "--limits: no limits section"
+for rate in 'scalar byte loads' 'stores, L1'; do
+  grep -qE "^  .*$rate.* [0-9]+\.[0-9]+ " "$tmp/out" || err "--limits: no rate '$rate'"
+done
+grep -qE '^  .*scalar byte loads.* 0\.00 ' "$tmp/out" && err "--limits: a zero load rate"
+if grep -q 'not measured (no AVX2)' "$tmp/out"; then
+  echo "NOTE: no AVX2 here: --limits prints no floors"
+else
+  for r in count_facing create_sil_triangles create_shadow_volume; do
+    line=$(grep -E "^$r +[0-9]+ " "$tmp/out" | tail -1)
+    [ -n "$line" ] || { err "--limits: no floor row for $r"; continue; }
+    # floor, load port, lookups, store: numbers; the floor is the larger port
+    set -- $line
+    [ "$2" -gt 0 ] || err "--limits: $r floor $2 is not positive"
+    [ "$2" -ge "$3" ] && [ "$2" -ge "$5" ] || err "--limits: $r floor $2 below a port ($3, $5)"
+    [ "$3" -ge "$4" ] || err "--limits: $r lookups $4 above the load port's $3"
+  done
+  grep -qE '^count_facing_cull +[0-9]+ ' "$tmp/out" && err "--limits: a floor for a routine not run"
+fi
+
 [ $fail -eq 0 ] && echo "shadowvol CLI: $rows rows checked ok, argument errors and help behave"
 exit $fail

@@ -1,0 +1,193 @@
+; machine_limits.asm: the throughput primitives behind `shadowvol bench
+; --limits` (bench/machine_limits.h): how many loads, gather lanes and
+; bytes this core moves per TSC tick at best. They give each routine a
+; floor: the ticks its unavoidable memory traffic needs (the loads of the
+; elements it must look up, the bytes it must read and write), so that a
+; kernel's distance from what the machine allows is a number, not a guess.
+;
+; Each routine runs a fixed, unrolled body ITERS times; the caller times the
+; call and divides. The bodies are independent operations on addresses in
+; one small buffer (L1-resident after the first pass), so nothing but the
+; execution ports limits them:
+;   svb_scalar_loads    32 movzx byte loads per iteration, 64 bytes apart
+;                       (distinct lines: no same-line merging)
+;   svb_vector_loads    8 x 64-byte (zmm) or 32-byte (ymm) loads per
+;                       iteration, walking a buffer of BYTES and wrapping
+;                       (L1 or L2 bandwidth, by the buffer's size)
+;   svb_vector_stores   8 x 64-byte or 32-byte stores per iteration, into
+;                       the first 512 / 256 bytes of the buffer
+;   svb_gather_lanes    8 independent vpgatherdd per iteration, 16 (zmm) or
+;                       8 (ymm) lanes each, all in the buffer's first 1 KiB
+; The zmm forms need AVX-512F, the ymm forms AVX2: the caller checks CPUID.
+;
+; void svb_scalar_loads(const uint8_t *buf, long iters)              (2 KiB)
+; void svb_vector_loads_zmm(const uint8_t *buf, long iters, long bytes)
+; void svb_vector_loads_ymm(const uint8_t *buf, long iters, long bytes)
+; void svb_vector_stores_zmm(uint8_t *buf, long iters)               (512 B)
+; void svb_vector_stores_ymm(uint8_t *buf, long iters)               (256 B)
+; void svb_gather_lanes_zmm(const uint8_t *buf, long iters)          (1 KiB)
+; void svb_gather_lanes_ymm(const uint8_t *buf, long iters)          (1 KiB)
+;   bytes: a multiple of 512, at least 512; buf 64-byte aligned.
+;
+; Register map: rdi the buffer, rsi iterations left, rdx / rcx / r8 the walk
+;   (vector loads), eax, ecx, edx, r8d-r11d scalar targets, zmm/ymm0-7
+;   targets, zmm/ymm15 gather offsets, k1-k7 gather masks.
+;
+; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+
+%include "sv_abi.inc"
+
+section .rodata align=64
+align 64
+svb_gather_offsets:                     ; lane i: byte 64 * i (dwords)
+%assign i 0
+%rep 16
+        dd 64*i
+%assign i i+1
+%endrep
+
+FUNCTION svb_scalar_loads
+        test    rsi, rsi
+        jle     .done
+.loop:
+%assign k 0
+%rep 8
+        movzx   eax, byte [rdi + (4*k+0)*64]
+        movzx   ecx, byte [rdi + (4*k+1)*64]
+        movzx   edx, byte [rdi + (4*k+2)*64]
+        movzx   r8d, byte [rdi + (4*k+3)*64]
+%assign k k+1
+%endrep
+        dec     rsi
+        jnz     .loop
+.done:
+        ret
+ENDFUNCTION
+
+; VECTOR_LOADS reg: 8 loads of 8 x size(reg) bytes per iteration, wrapping
+; at rdx bytes.
+%macro VECTOR_LOADS 2                   ; %1 register prefix (zmm, ymm), %2 its bytes
+        test    rsi, rsi
+        jle     %%done
+        xor     ecx, ecx                ; offset in the buffer
+%%loop:
+        vmovdqu64 %1 %+ 0, [rdi + rcx + 0*%2]
+        vmovdqu64 %1 %+ 1, [rdi + rcx + 1*%2]
+        vmovdqu64 %1 %+ 2, [rdi + rcx + 2*%2]
+        vmovdqu64 %1 %+ 3, [rdi + rcx + 3*%2]
+        vmovdqu64 %1 %+ 4, [rdi + rcx + 4*%2]
+        vmovdqu64 %1 %+ 5, [rdi + rcx + 5*%2]
+        vmovdqu64 %1 %+ 6, [rdi + rcx + 6*%2]
+        vmovdqu64 %1 %+ 7, [rdi + rcx + 7*%2]
+        add     rcx, 8*%2
+        cmp     rcx, rdx
+        jb      %%next
+        xor     ecx, ecx                ; wrap (a predictable branch)
+%%next:
+        dec     rsi
+        jnz     %%loop
+%%done:
+        vzeroupper
+        ret
+%endmacro
+
+FUNCTION svb_vector_loads_zmm
+        VECTOR_LOADS zmm, 64
+ENDFUNCTION
+
+; (vmovdqu64 ymm needs AVX-512VL: the ymm form uses vmovdqu.)
+FUNCTION svb_vector_loads_ymm
+        test    rsi, rsi
+        jle     .done
+        xor     ecx, ecx
+.loop:
+        vmovdqu ymm0, [rdi + rcx + 0*32]
+        vmovdqu ymm1, [rdi + rcx + 1*32]
+        vmovdqu ymm2, [rdi + rcx + 2*32]
+        vmovdqu ymm3, [rdi + rcx + 3*32]
+        vmovdqu ymm4, [rdi + rcx + 4*32]
+        vmovdqu ymm5, [rdi + rcx + 5*32]
+        vmovdqu ymm6, [rdi + rcx + 6*32]
+        vmovdqu ymm7, [rdi + rcx + 7*32]
+        add     rcx, 8*32
+        cmp     rcx, rdx
+        jb      .next
+        xor     ecx, ecx
+.next:
+        dec     rsi
+        jnz     .loop
+.done:
+        vzeroupper
+        ret
+ENDFUNCTION
+
+FUNCTION svb_vector_stores_zmm
+        test    rsi, rsi
+        jle     .done
+        vpxord  xmm0, xmm0, xmm0
+.loop:
+%assign k 0
+%rep 8
+        vmovdqu64 [rdi + k*64], zmm0
+%assign k k+1
+%endrep
+        dec     rsi
+        jnz     .loop
+.done:
+        vzeroupper
+        ret
+ENDFUNCTION
+
+FUNCTION svb_vector_stores_ymm
+        test    rsi, rsi
+        jle     .done
+        vpxor   xmm0, xmm0, xmm0
+.loop:
+%assign k 0
+%rep 8
+        vmovdqu [rdi + k*32], ymm0
+%assign k k+1
+%endrep
+        dec     rsi
+        jnz     .loop
+.done:
+        vzeroupper
+        ret
+ENDFUNCTION
+
+FUNCTION svb_gather_lanes_zmm
+        test    rsi, rsi
+        jle     .done
+        vmovdqa64 zmm15, [svb_gather_offsets]
+.loop:                                  ; the mask is consumed: set it each time
+%assign k 0
+%rep 8
+%assign m (k % 7) + 1                   ; k1-k7: no chain through one mask
+        kxnorw  k%[m], k0, k0           ; all ones
+        vpgatherdd zmm%[k]{k%[m]}, [rdi + zmm15]
+%assign k k+1
+%endrep
+        dec     rsi
+        jnz     .loop
+.done:
+        vzeroupper
+        ret
+ENDFUNCTION
+
+FUNCTION svb_gather_lanes_ymm
+        test    rsi, rsi
+        jle     .done
+        vmovdqa ymm15, [svb_gather_offsets]
+.loop:                                  ; the mask register is cleared: refill it
+%assign k 0
+%rep 8
+        vpcmpeqd ymm8, ymm8, ymm8
+        vpgatherdd ymm%[k], [rdi + ymm15], ymm8
+%assign k k+1
+%endrep
+        dec     rsi
+        jnz     .loop
+.done:
+        vzeroupper
+        ret
+ENDFUNCTION

@@ -1,0 +1,225 @@
+/*
+ * `shadowvol bench --limits` (machine_limits.h): the primitives timed, the
+ * floors computed and printed.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "machine_limits.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "cache_info.h"
+#include "shadowvol.h"
+
+extern "C" {
+void svb_scalar_loads(const uint8_t *buf, long iters);
+void svb_vector_loads_zmm(const uint8_t *buf, long iters, long bytes);
+void svb_vector_loads_ymm(const uint8_t *buf, long iters, long bytes);
+void svb_vector_stores_zmm(uint8_t *buf, long iters);
+void svb_vector_stores_ymm(uint8_t *buf, long iters);
+void svb_gather_lanes_zmm(const uint8_t *buf, long iters);
+void svb_gather_lanes_ymm(const uint8_t *buf, long iters);
+}
+
+namespace svbench {
+namespace {
+
+constexpr int kTries = 9;
+/* Operations per timed call: ~10^6, so the serialised TSC's own cost (up to
+ * ~10^4 ticks where cpuid traps to a hypervisor) is about 1% of a call and
+ * is subtracted besides. */
+constexpr long kOps = 1L << 20;
+constexpr size_t kL1Buffer = 16 * 1024;
+
+struct Buffer {
+    uint8_t *p = nullptr;
+    explicit Buffer(size_t bytes) {
+        p = static_cast<uint8_t *>(std::aligned_alloc(64, bytes));
+        if (!p) {
+            throw std::bad_alloc();
+        }
+        std::memset(p, 1, bytes);
+    }
+    ~Buffer() { std::free(p); }
+    Buffer(const Buffer &) = delete;
+    Buffer &operator=(const Buffer &) = delete;
+};
+
+/* Operations per tick: OPS per call of F, the fastest of kTries calls (a
+ * first, untimed call warms the caches and the clocks). */
+template <class F> double rate(uint64_t fences, double ops, F f) {
+    f();
+    uint64_t best = UINT64_MAX;
+    for (int i = 0; i < kTries; i++) {
+        const uint64_t t0 = TscCpuid::begin();
+        f();
+        const uint64_t t1 = TscCpuid::end();
+        best = std::min(best, t1 - t0 > fences ? t1 - t0 - fences : 1);
+    }
+    return ops / (double)best;
+}
+
+/* The cheapest empty region of the cpuid-fenced TSC (whatever timer the
+ * table uses: these calls are long, so the serialising fence is the safe
+ * one on every CPU). */
+uint64_t empty_region() {
+    uint64_t best = UINT64_MAX;
+    for (int i = 0; i < 64; i++) {
+        const uint64_t t0 = TscCpuid::begin();
+        const uint64_t t1 = TscCpuid::end();
+        best = std::min(best, t1 - t0);
+    }
+    return best;
+}
+
+} // namespace
+
+MachineLimits measure_machine_limits() {
+    MachineLimits l;
+    const uint64_t m = empty_region();
+    const unsigned isa = sv_cpu_isa_detected();
+    const size_t l2 = cache_sizes().l2.bytes;
+    l.l2Buffer = std::max<size_t>(64 * 1024, l2 ? l2 / 2 / 512 * 512 : 256 * 1024);
+    Buffer small(kL1Buffer), large(l.l2Buffer);
+
+    l.scalarLoads = rate(m, (double)kOps, [&] { svb_scalar_loads(small.p, kOps / 32); });
+    if (isa & SV_ISA_AVX512) {
+        l.vector = "zmm";
+        l.gatherLanes = rate(m, (double)kOps, [&] { svb_gather_lanes_zmm(small.p, kOps / 128); });
+        l.l1LoadBytes = rate(m, 64.0 * kOps, [&] {
+            svb_vector_loads_zmm(small.p, kOps / 8, (long)kL1Buffer);
+        });
+        l.l2LoadBytes = rate(m, 64.0 * kOps, [&] {
+            svb_vector_loads_zmm(large.p, kOps / 8, (long)l.l2Buffer);
+        });
+        l.storeBytes = rate(m, 64.0 * kOps, [&] { svb_vector_stores_zmm(small.p, kOps / 8); });
+    } else if (isa & SV_ISA_AVX2) {
+        l.vector = "ymm";
+        l.gatherLanes = rate(m, (double)kOps, [&] { svb_gather_lanes_ymm(small.p, kOps / 64); });
+        l.l1LoadBytes = rate(m, 32.0 * kOps, [&] {
+            svb_vector_loads_ymm(small.p, kOps / 8, (long)kL1Buffer);
+        });
+        l.l2LoadBytes = rate(m, 32.0 * kOps, [&] {
+            svb_vector_loads_ymm(large.p, kOps / 8, (long)l.l2Buffer);
+        });
+        l.storeBytes = rate(m, 32.0 * kOps, [&] { svb_vector_stores_ymm(small.p, kOps / 8); });
+    }
+    return l;
+}
+
+std::vector<RoutineFloor> routine_floors(const MachineLimits &l, const Workload &w,
+                                         const ModelTable &t) {
+    std::vector<RoutineFloor> floors;
+    if (l.l1LoadBytes <= 0 || l.storeBytes <= 0 || l.scalarLoads <= 0) {
+        return floors;
+    }
+    const double N = w.numTriangles, E = w.numSilEdges;
+    const double facing = ratio_stats(w, Ratio::facing).mean;
+    const double nf = (1 - facing) * N;
+    const double sE = ratio_stats(w, Ratio::silhouette).mean * E;
+    const double culledNf = nf * (1 - ratio_stats(w, Ratio::turned).mean);
+    const double lookup = std::max(l.scalarLoads, l.gatherLanes);
+
+    struct Terms {
+        double loads = 0, lookups = 0, stores = 0;
+        Terms operator+(const Terms &o) const {
+            return {loads + o.loads, lookups + o.lookups, stores + o.stores};
+        }
+    };
+    const Terms count{N / l.l1LoadBytes, 0, 0};
+    const Terms cull{N / l.l1LoadBytes + std::min(12 * N / l.l1LoadBytes, nf / l.scalarLoads),
+                     3 * nf / lookup, 0};
+    const Terms sil{16 * E / l.l1LoadBytes, 2 * E / lookup, 24 * sE / l.storeBytes};
+    const Terms cap{13 * N / l.l1LoadBytes, 0, 24 * nf / l.storeBytes};
+    const Terms capCulled{13 * N / l.l1LoadBytes, 0, 24 * culledNf / l.storeBytes};
+
+    for (const Row &r : t.rows) {
+        if (!r.moving || (!floors.empty() && floors.back().routine == r.routine)) {
+            continue;
+        }
+        Terms x;
+        switch (r.routine) {
+        case Routine::count_facing: x = count; break;
+        case Routine::count_facing_cull: x = cull; break;
+        case Routine::create_sil_triangles: x = sil; break;
+        case Routine::create_cap_triangles: x = cap; break;
+        case Routine::create_shadow_volume: x = count + sil + cap; break;
+        case Routine::create_shadow_volume_cull: x = cull + sil + capCulled; break;
+        default: continue; /* appendices A and B: not modelled */
+        }
+        /* Loads and lookups share the load ports; stores have their own. */
+        RoutineFloor f{r.routine};
+        f.loadPorts = x.loads + x.lookups;
+        f.lookups = x.lookups;
+        f.storePort = x.stores;
+        f.ticks = std::max(f.loadPorts, f.storePort);
+        floors.push_back(f);
+    }
+    return floors;
+}
+
+void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const ModelTable &t) {
+    std::fprintf(out, "\nlimits: what this core moves per TSC tick at best (bench/machine_limits.asm;"
+                      " the fastest of %d calls of 2^20 operations)\n",
+                 kTries);
+    std::fprintf(out, "  scalar byte loads (independent, L1)      %6.2f per tick\n", l.scalarLoads);
+    if (std::strcmp(l.vector, "none") == 0) {
+        std::fprintf(out, "  vector rates: not measured (no AVX2), so no floors\n");
+        return;
+    }
+    std::fprintf(out, "  vpgatherdd %s lanes (L1)               %6.2f per tick\n", l.vector,
+                 l.gatherLanes);
+    std::fprintf(out, "  %s loads, L1 (16 KiB)                 %6.1f bytes per tick\n", l.vector,
+                 l.l1LoadBytes);
+    std::fprintf(out, "  %s loads, L2 (%s)               %6.1f bytes per tick\n", l.vector,
+                 format_bytes((double)l.l2Buffer).c_str(), l.l2LoadBytes);
+    std::fprintf(out, "  %s stores, L1                         %6.1f bytes per tick\n", l.vector,
+                 l.storeBytes);
+
+    const std::vector<RoutineFloor> floors = routine_floors(l, w, t);
+    std::fprintf(out,
+                 "floors on %s, moving light (machine_limits.h; ticks per call): the load\n"
+                 "ports' time for the bytes read and the lookups made, the store port's for the\n"
+                 "bytes written; the floor is the larger\n",
+                 w.name.c_str());
+    std::fprintf(out, "%-26s %9s %9s %9s %9s | %-13s %9s | %9s %9s\n", "routine", "floor",
+                 "load port", "(lookups)", "store", "best variant", "median", "sse2/2", "c_ref/8");
+    for (const RoutineFloor &f : floors) {
+        const Row *best = nullptr, *sse2 = nullptr, *cref = nullptr;
+        for (const Row &r : t.rows) {
+            if (!r.moving || r.routine != f.routine || !r.ok) {
+                continue;
+            }
+            if (!best || r.median < best->median) {
+                best = &r;
+            }
+            if (std::strcmp(r.variant->name, "sse2_paper") == 0) {
+                sse2 = &r;
+            }
+            if (std::strcmp(r.variant->name, "c_ref") == 0) {
+                cref = &r;
+            }
+        }
+        const std::string sse2Goal = sse2 ? std::to_string((long)(sse2->median / 2 + 0.5)) : "-";
+        const std::string crefGoal = cref && (f.routine == Routine::create_shadow_volume ||
+                                              f.routine == Routine::create_shadow_volume_cull)
+                                         ? std::to_string((long)(cref->median / 8 + 0.5))
+                                         : "-";
+        std::fprintf(out, "%-26s %9.0f %9.0f %9.0f %9.0f | %-13s %9.0f | %9s %9s\n",
+                     routine_name(f.routine), f.ticks, f.loadPorts, f.lookups, f.storePort,
+                     best ? best->variant->name : "-", best ? best->median : 0.0,
+                     sse2Goal.c_str(), crefGoal.c_str());
+    }
+    std::fprintf(out,
+                 "(sse2/2: the median twice as fast as sse2_paper's; c_ref/8: eight times c_ref's,\n"
+                 " the whole volume's goal. A floor far below the best variant: the kernel, not\n"
+                 " the machine, is the limit; a goal below the floor: no kernel that looks its\n"
+                 " tables up with loads or gathers can reach it on this core.)\n");
+}
+
+} // namespace svbench
