@@ -8,7 +8,7 @@
 ;   with a branch per triangle (a misprediction wherever the predictor
 ;   has not learnt the facing pattern); appendix D looks up the three cull
 ;   bytes of EVERY triangle. This looks up only the non-facing ones,
-;   without a branch per triangle: two passes over chunks of up to 512
+;   without a branch per triangle: two passes over chunks of up to 960
 ;   triangles.
 ;   1. List: per 16 triangles, vptestnmb of the facing bytes is the mask of
 ;      the non-facing ones; vpcompressd (to a register) packs their
@@ -40,7 +40,8 @@
 ;   rax, r8-r11 scratch
 ;   zmm0 triangle numbers of the block (lane t: 16b + t); xmm1 sixteen
 ;   bytes of 0xFF; zmm2 the packed list entries; k1 non-facing; k2 tail
-;   [rsp] the list: CFC_CHUNK + 16 dwords (2.1 KiB, under a page: no
+;   [rsp] the list: CFC_CHUNK + 16 dwords (3.8 KiB; with the pushes and
+;   the 64-byte alignment still under a page: no
 ;   stack probe needed)
 ;
 ; Contracts: facing bytes 0 or 1 (only 0 is looked up; the count sums
@@ -60,6 +61,17 @@
 ;   non-facing triangle, 6 of them loads: the loop runs at the ~4
 ;   instructions per cycle this guest sustains; the loads alone (3 per
 ;   cycle) would allow about 850 ticks.
+;   Split, with a harness that times the kernel alone (lfence-fenced TSC,
+;   random facing and cull bytes, median of 4000 calls): on 1344 triangles
+;   pass 1 and the count take ~290 ticks here against ~230 for the AVX2
+;   kernel's table left-pack (vpcompressd plus kmov plus popcnt per 16
+;   costs more than two table loads per 16 on this core), pass 2 ~1060 in
+;   both. Chunks grew from 512 to 960 triangles (one list for Fox.glb's
+;   576, two for the character): Fox 586 -> 569 ticks per call. The AVX2
+;   kernel stays the faster of the two on every mesh measured, by 3-7%.
+;   `shadowvol bench --limits`: this routine's floor on the character is
+;   ~410 ticks; the distance is pass 2's chain of three dependent loads
+;   per triangle (list entry, vertex numbers, cull bytes).
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -67,7 +79,7 @@
 
 extern sv_count_facing_avx512
 
-%define CFC_CHUNK 512                           ; triangles per list (x 16)
+%define CFC_CHUNK 960                           ; triangles per list (x 16)
 
 section .rodata align=64
 cfc_iota:
