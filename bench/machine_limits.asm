@@ -64,22 +64,20 @@ FUNCTION svb_scalar_loads
         ret
 ENDFUNCTION
 
-; VECTOR_LOADS reg: 8 loads of 8 x size(reg) bytes per iteration, wrapping
-; at rdx bytes.
-%macro VECTOR_LOADS 2                   ; %1 register prefix (zmm, ymm), %2 its bytes
+; VECTOR_LOADS mov, reg, bytes: 8 loads of BYTES each per iteration with
+; MOV (vmovdqu64 for zmm; vmovdqu for ymm, which needs no AVX-512VL),
+; walking the buffer and wrapping at rdx bytes.
+%macro VECTOR_LOADS 3
         test    rsi, rsi
         jle     %%done
         xor     ecx, ecx                ; offset in the buffer
 %%loop:
-        vmovdqu64 %1 %+ 0, [rdi + rcx + 0*%2]
-        vmovdqu64 %1 %+ 1, [rdi + rcx + 1*%2]
-        vmovdqu64 %1 %+ 2, [rdi + rcx + 2*%2]
-        vmovdqu64 %1 %+ 3, [rdi + rcx + 3*%2]
-        vmovdqu64 %1 %+ 4, [rdi + rcx + 4*%2]
-        vmovdqu64 %1 %+ 5, [rdi + rcx + 5*%2]
-        vmovdqu64 %1 %+ 6, [rdi + rcx + 6*%2]
-        vmovdqu64 %1 %+ 7, [rdi + rcx + 7*%2]
-        add     rcx, 8*%2
+%assign k 0
+%rep 8
+        %1      %2%[k], [rdi + rcx + k*%3]
+%assign k k+1
+%endrep
+        add     rcx, 8*%3
         cmp     rcx, rdx
         jb      %%next
         xor     ecx, ecx                ; wrap (a predictable branch)
@@ -91,68 +89,40 @@ ENDFUNCTION
         ret
 %endmacro
 
-FUNCTION svb_vector_loads_zmm
-        VECTOR_LOADS zmm, 64
-ENDFUNCTION
-
-; (vmovdqu64 ymm needs AVX-512VL: the ymm form uses vmovdqu.)
-FUNCTION svb_vector_loads_ymm
+; VECTOR_STORES mov, reg, bytes: 8 stores of BYTES each per iteration, to
+; the first 8 x BYTES of the buffer (zeros: the register is cleared with
+; its xmm form).
+%macro VECTOR_STORES 3
         test    rsi, rsi
-        jle     .done
-        xor     ecx, ecx
-.loop:
-        vmovdqu ymm0, [rdi + rcx + 0*32]
-        vmovdqu ymm1, [rdi + rcx + 1*32]
-        vmovdqu ymm2, [rdi + rcx + 2*32]
-        vmovdqu ymm3, [rdi + rcx + 3*32]
-        vmovdqu ymm4, [rdi + rcx + 4*32]
-        vmovdqu ymm5, [rdi + rcx + 5*32]
-        vmovdqu ymm6, [rdi + rcx + 6*32]
-        vmovdqu ymm7, [rdi + rcx + 7*32]
-        add     rcx, 8*32
-        cmp     rcx, rdx
-        jb      .next
-        xor     ecx, ecx
-.next:
+        jle     %%done
+        vpxor   xmm0, xmm0, xmm0
+%%loop:
+%assign k 0
+%rep 8
+        %1      [rdi + k*%3], %2 %+ 0
+%assign k k+1
+%endrep
         dec     rsi
-        jnz     .loop
-.done:
+        jnz     %%loop
+%%done:
         vzeroupper
         ret
+%endmacro
+
+FUNCTION svb_vector_loads_zmm
+        VECTOR_LOADS vmovdqu64, zmm, 64
+ENDFUNCTION
+
+FUNCTION svb_vector_loads_ymm
+        VECTOR_LOADS vmovdqu, ymm, 32
 ENDFUNCTION
 
 FUNCTION svb_vector_stores_zmm
-        test    rsi, rsi
-        jle     .done
-        vpxord  xmm0, xmm0, xmm0
-.loop:
-%assign k 0
-%rep 8
-        vmovdqu64 [rdi + k*64], zmm0
-%assign k k+1
-%endrep
-        dec     rsi
-        jnz     .loop
-.done:
-        vzeroupper
-        ret
+        VECTOR_STORES vmovdqu64, zmm, 64
 ENDFUNCTION
 
 FUNCTION svb_vector_stores_ymm
-        test    rsi, rsi
-        jle     .done
-        vpxor   xmm0, xmm0, xmm0
-.loop:
-%assign k 0
-%rep 8
-        vmovdqu [rdi + k*32], ymm0
-%assign k k+1
-%endrep
-        dec     rsi
-        jnz     .loop
-.done:
-        vzeroupper
-        ret
+        VECTOR_STORES vmovdqu, ymm, 32
 ENDFUNCTION
 
 FUNCTION svb_gather_lanes_zmm

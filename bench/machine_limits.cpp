@@ -82,32 +82,37 @@ uint64_t empty_region() {
 MachineLimits measure_machine_limits() {
     MachineLimits l;
     const uint64_t m = empty_region();
-    const unsigned isa = sv_cpu_isa_detected();
+    const unsigned isa = sv_cpu_isa(); /* the ISA limit (--isa, SV_ISA) holds here too */
     const size_t l2 = cache_sizes().l2.bytes;
     l.l2Buffer = std::max<size_t>(64 * 1024, l2 ? l2 / 2 / 512 * 512 : 256 * 1024);
     Buffer small(kL1Buffer), large(l.l2Buffer);
 
+    /* The vector primitives at the widest width this CPU has. */
+    struct VectorForms {
+        const char *name;
+        double bytes;     /* per vector */
+        long gatherLanes; /* lanes per vpgatherdd */
+        void (*gather)(const uint8_t *, long);
+        void (*loads)(const uint8_t *, long, long);
+        void (*stores)(uint8_t *, long);
+    };
+    static const VectorForms zmm{"zmm", 64, 16, svb_gather_lanes_zmm, svb_vector_loads_zmm,
+                                 svb_vector_stores_zmm};
+    static const VectorForms ymm{"ymm", 32, 8, svb_gather_lanes_ymm, svb_vector_loads_ymm,
+                                 svb_vector_stores_ymm};
+    const VectorForms *v = (isa & SV_ISA_AVX512) ? &zmm : (isa & SV_ISA_AVX2) ? &ymm : nullptr;
+
     l.scalarLoads = rate(m, (double)kOps, [&] { svb_scalar_loads(small.p, kOps / 32); });
-    if (isa & SV_ISA_AVX512) {
-        l.vector = "zmm";
-        l.gatherLanes = rate(m, (double)kOps, [&] { svb_gather_lanes_zmm(small.p, kOps / 128); });
-        l.l1LoadBytes = rate(m, 64.0 * kOps, [&] {
-            svb_vector_loads_zmm(small.p, kOps / 8, (long)kL1Buffer);
-        });
-        l.l2LoadBytes = rate(m, 64.0 * kOps, [&] {
-            svb_vector_loads_zmm(large.p, kOps / 8, (long)l.l2Buffer);
-        });
-        l.storeBytes = rate(m, 64.0 * kOps, [&] { svb_vector_stores_zmm(small.p, kOps / 8); });
-    } else if (isa & SV_ISA_AVX2) {
-        l.vector = "ymm";
-        l.gatherLanes = rate(m, (double)kOps, [&] { svb_gather_lanes_ymm(small.p, kOps / 64); });
-        l.l1LoadBytes = rate(m, 32.0 * kOps, [&] {
-            svb_vector_loads_ymm(small.p, kOps / 8, (long)kL1Buffer);
-        });
-        l.l2LoadBytes = rate(m, 32.0 * kOps, [&] {
-            svb_vector_loads_ymm(large.p, kOps / 8, (long)l.l2Buffer);
-        });
-        l.storeBytes = rate(m, 32.0 * kOps, [&] { svb_vector_stores_ymm(small.p, kOps / 8); });
+    if (v) {
+        l.vector = v->name;
+        /* 8 gathers, loads or stores per iteration */
+        const long iters = kOps / 8;
+        l.gatherLanes = rate(m, (double)(iters * 8 * v->gatherLanes),
+                             [&] { v->gather(small.p, iters); });
+        l.l1LoadBytes = rate(m, v->bytes * kOps, [&] { v->loads(small.p, iters, (long)kL1Buffer); });
+        l.l2LoadBytes =
+            rate(m, v->bytes * kOps, [&] { v->loads(large.p, iters, (long)l.l2Buffer); });
+        l.storeBytes = rate(m, v->bytes * kOps, [&] { v->stores(small.p, iters); });
     }
     return l;
 }
@@ -165,7 +170,7 @@ std::vector<RoutineFloor> routine_floors(const MachineLimits &l, const Workload 
 
 void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const ModelTable &t) {
     std::fprintf(out, "\nlimits: what this core moves per TSC tick at best (bench/machine_limits.asm;"
-                      " the fastest of %d calls of 2^20 operations)\n",
+                      " the fastest of %d calls, each of 2^20 loads, stores or gathers)\n",
                  kTries);
     std::fprintf(out, "  scalar byte loads (independent, L1)      %6.2f per tick\n", l.scalarLoads);
     if (std::strcmp(l.vector, "none") == 0) {

@@ -119,6 +119,13 @@ else
     [ "$3" -ge "$4" ] || err "--limits: $r lookups $4 above the load port's $3"
   done
   grep -qE '^count_facing_cull +[0-9]+ ' "$tmp/out" && err "--limits: a floor for a routine not run"
+  # the AVX2 forms of the primitives, under the ISA limit
+  expect_status 0 "--limits --isa avx2" bench --quick --limits --isa avx2 --regime moving --routine count_facing
+  grep -qE '^  ymm loads, L1 .* [0-9]+\.[0-9] bytes per tick' "$tmp/out" || err "--limits --isa avx2: no ymm rates"
+  grep -qE '^  vpgatherdd ymm lanes .* [0-9]+\.[0-9]+ per tick' "$tmp/out" || err "--limits --isa avx2: no ymm gather rate"
+  grep -qE '^  vpgatherdd ymm lanes .* 0\.00 per tick' "$tmp/out" && err "--limits --isa avx2: a zero gather rate"
+  expect_status 0 "--limits --isa sse2" bench --quick --limits --isa sse2 --regime moving --routine count_facing
+  grep -q 'not measured (no AVX2)' "$tmp/out" || err "--limits --isa sse2: does not say the vector rates are not measured"
 fi
 
 [ $fail -eq 0 ] && echo "shadowvol CLI: $rows rows checked ok, argument errors and help behave"

@@ -90,6 +90,31 @@ std::vector<SilEdge> random_edges(Rng &rng, int n, int numTriangles, int numVert
     return edges;
 }
 
+// V's CreateSilTriangles on FACING and EDGES, through the ABI-checking
+// trampoline into a guarded output, against c_ref's: count, indices and
+// the guards after the output.
+::testing::AssertionResult sil_matches_reference(Rng &rng, const sv_variant *v,
+                                                 const uint8_t *facing,
+                                                 const std::vector<SilEdge> &edges) {
+    const int n = (int)edges.size();
+    std::vector<int> expected_out((size_t)6 * n + 6);
+    const int expected =
+        sv_create_sil_triangles_c_ref(expected_out.data(), facing, edges.data(), n);
+    GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+    const int got = checked_call(rng, (const void *)v->create_sil_triangles, ptr_arg(out.data()),
+                                 ptr_arg(facing), ptr_arg(edges.data()), int_arg(n, rng));
+    if (got != expected) {
+        return ::testing::AssertionFailure() << "returned " << got << ", c_ref " << expected;
+    }
+    if (!std::equal(expected_out.begin(), expected_out.begin() + expected, out.as<int>())) {
+        return ::testing::AssertionFailure() << "indices differ from c_ref's";
+    }
+    if (!out.guards_intact()) {
+        return ::testing::AssertionFailure() << "wrote past its " << expected << " ints";
+    }
+    return ::testing::AssertionSuccess();
+}
+
 int check_count_facing(Rng &rng, const sv_variant *v, const std::vector<uint8_t> &facing,
                        uint8_t *buf) {
     std::copy(facing.begin(), facing.end(), buf);
@@ -186,19 +211,8 @@ TEST(Avx512Kernels, LargeCounts) {
                 std::vector<uint8_t> facing = random_facing(rng, numTriangles + 1);
                 facing[(size_t)numTriangles] = 1;
                 std::vector<SilEdge> edges = random_edges(rng, n, numTriangles, 1 << 20);
-                std::vector<int> expected_out((size_t)6 * n + 6);
-                const int expected = sv_create_sil_triangles_c_ref(
-                    expected_out.data(), facing.data(), edges.data(), n);
-                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
-                                       ptr_arg(out.data()), ptr_arg(facing.data()),
-                                       ptr_arg(edges.data()), int_arg(n, rng)),
-                          expected)
+                ASSERT_TRUE(sil_matches_reference(rng, v, facing.data(), edges))
                     << v->name << " n=" << n << " triangles=" << numTriangles;
-                ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected,
-                                       out.as<int>()))
-                    << v->name << ": sil indices differ, n=" << n;
-                ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n;
             }
         }
     }
@@ -257,19 +271,8 @@ TEST(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
                           [](const SilEdge &a, const SilEdge &b) { return a.p1 < b.p1; });
                 edges[(size_t)wideChunk * 448 + rng.below(448)].p2 = kFar;
                 std::vector<uint8_t> facing = random_facing(rng, kFar + 1);
-                std::vector<int> expected_out((size_t)6 * n + 6);
-                const int expected = sv_create_sil_triangles_c_ref(
-                    expected_out.data(), facing.data(), edges.data(), n);
-                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
-                                       ptr_arg(out.data()), ptr_arg(facing.data()),
-                                       ptr_arg(edges.data()), int_arg(n, rng)),
-                          expected)
+                ASSERT_TRUE(sil_matches_reference(rng, v, facing.data(), edges))
                     << v->name << " n=" << n << " wide chunk " << wideChunk;
-                ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected,
-                                       out.as<int>()))
-                    << v->name << ": indices differ, n=" << n << " wide chunk " << wideChunk;
-                ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n;
             }
         }
     }
