@@ -94,8 +94,9 @@
 ;   with loads is 795 there (`--limits`). Larger meshes (commit 6e7482c,
 ;   `bench --scaling --routine create_sil_triangles`, median per SilEdge,
 ;   avx512 / avx2 / c_ref): spot.glb 0.77 / 0.77 / 1.39, koala.glb 0.94 /
-;   0.94 / 1.52, the 979776-triangle character 0.83 / 0.89 / 0.95 (all
-;   three through the AVX2 kernel above 3072 SilEdges).
+;   0.94 / 1.52, the 979776-triangle character 0.83 / 0.89 / 0.95: above
+;   3072 SilEdges both rows run the AVX2 kernel, so their difference there
+;   is run-to-run noise, not a result.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -397,7 +398,8 @@ FUNCTION sv_create_sil_triangles_avx512
         mov     ecx, r12d                       ; edges in the chunk (<= 448)
         call    sv_create_sil_triangles_avx2 wrt ..plt
         mov     r8, [rsp+SIL_SAVE_OUT]
-        lea     r8, [r8+rax*4]                  ; past the ints it wrote
+        mov     eax, eax                        ; an int: its upper half is undefined
+        lea     r8, [r8+rax*4]                  ; past the ints it wrote (>= 0)
         mov     rax, [rsp+SIL_SAVE_AFTER]
         mov     rdx, [rsp+SIL_SAVE_EDGES]
         mov     rdi, [rsp+SIL_SAVE_FACING]

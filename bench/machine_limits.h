@@ -26,7 +26,10 @@
  * their own port and may overlap them: the floor is the larger of the
  * two. A kernel that keeps its lookup table in registers (the avx512
  * silhouette kernel's 2048-bit window) replaces lookups by vector
- * instructions and is not bound by the lookup term.
+ * instructions and is not bound by the lookup term. Approximations, both
+ * small: ..._cull takes the silhouette share measured before culling
+ * (the routine runs on the culled facing bytes), and CountFacingCull's
+ * one-byte facing stores are not counted on the store port.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */

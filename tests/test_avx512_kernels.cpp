@@ -7,8 +7,9 @@
 //    block-accumulator (count_facing: 62 x 256 bytes; count_facing_cull:
 //    960 triangles; create_sil_triangles: 448 edges);
 //  - create_sil_triangles with triangle numbers around 2048, where the
-//    AVX-512 kernel leaves its in-register facing bitmap for scalar
-//    lookups;
+//    AVX-512 kernel leaves its in-register facing bitmap (a chunk too wide
+//    for it goes to the AVX2 kernel, and so does a call of over 3072
+//    edges);
 //  - every input array ending at an unmapped page, and starting right after
 //    one: masked loads and tails must read nothing outside the arrays
 //    (guard bytes only catch writes).
@@ -219,8 +220,8 @@ TEST(Avx512Kernels, LargeCounts) {
 }
 
 // The largest triangle number M decides between the AVX-512 kernel's
-// bitmap (M < 2048) and its scalar lookups; the facing array has exactly
-// M + 1 bytes and ends at an unmapped page.
+// bitmap (M < 2048) and the AVX2 kernel it hands wider chunks to; the
+// facing array has exactly M + 1 bytes and ends at an unmapped page.
 TEST(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.SilBitmapLimit");
@@ -256,23 +257,33 @@ TEST(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
 // span more than its 2048-bit window is handed to the AVX2 kernel by an
 // ordinary call, and the next chunk must find its window (kept in
 // zmm28-zmm31) and the output position as they were; whole calls above
-// 3072 edges go to the AVX2 kernel at entry. Here every chunk but one stays
-// inside triangles 0..999, and one edge of the middle chunk (or of the
-// first, or the last) names triangle 5000.
+// 3072 edges go to the AVX2 kernel at entry. The edges come sorted by p1
+// over triangles 0..span, each p2 within 300 triangles of its p1 (behind
+// or ahead), so with span 999 the next chunk often finds the window
+// already covering it, and with 2600 or 2900 the window slides and
+// extends across the chunks; one edge of chunk 0, 1 or 2 names triangle
+// 5000, which makes that chunk too wide.
 TEST(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.SilWideChunk");
     constexpr int kFar = 5000;
     for (const sv_variant *v : runnable_variants()) {
         for (int n : {3 * 448, 3 * 448 + 5, 3072, 3073, 6 * 448}) {
-            for (int wideChunk : {0, 1, 2}) {
-                std::vector<SilEdge> edges = random_edges(rng, n, 999, 1 << 20);
-                std::sort(edges.begin(), edges.end(),
-                          [](const SilEdge &a, const SilEdge &b) { return a.p1 < b.p1; });
-                edges[(size_t)wideChunk * 448 + rng.below(448)].p2 = kFar;
-                std::vector<uint8_t> facing = random_facing(rng, kFar + 1);
-                ASSERT_TRUE(sil_matches_reference(rng, v, facing.data(), edges))
-                    << v->name << " n=" << n << " wide chunk " << wideChunk;
+            for (int span : {999, 2600, 2900}) {
+                for (int wideChunk : {0, 1, 2}) {
+                    std::vector<SilEdge> edges = random_edges(rng, n, span, 1 << 20);
+                    std::sort(edges.begin(), edges.end(),
+                              [](const SilEdge &a, const SilEdge &b) { return a.p1 < b.p1; });
+                    for (SilEdge &e : edges) {
+                        const int p2 = e.p1 + (int)rng.below(601) - 300;
+                        e.p2 = std::min(std::max(p2, 0), span);
+                    }
+                    edges[(size_t)wideChunk * 448 + rng.below(448)].p2 = kFar;
+                    std::vector<uint8_t> facing = random_facing(rng, kFar + 1);
+                    ASSERT_TRUE(sil_matches_reference(rng, v, facing.data(), edges))
+                        << v->name << " n=" << n << " span " << span << " wide chunk "
+                        << wideChunk;
+                }
             }
         }
     }
