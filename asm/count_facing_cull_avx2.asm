@@ -30,6 +30,12 @@
 ;   facing triangles (about half of them). Pass 2 is the cost: a chain of
 ;   three dependent loads (list entry, vertex numbers, cull bytes) and ~11
 ;   instructions per non-facing triangle, ~2.3 cycles each here.
+;   Two other forms of CULL1's index loads, timed alone on 1344 random
+;   triangles (lfence-fenced TSC, median of 4000 calls; this form 1302
+;   ticks): three movsxd loads instead of the split qword, 1386 (the load
+;   ports are what it is short of); one 16-byte vmovdqu with vmovq and
+;   vpextrd into GPRs, 1470 (and it would read 4 bytes past the last
+;   triangle).
 ;   The count is that of facing afterwards: a tail call of
 ;   sv_count_facing_avx2 (which is cheaper than keeping it exact across the
 ;   padded list).
