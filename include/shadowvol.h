@@ -205,7 +205,9 @@ enum {
                                  and the OS saves the YMM state */
     SV_ISA_AVX512 = 1u << 2,  /* x86-64-v4: AVX-512 F, BW, VL, DQ, CD, and the
                                  OS saves the opmask and ZMM state */
-    SV_ISA_AVX512_VBMI2 = 1u << 3 /* vpcompressb/w, vpexpandb/w (Ice Lake, Zen 4) */
+    SV_ISA_AVX512_VBMI2 = 1u << 3, /* vpcompressb/w, vpexpandb/w (Ice Lake, Zen 4) */
+    SV_ISA_AVX512_VBMI = 1u << 4   /* vpermb, vpermi2b/vpermt2b (Cannon Lake, Ice
+                                      Lake, Zen 4) */
 };
 
 /* One named set of the four kernels. c_ref: the paper's C; c_branchless:
@@ -316,6 +318,12 @@ int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
                                    const SilEdge *silEdges, int numSilEdges);
 int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing,
                                    const int *indices, int numIndices);
+/* AVX-512 with VBMI (asm/count_facing_cull_avx512vbmi.asm): the cull bytes
+ * of meshes of up to 1024 vertices in registers; more go to
+ * sv_count_facing_cull_avx512. The avx512vbmi variant is the AVX-512 one
+ * with this CountFacingCull. */
+int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles,
+                                    const int *indices, const uint8_t *cullBits);
 
 /* ---- Contracts -----------------------------------------------------------
  * Each sv_check_* returns SV_OK or the first violated contract (SV_E_*), for

@@ -14,7 +14,8 @@
  *   c       no SIMD variant (the C variants only)
  *   sse2    SV_ISA_SSE2
  *   avx2    SV_ISA_SSE2 | SV_ISA_AVX2
- *   avx512  everything (SV_ISA_AVX512 and SV_ISA_AVX512_VBMI2 included)
+ *   avx512  everything (SV_ISA_AVX512 and its extras SV_ISA_AVX512_VBMI and
+ *           SV_ISA_AVX512_VBMI2 included)
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -50,13 +51,16 @@ static unsigned detect(void) {
     const int avx2 = (b >> 5) & 1, bmi1 = (b >> 3) & 1, bmi2 = (b >> 8) & 1;
     const int avx512f = (b >> 16) & 1, avx512dq = (b >> 17) & 1, avx512cd = (b >> 28) & 1;
     const int avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
-    const int vbmi2 = (c >> 6) & 1;
+    const int vbmi = (c >> 1) & 1, vbmi2 = (c >> 6) & 1;
     /* The x86-64-v3 set: what compilers assume for -march=x86-64-v3. */
     if (os_ymm && avx2 && bmi1 && bmi2 && fma && popcnt) {
         isa |= SV_ISA_AVX2;
         /* x86-64-v4: F, BW, VL, DQ, CD. */
         if (os_zmm && avx512f && avx512bw && avx512vl && avx512dq && avx512cd) {
             isa |= SV_ISA_AVX512;
+            if (vbmi) {
+                isa |= SV_ISA_AVX512_VBMI;
+            }
             if (vbmi2) {
                 isa |= SV_ISA_AVX512_VBMI2;
             }
@@ -75,7 +79,8 @@ static const struct {
     {"c", SV_ISA_NONE},
     {"sse2", SV_ISA_SSE2},
     {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2},
-    {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512 | SV_ISA_AVX512_VBMI2},
+    {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512 | SV_ISA_AVX512_VBMI |
+                   SV_ISA_AVX512_VBMI2},
 };
 #define NUM_LEVELS (int)(sizeof levels / sizeof levels[0])
 #define NO_LIMIT (-1)
@@ -149,9 +154,10 @@ const char *sv_isa_level_name(void) {
     const unsigned isa = sv_cpu_isa();
     int i;
     for (i = NUM_LEVELS - 1; i > 0; i--) {
-        /* The highest level all of whose required bits are present (VBMI2
-         * is an extra, not required for "avx512"). */
-        const unsigned need = levels[i].mask & ~(unsigned)SV_ISA_AVX512_VBMI2;
+        /* The highest level all of whose required bits are present (VBMI
+         * and VBMI2 are extras, not required for "avx512"). */
+        const unsigned need =
+            levels[i].mask & ~(unsigned)(SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2);
         if ((isa & need) == need) {
             return levels[i].name;
         }
@@ -166,6 +172,7 @@ const char *sv_isa_names(unsigned isa, char *buf, size_t size) {
     } bits[] = {{SV_ISA_SSE2, "sse2"},
                 {SV_ISA_AVX2, "avx2"},
                 {SV_ISA_AVX512, "avx512"},
+                {SV_ISA_AVX512_VBMI, "avx512vbmi"},
                 {SV_ISA_AVX512_VBMI2, "avx512vbmi2"}};
     size_t used = 0, i;
     if (!buf || size == 0) {

@@ -31,6 +31,11 @@ static const sv_variant variants[] = {
     {"avx512", SV_ISA_AVX512 | SV_ISA_AVX2 | SV_ISA_SSE2, sv_count_facing_avx512,
      sv_count_facing_cull_avx512, sv_create_sil_triangles_avx512,
      sv_create_cap_triangles_avx512, 1, 1, 1},
+    /* The AVX-512 kernels, with CountFacingCull looking the cull bytes up
+     * in registers by vpermi2b (AVX512_VBMI: Ice Lake, Zen 4 and later). */
+    {"avx512vbmi", SV_ISA_AVX512_VBMI | SV_ISA_AVX512 | SV_ISA_AVX2 | SV_ISA_SSE2,
+     sv_count_facing_avx512, sv_count_facing_cull_avx512vbmi, sv_create_sil_triangles_avx512,
+     sv_create_cap_triangles_avx512, 1, 1, 1},
 };
 
 const sv_variant *sv_variants(int *count) {

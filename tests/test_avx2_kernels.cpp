@@ -25,7 +25,7 @@ namespace {
 // The variants this file covers (by name; skipped where the CPU lacks them).
 // (avx512 too: these fenced-page and long-array cases hold for every
 // left-packing kernel.)
-const char *const kCovered[] = {"avx2", "avx512"};
+const char *const kCovered[] = {"avx2", "avx512", "avx512vbmi"};
 
 std::vector<const sv_variant *> covered_variants() {
     std::vector<const sv_variant *> out;

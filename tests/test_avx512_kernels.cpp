@@ -289,6 +289,83 @@ TEST(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
     }
 }
 
+// The avx512vbmi CountFacingCull keeps cullBits[0 .. M] in sixteen 64-byte
+// registers (M: the largest vertex number) and hands M >= 1024 to the list
+// kernel. Around every register and pair boundary of that table, and around
+// 64-triangle blocks: cullBits has exactly M + 1 bytes and ends at an
+// unmapped page (a table load past cullBits[M] faults), the vertex numbers
+// and the facing bytes end at one too (the tail block's masked loads).
+TEST(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.CullTable");
+    for (const sv_variant *v : runnable_variants()) {
+        for (int maxV : {0, 1, 63, 64, 127, 128, 255, 256, 511, 512, 767, 895, 896, 1023, 1024,
+                         1025, 5000}) {
+            for (int n : {1, 2, 63, 64, 65, 127, 128, 191, 200, 1344}) {
+                std::vector<uint8_t> facing = random_facing(rng, n);
+                std::vector<int> indices((size_t)3 * n);
+                for (auto &i : indices) i = (int)rng.below((uint32_t)maxV + 1);
+                indices[rng.below((uint32_t)(3 * n))] = maxV; // M exactly
+                std::vector<uint8_t> cull = cull_bytes_8bit(rng, maxV + 1);
+                if (std::string(v->name) == "sse2_paper")
+                    for (auto &c : cull) c &= 0x7F; // limit D-5
+                FencedBuffer fbuf((size_t)n, true), ibuf(indices.size() * sizeof(int), true),
+                    cbuf((size_t)maxV + 1, true);
+                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+                std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+                std::copy(cull.begin(), cull.end(), cbuf.as<uint8_t>());
+                std::vector<uint8_t> expected_facing = facing;
+                const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n,
+                                                                indices.data(), cull.data());
+                ASSERT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
+                                       ptr_arg(fbuf.as<uint8_t>()), int_arg(n, rng),
+                                       ptr_arg(ibuf.as<int>()), ptr_arg(cbuf.as<uint8_t>())),
+                          expected)
+                    << v->name << " n=" << n << " M=" << maxV;
+                ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(),
+                                       fbuf.as<uint8_t>()))
+                    << v->name << ": facing differs, n=" << n << " M=" << maxV;
+            }
+        }
+    }
+}
+
+// "Writes only facing bytes that were 0" (the AVX2, AVX-512 and avx512vbmi
+// kernels' contract; the C's too): every triangle facing and culled, the
+// facing bytes in a read-only page. A store of the same 1 would fault.
+TEST(Avx512Kernels, CullWritesNoFacingByteThatWasOne) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("Avx512Kernels.CullReadOnly");
+    const size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    for (const char *name : {"c_ref", "avx2", "avx512", "avx512vbmi"}) {
+        const sv_variant *v = sv_variant_by_name(name);
+        ASSERT_NE(v, nullptr) << name;
+        if ((v->isa & sv_cpu_isa()) != v->isa) {
+            std::printf("[  SKIPPED ] variant %s: this CPU lacks its instruction set\n", name);
+            continue;
+        }
+        for (int n : {1, 63, 64, 65, 1344, 3000}) {
+            for (int numVerts : {3, 700, 2000}) {
+                std::vector<int> indices((size_t)3 * n);
+                for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
+                std::vector<uint8_t> cull((size_t)numVerts, 0x21);
+                const size_t len = ((size_t)n + page - 1) / page * page;
+                uint8_t *facing = (uint8_t *)mmap(nullptr, len, PROT_READ | PROT_WRITE,
+                                                  MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+                ASSERT_NE((void *)facing, MAP_FAILED);
+                std::fill(facing, facing + n, 1);
+                ASSERT_EQ(mprotect(facing, len, PROT_READ), 0);
+                EXPECT_EQ(checked_call(rng, (const void *)v->count_facing_cull, ptr_arg(facing),
+                                       int_arg(n, rng), ptr_arg(indices.data()),
+                                       ptr_arg(cull.data())),
+                          n)
+                    << name << " n=" << n << " vertices=" << numVerts;
+                munmap(facing, len);
+            }
+        }
+    }
+}
+
 // Every input array placed against an unmapped page, above it and below
 // it: a read outside any array faults. Variants whose alignment needs the
 // placement does not meet are skipped for that placement.

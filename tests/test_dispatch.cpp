@@ -39,6 +39,7 @@ TEST(Dispatch, DetectionAgreesWithTheCompiler) {
                     __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd");
     EXPECT_EQ((isa & SV_ISA_AVX512) != 0, v4);
     EXPECT_EQ((isa & SV_ISA_AVX512_VBMI2) != 0, v4 && __builtin_cpu_supports("avx512vbmi2"));
+    EXPECT_EQ((isa & SV_ISA_AVX512_VBMI) != 0, v4 && __builtin_cpu_supports("avx512vbmi"));
     // The limited set is a subset of the detected one.
     EXPECT_EQ(sv_cpu_isa() & ~isa, 0u);
 }
@@ -56,7 +57,9 @@ TEST(Dispatch, LimitCapsTheIsaAndTheBestVariant) {
     EXPECT_EQ(sv_best_variant()->isa & ~(unsigned)SV_ISA_SSE2, 0u) << sv_best_variant()->name;
     ASSERT_EQ(sv_set_isa_limit("avx2"), 0);
     EXPECT_EQ(sv_cpu_isa(), hw & (SV_ISA_SSE2 | SV_ISA_AVX2));
-    EXPECT_EQ(sv_best_variant()->isa & (SV_ISA_AVX512 | SV_ISA_AVX512_VBMI2), 0u);
+    EXPECT_EQ(sv_best_variant()->isa &
+                  (SV_ISA_AVX512 | SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2),
+              0u);
     ASSERT_EQ(sv_set_isa_limit("avx512"), 0);
     EXPECT_EQ(sv_cpu_isa(), hw);
     // Unknown levels are refused and change nothing.

@@ -1,0 +1,331 @@
+; count_facing_cull_avx512vbmi.asm: CountFacingCull with the cull bytes
+; held in registers (x86-64-v4 + AVX512_VBMI).
+;
+; Computes: for each triangle i with facing[i] == 0, c = cullBits[i0] &
+;   cullBits[i1] & cullBits[i2]; if c != 0 (any of the 8 bits), facing[i]
+;   = 1. Returns the number of facing bytes set afterwards: section 5's C
+;   for facing bytes of 0 or 1.
+; Approach: not a port, and no lookups through memory. Every other
+;   CountFacingCull looks the three cull bytes of a triangle up with loads
+;   (the AVX2 and AVX-512 kernels for the non-facing triangles only), and
+;   those dependent loads are what they spend their time on (`shadowvol
+;   bench --limits`). Here, when every vertex number is below 1024, the
+;   whole cullBits table sits in zmm16-zmm31 (16 x 64 bytes) and a lookup
+;   is a byte permute:
+;   0. The largest vertex number, M (vpmaxud over the 3n indices, the tail
+;      masked). M >= 1024: the call goes to sv_count_facing_cull_avx512 (a
+;      tail call; same arguments).
+;   1. The table: cullBits[0 .. M] into zmm16-zmm31 with zero-masked loads
+;      (nothing past cullBits[M] is read; the rest is zero).
+;   2. Per block of 64 triangles, three groups of 64 vertex numbers: four
+;      loads, two vpermt2b (one control vector) pick the low and the second
+;      byte of every dword, two vshufi64x2 put them in L (bits 0-7 of the
+;      64 numbers) and H (bits 8-15). Eight vpermi2b look L up in the eight
+;      table pairs (128 bytes each: bit 6 picks the register, bits 0-5 the
+;      byte), and a tree of seven vpblendmb picks the pair by bit 7
+;      (vpmovb2m of L), bit 8 and bit 9 (vptestmb of H): the 64 cull bytes,
+;      in index order.
+;      The 192 bytes of a block are de-interleaved into c0, c1, c2 (byte t:
+;      vertex k of triangle t) by one vpermi2b over the first two groups and
+;      a merge-masked vpermb from the third, per k; vpternlogd ANDs them;
+;      vptestmb (c != 0) ANDed with vptestnmb of the facing bytes (== 0) is
+;      the mask of a masked store of 1s: only facing bytes that were 0 and
+;      are culled are written.
+;      The last 1-63 triangles: their 3 r vertex numbers are copied, zero
+;      padded, to the frame (masked loads) and run as a block whose facing
+;      bytes are masked to the r that exist.
+;   3. The count: a tail call of sv_count_facing_avx512.
+;   No data-dependent branch: the work is the same for every facing and
+;   cull pattern (all triangles are looked up, facing or not), and the only
+;   branch on the data is M's test, once per call. Gathers are not used: a
+;   vpgatherdd lane costs more than three scalar loads on the reference
+;   machine (`bench --limits`).
+;
+; int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles,
+;                                     const int *indices, const uint8_t *cullBits)
+;
+; Register map:
+;   rdi  facing of the block, rdx its vertex numbers, rcx cullBits
+;   eax  numTriangles; r8 triangles left; r9-r11 scratch
+;   r12  facing, r13 numTriangles (kept for the count's tail call)
+;   rbp  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
+;   zmm16-zmm31 cullBits[0 .. 1023] (zero past M)
+;   zmm0-zmm8 group scratch; zmm9-zmm11 the block's three groups of cull
+;   bytes; zmm12 the byte-pick control; zmm15 64 bytes of 1
+;   k1-k3 a group's bits 7-9, then the store mask; k4 the block's existing
+;   triangles; k5, k6 the de-interleave's third-group lanes
+;
+; Contracts: facing bytes 0 or 1 (only 0 is culled; the count sums bytes);
+;   vertex numbers valid indices into cullBits (non-negative ints; a number
+;   of 2^31 or more read as unsigned goes to the list kernel, which reads
+;   it as the C does); all 8 cull bits count. No alignment.
+;   numTriangles >= 0 (negative or zero: returns 0, touches nothing).
+;   Reads exactly facing[0 .. n-1], indices[0 .. 3n-1] and cullBits[0 ..
+;   M]; writes only facing bytes that were 0. Needs AVX512_VBMI (vpermb,
+;   vpermi2b, vpermt2b) on top of x86-64-v4: the caller checks CPUID
+;   (SV_ISA_AVX512_VBMI). Stack: under 1 KiB.
+;
+; Measured cost (a harness timing the kernel alone: lfence-fenced TSC,
+;   median of 4000 calls, 1344 triangles over 674 vertices, random facing
+;   and cull bytes; AMD EPYC "Turin-like" KVM guest, Zen 5 class): 693
+;   ticks, against 1302 for the AVX2 list kernel and 1365 for the AVX-512
+;   one. In `shadowvol bench`: see the README's table (avx512vbmi rows).
+;
+; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+
+%include "sv_abi.inc"
+
+extern sv_count_facing_cull_avx512
+extern sv_count_facing_avx512
+
+%define CFV_MAX_VERTS 1024              ; 16 zmm registers of 64 cull bytes
+
+section .rodata align=64
+align 64
+; vpermt2b control over (A | B), 32 dwords: bytes 0-31 the low byte of
+; dword 0-31, bytes 32-63 its second byte.
+cfv_pick:
+%assign p 0
+%rep 64
+%if p < 32
+%assign i p
+%assign o 0
+%else
+%assign i p - 32
+%assign o 1
+%endif
+%if i < 16
+        db 4*i + o
+%else
+        db 64 + 4*(i - 16) + o
+%endif
+%assign p p+1
+%endrep
+cfv_one: times 64 db 1
+cfv_two: times 64 db 2
+; De-interleave: vertex k of triangle t is byte s = 3t + k of the block's
+; 192 cull bytes (groups G0 | G1 | G2). cfv_lo_k: s for s < 128 (vpermi2b
+; over G0 | G1); cfv_hi_k: s - 128 for s >= 128 (vpermb of G2).
+%assign k 0
+%rep 3
+cfv_lo_ %+ k:
+%assign t 0
+%rep 64
+%assign s 3*t + k
+%if s < 128
+        db s
+%else
+        db 0
+%endif
+%assign t t+1
+%endrep
+cfv_hi_ %+ k:
+%assign t 0
+%rep 64
+%assign s 3*t + k
+%if s >= 128
+        db s - 128
+%else
+        db 0
+%endif
+%assign t t+1
+%endrep
+%assign k k+1
+%endrep
+
+; CFV_GROUP src, dst: the cull bytes of the 64 vertex numbers at src.
+%macro CFV_GROUP 2
+        vmovdqu32 zmm0, [%1 + 0*64]
+        vmovdqu32 zmm1, [%1 + 1*64]
+        vmovdqu32 zmm2, [%1 + 2*64]
+        vmovdqu32 zmm3, [%1 + 3*64]
+        vpermt2b zmm0, zmm12, zmm1              ; low | second bytes of 0-31
+        vpermt2b zmm2, zmm12, zmm3              ; of 32-63
+        vshufi64x2 zmm4, zmm0, zmm2, 0x44       ; L: bits 0-7 of the 64
+        vshufi64x2 zmm5, zmm0, zmm2, 0xEE       ; H: bits 8-15
+        vpmovb2m k1, zmm4                       ; bit 7: odd pair
+        vptestmb k2, zmm5, [cfv_one]            ; bit 8
+        vptestmb k3, zmm5, [cfv_two]            ; bit 9
+        vmovdqa64 zmm0, zmm4
+        vpermi2b zmm0, zmm16, zmm17             ; pair 0: vertices 0-127
+        vmovdqa64 zmm1, zmm4
+        vpermi2b zmm1, zmm18, zmm19
+        vmovdqa64 zmm2, zmm4
+        vpermi2b zmm2, zmm20, zmm21
+        vmovdqa64 zmm3, zmm4
+        vpermi2b zmm3, zmm22, zmm23
+        vmovdqa64 zmm6, zmm4
+        vpermi2b zmm6, zmm24, zmm25
+        vmovdqa64 zmm7, zmm4
+        vpermi2b zmm7, zmm26, zmm27
+        vmovdqa64 zmm8, zmm4
+        vpermi2b zmm8, zmm28, zmm29
+        vpermi2b zmm4, zmm30, zmm31             ; pair 7: vertices 896-1023
+        vpblendmb zmm0{k1}, zmm0, zmm1          ; by bit 7: pairs 0|1
+        vpblendmb zmm2{k1}, zmm2, zmm3          ;   2|3
+        vpblendmb zmm6{k1}, zmm6, zmm7          ;   4|5
+        vpblendmb zmm8{k1}, zmm8, zmm4          ;   6|7
+        vpblendmb zmm0{k2}, zmm0, zmm2          ; by bit 8
+        vpblendmb zmm6{k2}, zmm6, zmm8
+        vpblendmb %2{k3}, zmm0, zmm6            ; by bit 9
+%endmacro
+
+; CFV_DEINTERLEAVE k, dst, mask: vertex k's cull bytes of the 64 triangles.
+%macro CFV_DEINTERLEAVE 3
+        vmovdqa64 %2, [cfv_lo_ %+ %1]
+        vpermi2b %2, zmm9, zmm10
+        vmovdqa64 zmm1, [cfv_hi_ %+ %1]
+        vpermb  %2{%3}, zmm1, zmm11
+%endmacro
+
+; CFV_BLOCK: 64 triangles, vertex numbers at rdx, facing at rdi, k4 the
+; triangles that exist.
+%macro CFV_BLOCK 0
+        CFV_GROUP rdx, zmm9
+        CFV_GROUP rdx + 256, zmm10
+        CFV_GROUP rdx + 512, zmm11
+        CFV_DEINTERLEAVE 0, zmm0, k5
+        CFV_DEINTERLEAVE 1, zmm2, k5
+        CFV_DEINTERLEAVE 2, zmm3, k6
+        vpternlogd zmm0, zmm2, zmm3, 0x80       ; c = c0 & c1 & c2
+        vmovdqu8 zmm1{k4}{z}, [rdi]             ; only the bytes that exist
+        vptestnmb k1{k4}, zmm1, zmm1            ; facing == 0
+        vptestmb k1{k1}, zmm0, zmm0             ; and c != 0
+        vmovdqu8 [rdi]{k1}, zmm15               ; facing = 1
+%endmacro
+
+; CFV_CLAMP reg, hi, scratch: reg = min(max(reg, 0), hi) (signed).
+%macro CFV_CLAMP 3
+        xor     %3, %3
+        cmp     %1, %3
+        cmovl   %1, %3
+        mov     %3, %2
+        cmp     %1, %3
+        cmovg   %1, %3
+%endmacro
+
+FUNCTION sv_count_facing_cull_avx512vbmi
+        mov     eax, arg2d                      ; numTriangles
+        test    eax, eax
+        jle     .zero                           ; negative or zero: touch nothing
+
+        ; 0. M, the largest vertex number (unsigned)
+        lea     r8, [rax+rax*2]                 ; vertex numbers
+        xor     r9d, r9d
+        vpxord  xmm0, xmm0, xmm0
+        vpxord  xmm1, xmm1, xmm1
+        mov     r10, r8
+        sub     r10, 32
+        jb      .max_tail
+.max_loop:
+        vpmaxud zmm0, zmm0, [rdx+r9*4]
+        vpmaxud zmm1, zmm1, [rdx+r9*4+64]
+        add     r9, 32
+        sub     r10, 32
+        jae     .max_loop
+.max_tail:
+        add     r10, 32                         ; 0-31 left
+        mov     r11, -1
+        bzhi    r11, r11, r10
+        kmovd   k1, r11d
+        kshiftrd k2, k1, 16
+        vmovdqu32 zmm2{k1}{z}, [rdx+r9*4]       ; only the numbers that exist
+        vmovdqu32 zmm3{k2}{z}, [rdx+r9*4+64]
+        vpmaxud zmm0, zmm0, zmm2
+        vpmaxud zmm1, zmm1, zmm3
+        vpmaxud zmm0, zmm0, zmm1
+        vextracti64x4 ymm1, zmm0, 1
+        vpmaxud ymm0, ymm0, ymm1
+        vextracti128 xmm1, ymm0, 1
+        vpmaxud xmm0, xmm0, xmm1
+        vpshufd xmm1, xmm0, SHUFFLE_D(2, 3, 0, 1)
+        vpmaxud xmm0, xmm0, xmm1
+        vpshufd xmm1, xmm0, SHUFFLE_D(1, 0, 3, 2)
+        vpmaxud xmm0, xmm0, xmm1
+        vmovd   r9d, xmm0                       ; M
+        cmp     r9d, CFV_MAX_VERTS - 1
+        ja      .list                           ; beyond the registers
+
+        ; 1. cullBits[0 .. M] into zmm16-zmm31, zeros after
+        lea     r10, [r9+1]                     ; bytes of the table
+%assign j 0
+%rep 16
+        mov     r11, r10
+        sub     r11, 64*j                       ; bytes of it from 64 j on
+        CFV_CLAMP r11, 64, r9
+        mov     r9, -1
+        bzhi    r9, r9, r11                     ; (0 to 64: no wrap of bzhi's count)
+        kmovq   k1, r9
+%assign reg 16+j
+        vmovdqu8 zmm%[reg]{k1}{z}, [rcx+64*j]
+%assign j j+1
+%endrep
+
+        push    r12
+        push    r13
+        push    rbp
+        mov     rbp, rsp
+        sub     rsp, 768                        ; the tail's 192 vertex numbers
+        and     rsp, -64
+        mov     r12, rdi
+        mov     r13d, eax
+        vmovdqa64 zmm12, [cfv_pick]
+        vmovdqa64 zmm15, [cfv_one]
+        mov     r9, -1
+        shl     r9, 43
+        kmovq   k5, r9                          ; t >= 43: 3t + k >= 128 (k = 0, 1)
+        mov     r9, -1
+        shl     r9, 42
+        kmovq   k6, r9                          ; t >= 42 (k = 2)
+        kxnorq  k4, k0, k0                      ; every triangle of a block exists
+
+        ; 2. blocks of 64 triangles
+        mov     r8, rax
+        sub     r8, 64
+        jb      .tail
+.block:
+        CFV_BLOCK
+        add     rdx, 768
+        add     rdi, 64
+        sub     r8, 64
+        jae     .block
+.tail:
+        add     r8, 64                          ; 1-63 left, or 0
+        jz      .count
+        lea     r9, [r8+r8*2]                   ; their vertex numbers
+%assign q 0
+%rep 12
+        mov     r10, r9
+        sub     r10, 16*q
+        CFV_CLAMP r10, 16, r11
+        mov     r11d, -1
+        bzhi    r11d, r11d, r10d
+        kmovw   k1, r11d
+        vmovdqu32 zmm0{k1}{z}, [rdx+64*q]       ; nothing past the array
+        vmovdqa64 [rsp+64*q], zmm0
+%assign q q+1
+%endrep
+        mov     r11, -1
+        bzhi    r11, r11, r8
+        kmovq   k4, r11                         ; the r triangles that exist
+        mov     rdx, rsp
+        CFV_BLOCK
+
+        ; 3. the count
+.count:
+        mov     rdi, r12
+        mov     esi, r13d
+        mov     rsp, rbp
+        pop     rbp
+        pop     r13
+        pop     r12
+        jmp     sv_count_facing_avx512 wrt ..plt ; (vzeroupper there)
+
+.list:  ; same arguments, untouched
+        vzeroupper
+        jmp     sv_count_facing_cull_avx512 wrt ..plt
+
+.zero:
+        xor     eax, eax
+        ret
+ENDFUNCTION
