@@ -29,7 +29,7 @@ void svb_gather_lanes_ymm(const uint8_t *buf, long iters);
 namespace svbench {
 namespace {
 
-constexpr int kTries = 9;
+constexpr int kTries = 25;
 /* Operations per timed call: ~10^6, so the serialised TSC's own cost (up to
  * ~10^4 ticks where cpuid traps to a hypervisor) is about 1% of a call and
  * is subtracted besides. */

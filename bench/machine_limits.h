@@ -55,7 +55,7 @@ struct MachineLimits {
     double storeBytes = 0;       /* vector store bytes per tick, L1 */
 };
 
-/* Each primitive timed 9 times (one call of 2^20 loads, stores or gather
+/* Each primitive timed 25 times (one call of 2^20 loads, stores or gather
  * instructions each, the fences' cost subtracted); the fastest call
  * counts. The vector forms are the widest the CPU runs within the ISA
  * limit (sv_cpu_isa(): --isa, SV_ISA): zmm, ymm, or none without AVX2. */
