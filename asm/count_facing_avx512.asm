@@ -98,11 +98,13 @@ FUNCTION sv_count_facing_avx512
         add     rdi, 64
 .v0:
         and     eax, 63
-        mov     rdx, -1
-        bzhi    rdx, rdx, rax                   ; the low rax bits
-        kmovq   k1, rdx
-        vmovdqu8 zmm5{k1}{z}, [rdi]             ; reads only the bytes left
-        vpaddb  zmm1, zmm1, zmm5                ; lanes now <= 63 each
+        jz      .sum                            ; no bytes left: no load (a
+        mov     rdx, -1                         ; masked load that reaches a
+        bzhi    rdx, rdx, rax                   ; page not mapped or not yet
+        kmovq   k1, rdx                         ; touched costs hundreds of
+        vmovdqu8 zmm5{k1}{z}, [rdi]             ; ticks on Zen 5, even fully
+        vpaddb  zmm1, zmm1, zmm5                ; masked); lanes now <= 63
+.sum:
         vpaddb  zmm1, zmm1, zmm2
         vpaddb  zmm3, zmm3, zmm4
         vpaddb  zmm1, zmm1, zmm3                ; <= 252

@@ -17,8 +17,9 @@
 ;      tail call; same arguments), as soon as a block of 128 numbers shows
 ;      it (a full scan first cost large meshes 0.1-0.3 ticks per triangle
 ;      and made this variant slower than c_ref at 108k triangles and up).
-;   1. The table: cullBits[0 .. M] into zmm16-zmm31 with zero-masked loads
-;      (nothing past cullBits[M] is read; the rest is zero).
+;   1. The table: cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), the last
+;      load zero-masked (nothing past cullBits[M] is read); the registers
+;      above are not loaded, as no vertex number picks them.
 ;   2. Per block of 64 triangles, three groups of 64 vertex numbers: four
 ;      loads, two vpermt2b (one control vector) pick the low and the second
 ;      byte of every dword, two vshufi64x2 put them in L (bits 0-7 of the
@@ -31,15 +32,24 @@
 ;      vertex k of triangle t) by one vpermi2b over the first two groups and
 ;      a merge-masked vpermb from the third, per k; vpternlogd ANDs them;
 ;      vptestmb (c != 0) ANDed with vptestnmb of the facing bytes (== 0) is
-;      the mask of a masked store of 1s: only facing bytes that were 0 and
-;      are culled are written.
-;      The last 1-63 triangles: their 3 r vertex numbers are copied, zero
-;      padded, to the frame (masked loads) and run as a block whose facing
-;      bytes are masked to the r that exist.
+;      the mask of a masked store of 1s: on this path only facing bytes
+;      that were 0 and are culled are written (the list kernel, for M >=
+;      1024, also stores the 0 back into the others it looks up).
+;      The last 1-63 triangles: their 3 r vertex numbers are copied to the
+;      frame (masked loads, only as many 64-byte groups as hold them) and
+;      run as a block whose facing bytes are masked to the r that exist.
+;      Masked loads are never issued where they would load nothing: on the
+;      reference machine a masked load whose masked-off part lies on a page
+;      that is unmapped or not yet touched costs ~360 ticks, even when it
+;      reads no byte there (helper-13's measurement: M = 10 with cullBits
+;      ending at a page, 84 -> 5607 ticks before this was avoided). The
+;      partly masked loads at the ends of the arrays still pay it when the
+;      next page is absent; the other kernels' masked tails do too.
 ;   3. The count: a tail call of sv_count_facing_avx512.
-;   No data-dependent branch: the work is the same for every facing and
-;   cull pattern (all triangles are looked up, facing or not), and the only
-;   branch on the data is M's test, once per call. Gathers are not used: a
+;   No branch on the facing or cull data: the work is the same for every
+;   pattern (all triangles are looked up, facing or not). The only branch
+;   on the indices is the test of the running maximum, once per 128 vertex
+;   numbers and once at the end. Gathers are not used: a
 ;   vpgatherdd lane costs more than three scalar loads on the reference
 ;   machine (`bench --limits`).
 ;
@@ -51,16 +61,15 @@
 ;   eax  numTriangles; r8 triangles left; r9-r11 scratch
 ;   r12  facing, r13 numTriangles (kept for the count's tail call)
 ;   rbp  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
-;   zmm16-zmm31 cullBits[0 .. 1023] (zero past M)
+;   zmm16-zmm31 cullBits[0 .. 1023] (from M's register on: not loaded)
 ;   zmm0-zmm8 group scratch; zmm9-zmm11 the block's three groups of cull
 ;   bytes; zmm12 the byte-pick control; zmm15 64 bytes of 1
 ;   k1-k3 a group's bits 7-9, then the store mask; k4 the block's existing
 ;   triangles; k5, k6 the de-interleave's third-group lanes
 ;
 ; Contracts: facing bytes 0 or 1 (only 0 is culled; the count sums bytes);
-;   vertex numbers valid indices into cullBits (non-negative ints; a number
-;   of 2^31 or more read as unsigned goes to the list kernel, which reads
-;   it as the C does); all 8 cull bits count. No alignment.
+;   vertex numbers valid indices into cullBits (non-negative ints, as the
+;   checked entry point requires); all 8 cull bits count. No alignment.
 ;   numTriangles >= 0 (negative or zero: returns 0, touches nothing).
 ;   Reads exactly facing[0 .. n-1], indices[0 .. 3n-1] and cullBits[0 ..
 ;   M]; writes only facing bytes that were 0. Needs AVX512_VBMI (vpermb,
@@ -198,16 +207,6 @@ cfv_hi_ %+ k:
         vmovdqu8 [rdi]{k1}, zmm15               ; facing = 1
 %endmacro
 
-; CFV_CLAMP reg, hi, scratch: reg = min(max(reg, 0), hi) (signed).
-%macro CFV_CLAMP 3
-        xor     %3, %3
-        cmp     %1, %3
-        cmovl   %1, %3
-        mov     %3, %2
-        cmp     %1, %3
-        cmovg   %1, %3
-%endmacro
-
 FUNCTION sv_count_facing_cull_avx512vbmi
         mov     eax, arg2d                      ; numTriangles
         test    eax, eax
@@ -253,14 +252,18 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         jae     .max_loop
 .max_tail:
         add     r10, 32                         ; 0-31 left
-        mov     r11, -1
-        bzhi    r11, r11, r10
-        kmovd   k1, r11d
-        kshiftrd k2, k1, 16
-        vmovdqu32 zmm2{k1}{z}, [rdx+r9*4]       ; only the numbers that exist
-        vmovdqu32 zmm3{k2}{z}, [rdx+r9*4+64]
+        jz      .max_reduce                     ; none: no load at all (a
+        mov     r11, -1                         ; masked load over a page that
+        bzhi    r11, r11, r10                   ; is unmapped or never touched
+        kmovd   k1, r11d                        ; costs ~360 ticks here, even
+        vmovdqu32 zmm2{k1}{z}, [rdx+r9*4]       ; fully masked)
         vpmaxud zmm0, zmm0, zmm2
+        cmp     r10, 16
+        jbe     .max_reduce                     ; none in the second vector
+        kshiftrd k2, k1, 16
+        vmovdqu32 zmm3{k2}{z}, [rdx+r9*4+64]
         vpmaxud zmm1, zmm1, zmm3
+.max_reduce:
         vpmaxud zmm0, zmm0, zmm1
         vextracti64x4 ymm1, zmm0, 1
         vpmaxud ymm0, ymm0, ymm1
@@ -274,20 +277,29 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         cmp     r9d, CFV_MAX_VERTS - 1
         ja      .list                           ; beyond the registers
 
-        ; 1. cullBits[0 .. M] into zmm16-zmm31, zeros after
-        lea     r10, [r9+1]                     ; bytes of the table
+        ; 1. cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), the last one
+        ;    zero-masked past M. The registers above are not loaded: no
+        ;    vertex number picks them (and no load touches memory past
+        ;    cullBits[M] that a masked load would pay for, see above).
+        lea     r10, [r9+1]                     ; bytes of the table, 1-1024
 %assign j 0
 %rep 16
         mov     r11, r10
         sub     r11, 64*j                       ; bytes of it from 64 j on
-        CFV_CLAMP r11, 64, r9
-        mov     r9, -1
-        bzhi    r9, r9, r11                     ; (0 to 64: no wrap of bzhi's count)
+%if j > 0
+        jle     .tables_done
+%endif
+        mov     r9d, 64
+        cmp     r11, r9
+        cmova   r11, r9                         ; at most 64 (bzhi's count:
+        mov     r9, -1                          ; its low 8 bits only)
+        bzhi    r9, r9, r11
         kmovq   k1, r9
 %assign reg 16+j
         vmovdqu8 zmm%[reg]{k1}{z}, [rcx+64*j]
 %assign j j+1
 %endrep
+.tables_done:
 
         push    r12
         push    r13
@@ -320,12 +332,17 @@ FUNCTION sv_count_facing_cull_avx512vbmi
 .tail:
         add     r8, 64                          ; 1-63 left, or 0
         jz      .count
-        lea     r9, [r8+r8*2]                   ; their vertex numbers
+        lea     r9, [r8+r8*2]                   ; their vertex numbers, 3-189
 %assign q 0
 %rep 12
         mov     r10, r9
         sub     r10, 16*q
-        CFV_CLAMP r10, 16, r11
+%if q > 0
+        jle     .tail_copied                    ; (the frame's lanes past them:
+%endif                                          ;  triangles k4 leaves out)
+        mov     r11d, 16
+        cmp     r10, r11
+        cmova   r10, r11                        ; at most 16
         mov     r11d, -1
         bzhi    r11d, r11d, r10d
         kmovw   k1, r11d
@@ -333,6 +350,7 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         vmovdqa64 [rsp+64*q], zmm0
 %assign q q+1
 %endrep
+.tail_copied:
         mov     r11, -1
         bzhi    r11, r11, r8
         kmovq   k4, r11                         ; the r triangles that exist
