@@ -299,8 +299,8 @@ TEST(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.CullTable");
     for (const sv_variant *v : runnable_variants()) {
-        for (int maxV : {0, 1, 63, 64, 127, 128, 255, 256, 511, 512, 767, 895, 896, 1023, 1024,
-                         1025, 5000}) {
+        for (int maxV : {0, 1, 63, 64, 127, 128, 191, 192, 255, 256, 383, 384, 511, 512, 575,
+                         576, 767, 831, 832, 895, 896, 959, 960, 1023, 1024, 1025, 5000}) {
             for (int n : {1, 2, 63, 64, 65, 127, 128, 191, 200, 1344}) {
                 std::vector<uint8_t> facing = random_facing(rng, n);
                 std::vector<int> indices((size_t)3 * n);
