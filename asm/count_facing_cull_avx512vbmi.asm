@@ -17,9 +17,11 @@
 ;      tail call; same arguments), as soon as a block of 128 numbers shows
 ;      it (a full scan first cost large meshes 0.1-0.3 ticks per triangle
 ;      and made this variant slower than c_ref at 108k triangles and up).
-;   1. The table: cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), the last
-;      load zero-masked (nothing past cullBits[M] is read); the registers
-;      above are not loaded, as no vertex number picks them.
+;   1. The table: cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), plain
+;      loads; the last, partial register is the 64 bytes ending at
+;      cullBits[M] moved into place by vpermb (a masked load only when the
+;      whole table is under 64 bytes). The registers above are not loaded:
+;      no vertex number picks them.
 ;   2. Per block of 64 triangles, three groups of 64 vertex numbers: four
 ;      loads, two vpermt2b (one control vector) pick the low and the second
 ;      byte of every dword, two vshufi64x2 put them in L (bits 0-7 of the
@@ -35,16 +37,20 @@
 ;      the mask of a masked store of 1s: on this path only facing bytes
 ;      that were 0 and are culled are written (the list kernel, for M >=
 ;      1024, also stores the 0 back into the others it looks up).
-;      The last 1-63 triangles: their 3 r vertex numbers are copied to the
-;      frame (masked loads, only as many 64-byte groups as hold them) and
-;      run as a block whose facing bytes are masked to the r that exist.
-;      Masked loads are never issued where they would load nothing: on the
-;      reference machine a masked load whose masked-off part lies on a page
-;      that is unmapped or not yet touched costs ~360 ticks, even when it
-;      reads no byte there (helper-13's measurement: M = 10 with cullBits
-;      ending at a page, 84 -> 5607 ticks before this was avoided). The
-;      partly masked loads at the ends of the arrays still pay it when the
-;      next page is absent; the other kernels' masked tails do too.
+;      The last 1-63 triangles: with n >= 64, the last 64 triangles run as
+;      one more block, overlapping the one before, with plain loads and k4
+;      keeping the r new ones; with n < 64, their 3 n vertex numbers are
+;      copied to the frame (masked loads, only as many 64-byte groups as
+;      hold them). The maximum's last numbers are likewise the 32 ending
+;      the array, read again.
+;      Why so few masked loads: on the reference machine a masked load
+;      whose masked-off part lies on a page that is unmapped or not yet
+;      touched costs ~360 ticks, even when it reads no byte there
+;      (helper-13's measurements, arrays ending at such a page: M = 10,
+;      84 -> 5607 ticks with a load per register; 1345 triangles, 630 ->
+;      5502). Left: a table under 64 bytes and meshes under 64 triangles
+;      (M = 10 there: 420 ticks against 21). The other AVX-512 kernels'
+;      masked tails still pay it.
 ;   3. The count: a tail call of sv_count_facing_avx512.
 ;   No branch on the facing or cull data: the work is the same for every
 ;   pattern (all triangles are looked up, facing or not). The only branch
@@ -61,7 +67,8 @@
 ;   eax  numTriangles; r8 triangles left; r9-r11 scratch
 ;   r12  facing, r13 numTriangles (kept for the count's tail call)
 ;   rbp  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
-;   zmm16-zmm31 cullBits[0 .. 1023] (from M's register on: not loaded)
+;   zmm16-zmm31 cullBits[0 .. 1023] (above M's register: not loaded);
+;   zmm13 the last table register's realignment
 ;   zmm0-zmm8 group scratch; zmm9-zmm11 the block's three groups of cull
 ;   bytes; zmm12 the byte-pick control; zmm15 64 bytes of 1
 ;   k1-k3 a group's bits 7-9, then the store mask; k4 the block's existing
@@ -119,6 +126,12 @@ cfv_pick:
 cfv_last: dd CFV_MAX_VERTS - 1
 align 64
 cfv_one: times 64 db 1
+cfv_iota:
+%assign i 0
+%rep 64
+        db i
+%assign i i+1
+%endrep
 cfv_two: times 64 db 2
 ; De-interleave: vertex k of triangle t is byte s = 3t + k of the block's
 ; 192 cull bytes (groups G0 | G1 | G2). cfv_lo_k: s for s < 128 (vpermi2b
@@ -211,6 +224,42 @@ cfv_hi_ %+ k:
         vmovdqu8 [rdi]{k1}, zmm15               ; facing = 1
 %endmacro
 
+; CFV_TABLE j: register 16 + j of the table; r10 = M + 1 bytes in all. A
+; whole register: one plain load. The last, partial one (1-63 bytes left):
+; for j > 0 the 64 bytes ending at cullBits[M] (M >= 64 here) are loaded
+; without a mask and moved into place by vpermb (byte b of the register is
+; byte b + 64 - left of the load; the bytes past M get garbage, never
+; picked); for j = 0 (M < 63: the table is shorter than a register) a
+; zero-masked load of the M + 1 bytes is the only way.
+%macro CFV_TABLE 1
+%assign reg 16+%1
+        mov     r11, r10
+        sub     r11, 64*%1                      ; bytes of it from 64 j on
+%if %1 > 0
+        jle     .tables_done                    ; none: the registers above M's
+%endif                                          ; are never picked, not loaded
+        cmp     r11, 64
+        jb      %%last
+        vmovdqu8 zmm%[reg], [rcx+64*%1]
+        jmp     %%next
+%%last:
+%if %1 == 0
+        mov     r9, -1
+        bzhi    r9, r9, r11                     ; (1-63: bzhi reads 8 bits of it)
+        kmovq   k1, r9
+        vmovdqu8 zmm%[reg]{k1}{z}, [rcx]
+%else
+        mov     r9d, 64
+        sub     r9d, r11d                       ; 64 - left
+        vpbroadcastb zmm13, r9d
+        vpaddb  zmm13, zmm13, [cfv_iota]
+        vmovdqu8 zmm%[reg], [rcx+r10-64]        ; cullBits[M - 63 .. M]
+        vpermb  zmm%[reg], zmm13, zmm%[reg]
+%endif
+        jmp     .tables_done
+%%next:
+%endmacro
+
 FUNCTION sv_count_facing_cull_avx512vbmi
         mov     eax, arg2d                      ; numTriangles
         test    eax, eax
@@ -256,7 +305,13 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         jae     .max_loop
 .max_tail:
         add     r10, 32                         ; 0-31 left
-        jz      .max_reduce                     ; none: no load at all (a
+        jz      .max_reduce                     ; none: no load at all
+        cmp     r8, 32
+        jb      .max_masked
+        vpmaxud zmm0, zmm0, [rdx+r8*4-128]      ; the last 32 numbers, some
+        vpmaxud zmm1, zmm1, [rdx+r8*4-64]       ; seen already: no mask needed
+        jmp     .max_reduce
+.max_masked:                                    ; under 32 numbers in all: (a
         mov     r11, -1                         ; masked load over a page that
         bzhi    r11, r11, r10                   ; is unmapped or never touched
         kmovd   k1, r11d                        ; costs ~360 ticks here, even
@@ -281,26 +336,11 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         cmp     r9d, CFV_MAX_VERTS - 1
         ja      .list                           ; beyond the registers
 
-        ; 1. cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), the last one
-        ;    zero-masked past M. The registers above are not loaded: no
-        ;    vertex number picks them (and no load touches memory past
-        ;    cullBits[M] that a masked load would pay for, see above).
+        ; 1. cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64) (CFV_TABLE)
         lea     r10, [r9+1]                     ; bytes of the table, 1-1024
 %assign j 0
 %rep 16
-        mov     r11, r10
-        sub     r11, 64*j                       ; bytes of it from 64 j on
-%if j > 0
-        jle     .tables_done
-%endif
-        mov     r9d, 64
-        cmp     r11, r9
-        cmova   r11, r9                         ; at most 64 (bzhi's count:
-        mov     r9, -1                          ; its low 8 bits only)
-        bzhi    r9, r9, r11
-        kmovq   k1, r9
-%assign reg 16+j
-        vmovdqu8 zmm%[reg]{k1}{z}, [rcx+64*j]
+        CFV_TABLE j
 %assign j j+1
 %endrep
 .tables_done:
@@ -336,6 +376,22 @@ FUNCTION sv_count_facing_cull_avx512vbmi
 .tail:
         add     r8, 64                          ; 1-63 left, or 0
         jz      .count
+        cmp     r13d, 64
+        jb      .tail_small
+        ; n >= 64: the last 64 triangles, overlapping the block before, with
+        ; plain loads; k4 keeps the r that are new
+        lea     r9, [r8-64]                     ; r - 64 (< 0)
+        add     rdi, r9                         ; facing of triangle n - 64
+        lea     r9, [r9+r9*2]
+        lea     rdx, [rdx+r9*4]                 ; its vertex numbers
+        mov     r10d, 64
+        sub     r10d, r8d
+        mov     r11, -1
+        shlx    r11, r11, r10                   ; the top r bits
+        kmovq   k4, r11
+        CFV_BLOCK
+        jmp     .count
+.tail_small:                                    ; n < 64: through the frame
         lea     r9, [r8+r8*2]                   ; their vertex numbers, 3-189
 %assign q 0
 %rep 12
