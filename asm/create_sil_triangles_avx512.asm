@@ -11,9 +11,10 @@
 ;   facing lookups are done sixteen edges at a time in vector registers,
 ;   and only the silhouette edges (12-20% of them on a character) are
 ;   written. Chunks of up to 448 edges, three passes each:
-;   A. Pairs: four loads take 16 edges, two vpermi2q their (p1, p2) qwords,
-;      which go to the stack; vpminud / vpmaxud keep the chunk's lowest and
-;      highest triangle number lo, hi.
+;   A. Triangle numbers: four loads take 16 edges; two vpermi2d and two
+;      vshufi64x2 make P1 (their p1, one per lane) and P2, which go to the
+;      stack; vpminud / vpmaxud keep the chunk's lowest and highest
+;      triangle number lo, hi.
 ;   B. Lists: when hi - (lo rounded down to 64) < 2048, the facing bytes
 ;      lo64 .. hi are in a circular bitmap of 2048 bits in zmm28-zmm31
 ;      (byte p at bit p mod 2048: vptestmb per 64 bytes, the last load
@@ -26,11 +27,14 @@
 ;      (the bit to bit 0; the rotate takes the count mod 32), vptestmd.
 ;      On the reference machine (AMD Zen 5 class) this is the cheap way:
 ;      vpgatherdd zmm costs about 13 cycles for 16 lanes whatever the mask,
-;      and blocks the load ports meanwhile. F1, F2 (bit t: f1, f2 of edge
-;      t), S = F1 ^ F2;
-;      vpcompressd (to a register: the memory form is several times slower
-;      on Zen) packs the byte offsets of the silhouette edges and 64 * f1
-;      into two lists on the stack; popcnt advances them.
+;      and blocks the load ports meanwhile. The lookups of P1 and P2 are
+;      the masks F1, F2 (bit t: f1, f2 of edge t) and S = F1 ^ F2 is one
+;      kxorw (splitting one interleaved mask with pext, as before, cost six
+;      instructions and two mask-GPR trips more per 16 edges:
+;      ~1680 -> ~1600 ticks on the character); vpcompressd (to a register:
+;      the memory form is several times slower on Zen) packs the byte
+;      offsets of the silhouette edges and 64 * f1 into two lists on the
+;      stack; popcnt advances them.
 ;      A chunk spanning more triangles (large meshes, whose SilEdges,
 ;      sorted by p1, meet far-away p2) is handed whole to
 ;      sv_create_sil_triangles_avx2 (scalar lookups), an ordinary call:
@@ -62,16 +66,17 @@
 ; zmm25, zmm27-zmm31 reloaded):
 ;   rdi  facing; rdx the chunk's edges; rax edges after this chunk
 ;   r8   output pointer; r12 edges in the chunk; r13 list length
-;   r14  0x55555555 (pext: even bits); r15 the ^1 pattern table
-;   rbx  block counter; r11 offset of
-;        the block's pairs; rcx, rsi, r10 scratch (F1, F2, S)
+;   r15  the ^1 pattern table; r14, rcx, rsi, r10 scratch
+;   rbx  block counter; r11 offset of the block's P1, P2
 ;   rbp  the frame: rsp 64-byte aligned below it; shadowIndices and the
 ;        bitmap's window [lo64, end) in its first slots
-;   zmm0-zmm3 16 edges; zmm4, zmm5 their (p1, p2) pairs; zmm6-zmm9 lookup
-;   scratch; zmm10, zmm11 list entries; zmm12-zmm15 min / max; zmm25 pass
-;   C's permute; zmm26 byte offsets of the block's
-;   edges; zmm27 (p1, p2) qword picks; zmm28-zmm31 the bitmap
-;   k1-k6 scratch; k6 twelve ints and k7 six ints in pass C
+;   zmm0-zmm3 16 edges; zmm4, zmm5 their p1 / p2 halves (pass A), then
+;   P1, P2 (pass B); zmm6, zmm7 P1, P2 (pass A), zmm6-zmm9 lookup scratch
+;   (pass B); zmm10, zmm11 list entries; zmm12-zmm15 min / max; zmm25 pass
+;   C's permute; zmm26 byte offsets of the block's edges; zmm27 the p1 / p2
+;   dword picks; zmm28-zmm31 the bitmap
+;   k1 F1, k2 F2, k3 S, k4-k6 scratch; k6 twelve ints and k7 six ints in
+;   pass C
 ;
 ; Contracts: facing bytes 0 or 1 (only bit 0 is looked up); v1, v2 even
 ;   (v ^ 1 = v + 1, as in appendix E); 0 <= p1, p2 <= numTriangles
@@ -106,8 +111,17 @@ extern sv_create_sil_triangles_avx2
 
 section .rodata align=64
 align 64
-sil_qpick_p:                            ; the (p1, p2) qword of each edge
-        dq 0, 2, 4, 6, 8, 10, 12, 14
+sil_pick_p:                             ; over 2 zmm of 8 edges: their p1, then p2
+%assign j 0
+%rep 8
+        dd 4*j
+%assign j j+1
+%endrep
+%assign j 0
+%rep 8
+        dd 4*j + 1
+%assign j j+1
+%endrep
 sil_off:                                ; byte offsets of edges 0-15
 %assign i 0
 %rep 16
@@ -166,8 +180,9 @@ sil_c256: dd 256
 %define SIL_FRAME   (SIL_LB + (SIL_CHUNK + 16) * 4)
 
 ; Pass A over one block of 16 edges at rbx (%1 = 1: the last 1-15 edges,
-; rcx = their number): their (p1, p2) pairs to [rsp+SIL_PP+r11], their
-; minima into zmm14, zmm15 and maxima into zmm12, zmm13.
+; rcx = their number): P1 (p1 of edges 0-15) to [rsp+SIL_PP+r11] and P2
+; (their p2) to the next 64 bytes; their minima into zmm14, zmm15 and
+; maxima into zmm12, zmm13.
 %macro SIL_PAIRS 1
 %if %1 == 0
         vmovdqu32 zmm0, [rbx+0*64]
@@ -175,10 +190,10 @@ sil_c256: dd 256
         vmovdqu32 zmm2, [rbx+2*64]
         vmovdqu32 zmm3, [rbx+3*64]
 %else
-        shl     ecx, 2                          ; dwords left (<= 60)
-        mov     r10, -1
-        bzhi    r10, r10, rcx
-        kmovq   k1, r10
+        lea     r10d, [rcx*4]                   ; dwords left (<= 60)
+        mov     r14, -1
+        bzhi    r14, r14, r10
+        kmovq   k1, r14
         kshiftrq k2, k1, 16
         kshiftrq k3, k1, 32
         kshiftrq k4, k1, 48
@@ -186,27 +201,27 @@ sil_c256: dd 256
         vmovdqu32 zmm1{k2}{z}, [rbx+1*64]
         vmovdqu32 zmm2{k3}{z}, [rbx+2*64]
         vmovdqu32 zmm3{k4}{z}, [rbx+3*64]
-        shr     ecx, 1                          ; pair dwords left (<= 30)
         mov     r10d, -1
         bzhi    r10d, r10d, ecx
-        kmovd   k1, r10d
-        kshiftrd k2, k1, 16
+        kmovw   k1, r10d                        ; the edges that exist
 %endif
         vmovdqa64 zmm4, zmm27
         vmovdqa64 zmm5, zmm27
-        vpermi2q zmm4, zmm0, zmm1               ; (p1, p2) of edges 0-7
-        vpermi2q zmm5, zmm2, zmm3               ; (p1, p2) of edges 8-15
-        vpmaxud zmm12, zmm12, zmm4
-        vpmaxud zmm13, zmm13, zmm5
+        vpermi2d zmm4, zmm0, zmm1               ; p1 of edges 0-7, then their p2
+        vpermi2d zmm5, zmm2, zmm3               ; of edges 8-15
+        vshufi64x2 zmm6, zmm4, zmm5, 0x44       ; P1
+        vshufi64x2 zmm7, zmm4, zmm5, 0xEE       ; P2
+        vpmaxud zmm12, zmm12, zmm6
+        vpmaxud zmm13, zmm13, zmm7
 %if %1 == 0
-        vpminud zmm14, zmm14, zmm4
-        vpminud zmm15, zmm15, zmm5
+        vpminud zmm14, zmm14, zmm6
+        vpminud zmm15, zmm15, zmm7
 %else
-        vpminud zmm14{k1}, zmm14, zmm4          ; the edges that exist
-        vpminud zmm15{k2}, zmm15, zmm5
+        vpminud zmm14{k1}, zmm14, zmm6          ; the edges that exist
+        vpminud zmm15{k1}, zmm15, zmm7
 %endif
-        vmovdqa64 [rsp+SIL_PP+r11+0], zmm4
-        vmovdqa64 [rsp+SIL_PP+r11+64], zmm5
+        vmovdqa64 [rsp+SIL_PP+r11+0], zmm6
+        vmovdqa64 [rsp+SIL_PP+r11+64], zmm7
 %endmacro
 
 ; The largest (%1 = vpmaxud) or smallest (vpminud) lane of zmm %2 | %3
@@ -239,15 +254,14 @@ sil_c256: dd 256
         vptestmd %2, %4, [sil_c1]{1to16}
 %endmacro
 
-; The two lists from F1 (ecx) and F2 (r10d) of the block: byte offsets of
-; the silhouette edges (zmm26: this block's) and 64 * f1, at r13.
+; The two lists from F1 (k1) and F2 (k2) of the block: byte offsets of the
+; silhouette edges (zmm26: this block's) and 64 * f1, at r13.
 %macro SIL_EMIT 0
-        xor     r10d, ecx                       ; S (a missing edge has p1 = p2)
-        kmovw   k3, r10d
-        kmovw   k4, ecx
+        kxorw   k3, k1, k2                      ; S (a missing edge has p1 = p2)
         vpcompressd zmm10{k3}{z}, zmm26         ; offsets of the silhouette edges
-        vpbroadcastd zmm11{k4}{z}, [sil_c64]    ; 64 * f1
+        vpbroadcastd zmm11{k1}{z}, [sil_c64]    ; 64 * f1
         vpcompressd zmm11{k3}{z}, zmm11
+        kmovw   r10d, k3
         vmovdqu32 [rsp+SIL_LA+r13*4], zmm10
         vmovdqu32 [rsp+SIL_LB+r13*4], zmm11
         popcnt  r10d, r10d
@@ -279,9 +293,8 @@ FUNCTION sv_create_sil_triangles_avx512
         xor     ecx, ecx
         mov     [rsp+SIL_WLO], rcx              ; no window yet
         mov     [rsp+SIL_WEND], rcx
-        vmovdqa64 zmm27, [sil_qpick_p]
+        vmovdqa64 zmm27, [sil_pick_p]
         vmovdqa64 zmm25, [sil_pair]
-        mov     r14d, 0x55555555
         lea     r15, [sil_pat2]
 
 .chunk:                                         ; rdx: the chunk's edges
@@ -369,15 +382,10 @@ FUNCTION sv_create_sil_triangles_avx512
         lea     rbx, [r12+15]
         shr     rbx, 4                          ; blocks (the last may be partial)
 .b_loop:
-        vmovdqa64 zmm4, [rsp+SIL_PP+r11+0]
-        vmovdqa64 zmm5, [rsp+SIL_PP+r11+64]
-        SIL_BITS zmm4, k1, zmm6, zmm7
-        SIL_BITS zmm5, k2, zmm8, zmm9
-        kunpckwd k1, k2, k1                     ; bit 2t: f1, 2t+1: f2 of edge t
-        kmovd   r10d, k1
-        pext    ecx, r10d, r14d                 ; F1
-        shr     r10d, 1
-        pext    r10d, r10d, r14d                ; F2
+        vmovdqa64 zmm4, [rsp+SIL_PP+r11+0]      ; P1
+        vmovdqa64 zmm5, [rsp+SIL_PP+r11+64]     ; P2
+        SIL_BITS zmm4, k1, zmm6, zmm7           ; F1: bit t = f1 of edge t
+        SIL_BITS zmm5, k2, zmm8, zmm9           ; F2
         SIL_EMIT
         add     r11, 128
         sub     rbx, 1
@@ -403,7 +411,7 @@ FUNCTION sv_create_sil_triangles_avx512
         mov     rax, [rsp+SIL_SAVE_AFTER]
         mov     rdx, [rsp+SIL_SAVE_EDGES]
         mov     rdi, [rsp+SIL_SAVE_FACING]
-        vmovdqa64 zmm27, [sil_qpick_p]
+        vmovdqa64 zmm27, [sil_pick_p]
         vmovdqa64 zmm25, [sil_pair]
         vmovdqa64 zmm28, [rsp+SIL_BM+0*64]      ; the window, as it was
         vmovdqa64 zmm29, [rsp+SIL_BM+1*64]
