@@ -93,10 +93,10 @@
 ;   class), TSC 2.097 GHz, ticks):
 ;   moving light 1638 / 1680 for 2016 SilEdges, 12% on the silhouette
 ;   (sse2_paper 3339 / 3381, c_ref 2121 / 2226); fixed light 1596 / 1638
-;   (sse2_paper 3339 / 3360). Per SilEdge about 0.8 ticks. Commit 2aba4d5
-;   (`bench --limits --regime moving`): 1554 / 1596 (sse2_paper 3297 /
-;   3339, c_ref 2079 / 2205); the floor of a kernel that looks facing up
-;   with loads is 795 there (`--limits`). Larger meshes (commit 6e7482c,
+;   (sse2_paper 3339 / 3360). Per SilEdge about 0.8 ticks. Commit 47e1ddb
+;   (P1 / P2 split; `bench --limits`): 1323 / 1386, 0.69 ticks per edge
+;   (sse2_paper 3360 / 3381, c_ref 2079 / 2226); fixed light 1323 / 1365;
+;   the floor of a kernel that looks facing up with loads is 716 there. Larger meshes (commit 6e7482c,
 ;   `bench --scaling --routine create_sil_triangles`, median per SilEdge,
 ;   avx512 / avx2 / c_ref): spot.glb 0.77 / 0.77 / 1.39, koala.glb 0.94 /
 ;   0.94 / 1.52, the 979776-triangle character 0.83 / 0.89 / 0.95: above
