@@ -559,9 +559,9 @@ int bench_main(int argc, char **argv) {
 
         run.machine = measure_machine(timer_of(c), c.timer == "auto", c.quick ? 1000 : 5000, 0.05);
         print_run_header(out, run);
-        MachineLimits limits;
         if (c.limits) {
-            limits = measure_machine_limits();
+            run.limits = measure_machine_limits();
+            run.limitsMeasured = true;
         }
         for (ModelRun &m : run.models) {
             TableOptions o = run.options;
@@ -571,7 +571,7 @@ int bench_main(int argc, char **argv) {
             m.table = run_cycle_table(o, run.machine, m.workload);
             print_model(out, run, m);
             if (c.limits) {
-                print_limits(out, limits, m.workload, m.table);
+                print_limits(out, run.limits, m.workload, m.table);
             }
         }
         print_notes(out, run);

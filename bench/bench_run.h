@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cycle_table.h"
+#include "machine_limits.h"
 #include "workload.h"
 
 namespace svbench {
@@ -37,6 +38,8 @@ struct BenchRun {
     std::vector<SkippedVariant> skipped;
     std::string realModels; /* where the real characters are, and whether they run */
     std::vector<ModelRun> models;
+    bool limitsMeasured = false; /* --limits */
+    MachineLimits limits;
 };
 
 /* Rows that failed their check, over all models. */

@@ -181,6 +181,50 @@ void result(JsonWriter &j, const ModelRun &m, const Row &r, uint64_t step) {
     j.end_object();
 }
 
+/* "limits" (--limits): the machine's rates and, per model, each routine's
+ * floor (machine_limits.h). */
+void limits(JsonWriter &j, const BenchRun &run) {
+    const MachineLimits &l = run.limits;
+    j.key("limits");
+    j.begin_object();
+    j.key("vector");
+    j.value(l.vector);
+    j.key("scalar_loads_per_tick");
+    j.value(l.scalarLoads);
+    j.key("gather_lanes_per_tick");
+    j.value(l.gatherLanes);
+    j.key("l1_load_bytes_per_tick");
+    j.value(l.l1LoadBytes);
+    j.key("l2_load_bytes_per_tick");
+    j.value(l.l2LoadBytes);
+    j.key("l2_buffer_bytes");
+    j.value((unsigned long long)l.l2Buffer);
+    j.key("store_bytes_per_tick");
+    j.value(l.storeBytes);
+    j.key("floors");
+    j.begin_array();
+    for (const ModelRun &mr : run.models) {
+        for (const RoutineFloor &f : routine_floors(l, mr.workload, mr.table)) {
+            j.begin_object(true);
+            j.key("model");
+            j.value(mr.workload.name);
+            j.key("routine");
+            j.value(routine_name(f.routine));
+            j.key("floor_ticks");
+            j.value(f.ticks);
+            j.key("load_port_ticks");
+            j.value(f.loadPorts);
+            j.key("lookup_ticks");
+            j.value(f.lookups);
+            j.key("store_port_ticks");
+            j.value(f.storePort);
+            j.end_object();
+        }
+    }
+    j.end_array();
+    j.end_object();
+}
+
 } // namespace
 
 void write_machine_fields(JsonWriter &j, const MachineTiming &m) {
@@ -299,6 +343,9 @@ std::string bench_json(const BenchRun &run) {
         }
     }
     j.end_array();
+    if (run.limitsMeasured) {
+        limits(j, run);
+    }
     j.end_object();
     return j.str();
 }

@@ -28,6 +28,13 @@
  *     checked         true when every call of the row matched the reference
  *   ]
  *
+ * With --limits, "limits": { vector ("zmm" | "ymm" | "none"),
+ * scalar_loads_per_tick, gather_lanes_per_tick, l1_load_bytes_per_tick,
+ * l2_load_bytes_per_tick, l2_buffer_bytes, store_bytes_per_tick, floors: [
+ * { model, routine, floor_ticks, load_port_ticks, lookup_ticks,
+ * store_port_ticks } per model and routine measured with the moving light;
+ * empty when vector is "none" ] } (machine_limits.h).
+ *
  * Beside them: build flags, overhead, options, per model the lights'
  * actual ratios ("models"), and per row the batch, the speed-up over c_ref
  * in the same regime, whether it is below the timer's noise, the paper's

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -353,6 +354,11 @@ protected:
                             dir_ + "/stdout.json' 2> '" + dir_ + "/stderr_table.txt'");
         stdoutJson_ = slurp(dir_ + "/stdout.json");
         stderrTable_ = slurp(dir_ + "/stderr_table.txt");
+        limitsStatus_ = run("'" + exe +
+                            "' bench --quick --limits --regime moving --routine count_facing "
+                            "--routine create_shadow_volume --json '" +
+                            dir_ + "/limits.json' > /dev/null 2> '" + dir_ + "/stderr_limits.txt'");
+        limitsJson_ = slurp(dir_ + "/limits.json");
     }
     static void TearDownTestSuite() {
         if (!dir_.empty()) {
@@ -366,12 +372,12 @@ protected:
         return doc;
     }
 
-    static std::string dir_, table_, text_, stdoutJson_, stderrTable_;
-    static int status_, stdoutStatus_;
+    static std::string dir_, table_, text_, stdoutJson_, stderrTable_, limitsJson_;
+    static int status_, stdoutStatus_, limitsStatus_;
 };
 std::string BenchJson::dir_, BenchJson::table_, BenchJson::text_, BenchJson::stdoutJson_,
-    BenchJson::stderrTable_;
-int BenchJson::status_ = -1, BenchJson::stdoutStatus_ = -1;
+    BenchJson::stderrTable_, BenchJson::limitsJson_;
+int BenchJson::status_ = -1, BenchJson::stdoutStatus_ = -1, BenchJson::limitsStatus_ = -1;
 
 TEST_F(BenchJson, QuickRunExitsZeroAndPrintsTheTable) {
     EXPECT_EQ(status_, 0) << slurp(dir_ + "/stderr.txt");
@@ -421,6 +427,45 @@ TEST_F(BenchJson, DashWritesTheDocumentToStdoutAndTheTableToStderr) {
     v.document(doc);
     EXPECT_TRUE(v.errors.empty()) << join(v.errors);
     EXPECT_NE(stderrTable_.find("regime: fixed light"), std::string::npos);
+}
+
+/* --limits adds "limits": the machine's rates and a floor per routine
+ * measured with the moving light (machine_limits.h); without it there is
+ * no such field. Nothing about the figures but their sense is asserted. */
+TEST_F(BenchJson, LimitsReportTheRatesAndAFloorPerRoutine) {
+    EXPECT_FALSE(document().contains("limits")) << "a run without --limits has \"limits\"";
+    ASSERT_EQ(limitsStatus_, 0) << slurp(dir_ + "/stderr_limits.txt");
+    const json doc = json::parse(limitsJson_, nullptr, false);
+    ASSERT_FALSE(doc.is_discarded()) << "not JSON:\n" << limitsJson_.substr(0, 2000);
+    Validator v;
+    v.document(doc);
+    EXPECT_TRUE(v.errors.empty()) << join(v.errors);
+    ASSERT_TRUE(doc.contains("limits") && doc.at("limits").is_object());
+    const json &l = doc.at("limits");
+    const std::string vec = l.value("vector", "");
+    ASSERT_TRUE(vec == "zmm" || vec == "ymm" || vec == "none") << l.dump();
+    EXPECT_GT(l.value("scalar_loads_per_tick", 0.0), 0.0) << l.dump();
+    ASSERT_TRUE(l.contains("floors") && l.at("floors").is_array()) << l.dump();
+    if (vec == "none") {
+        EXPECT_TRUE(l.at("floors").empty()) << "floors without the vector rates";
+        return;
+    }
+    for (const char *rate : {"gather_lanes_per_tick", "l1_load_bytes_per_tick",
+                             "l2_load_bytes_per_tick", "store_bytes_per_tick"}) {
+        EXPECT_GT(l.value(rate, 0.0), 0.0) << rate;
+    }
+    EXPECT_GE(l.value("l2_buffer_bytes", 0ull), 65536ull);
+    std::set<std::string> routines;
+    for (const json &f : l.at("floors")) {
+        EXPECT_EQ(f.value("model", ""), "character_1344.glb");
+        routines.insert(f.value("routine", ""));
+        const double floor = f.value("floor_ticks", -1.0), load = f.value("load_port_ticks", -1.0),
+                     lookup = f.value("lookup_ticks", -1.0), store = f.value("store_port_ticks", -1.0);
+        EXPECT_GT(floor, 0.0) << f.dump();
+        EXPECT_TRUE(lookup >= 0 && lookup <= load) << f.dump();
+        EXPECT_TRUE(store >= 0 && floor == std::max(load, store)) << f.dump();
+    }
+    EXPECT_EQ(routines, (std::set<std::string>{"count_facing", "create_shadow_volume"}));
 }
 
 /* The validator can fail: each broken copy of a good document is
