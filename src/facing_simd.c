@@ -53,17 +53,29 @@ static inline uint8_t cull_one(const Vec4 *v, const Plane planes[SV_NUM_LIGHT_PL
     return bits;
 }
 
-/* The planes the box test left (the ones each vertex must be tested
- * against) and their bit numbers; returns how many. */
-static int live_planes(int frontBits, const Plane planes[SV_NUM_LIGHT_PLANES],
-                       Plane live[SV_NUM_LIGHT_PLANES], int bit[SV_NUM_LIGHT_PLANES]) {
-    int n = 0;
+/* What every SIMD CalculateCullBits starts from (appendix B's box test):
+ * the light planes the surface box lies entirely in front of need no
+ * per-vertex test; the others ("live") and their bit numbers are listed. */
+typedef struct CullSetup {
+    int frontBits;
+    int nlive;
+    Plane lp[SV_NUM_LIGHT_PLANES];
+    int live[SV_NUM_LIGHT_PLANES];
+} CullSetup;
+
+/* 1 when the box is in front of every plane (the routine then returns 1
+ * and writes nothing, as the reference does); else 0, with S filled. */
+static int cull_setup(const Bounds *surfaceBounds, const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
+                      CullSetup *s) {
+    s->frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
+    if (s->frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
+    s->nlive = 0;
     for (int k = 0; k < SV_NUM_LIGHT_PLANES; k++) {
-        if (frontBits & (1 << k)) continue;
-        live[n] = planes[k];
-        bit[n++] = k;
+        if (s->frontBits & (1 << k)) continue;
+        s->lp[s->nlive] = lightPlanes[k];
+        s->live[s->nlive++] = k;
     }
-    return n;
+    return 0;
 }
 
 /* ---- SSE2 ---------------------------------------------------------------- */
@@ -107,18 +119,15 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
                                 uint8_t *cullBits) {
     if (numVerts < 0) return 0;
-    const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
-    if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
-    Plane lp[SV_NUM_LIGHT_PLANES];
-    int live[SV_NUM_LIGHT_PLANES];
-    const int nlive = live_planes(frontBits, lightPlanes, lp, live);
+    CullSetup cs;
+    if (cull_setup(surfaceBounds, lightPlanes, &cs)) return 1;
     __m128 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
         pd[SV_NUM_LIGHT_PLANES];
     __m128i bit[SV_NUM_LIGHT_PLANES];
-    for (int k = 0; k < nlive; k++) {
-        pa[k] = _mm_set1_ps(lp[k].a), pb[k] = _mm_set1_ps(lp[k].b);
-        pc[k] = _mm_set1_ps(lp[k].c), pd[k] = _mm_set1_ps(lp[k].d);
-        bit[k] = _mm_set1_epi32(1 << live[k]);
+    for (int k = 0; k < cs.nlive; k++) {
+        pa[k] = _mm_set1_ps(cs.lp[k].a), pb[k] = _mm_set1_ps(cs.lp[k].b);
+        pc[k] = _mm_set1_ps(cs.lp[k].c), pd[k] = _mm_set1_ps(cs.lp[k].d);
+        bit[k] = _mm_set1_epi32(1 << cs.live[k]);
     }
     const __m128 zero = _mm_setzero_ps();
     const float *v = &positions[0].x;
@@ -137,7 +146,7 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
                        _mm_loadu_ps(q + 12), x, y, z, w);
             (void)w;
             __m128i bits = _mm_setzero_si128();
-            for (int k = 0; k < nlive; k++) {
+            for (int k = 0; k < cs.nlive; k++) {
                 __m128 s = _mm_add_ps(_mm_mul_ps(pa[k], x), _mm_mul_ps(pb[k], y));
                 s = _mm_add_ps(s, _mm_mul_ps(pc[k], z));
                 s = _mm_add_ps(s, pd[k]);
@@ -149,7 +158,7 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
         const __m128i words = _mm_packs_epi32(acc[0], acc[1]);
         _mm_storel_epi64((__m128i *)(cullBits + j), _mm_packus_epi16(words, words));
     }
-    for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, frontBits);
+    for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, cs.frontBits);
     return 0;
 }
 
@@ -209,16 +218,13 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
                                                const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
                                                uint8_t *cullBits) {
     if (numVerts < 0) return 0;
-    const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
-    if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
-    Plane lp[SV_NUM_LIGHT_PLANES];
-    int live[SV_NUM_LIGHT_PLANES];
-    const int nlive = live_planes(frontBits, lightPlanes, lp, live);
+    CullSetup cs;
+    if (cull_setup(surfaceBounds, lightPlanes, &cs)) return 1;
     __m256 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
         pd[SV_NUM_LIGHT_PLANES];
-    for (int k = 0; k < nlive; k++) {
-        pa[k] = _mm256_set1_ps(lp[k].a), pb[k] = _mm256_set1_ps(lp[k].b);
-        pc[k] = _mm256_set1_ps(lp[k].c), pd[k] = _mm256_set1_ps(lp[k].d);
+    for (int k = 0; k < cs.nlive; k++) {
+        pa[k] = _mm256_set1_ps(cs.lp[k].a), pb[k] = _mm256_set1_ps(cs.lp[k].b);
+        pc[k] = _mm256_set1_ps(cs.lp[k].c), pd[k] = _mm256_set1_ps(cs.lp[k].d);
     }
     const __m256 zero = _mm256_setzero_ps();
     const float *v = &positions[0].x;
@@ -229,16 +235,16 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
                      z, w);
         (void)w;
         unsigned long long bytes = 0;
-        for (int k = 0; k < nlive; k++) {
+        for (int k = 0; k < cs.nlive; k++) {
             __m256 s = _mm256_add_ps(_mm256_mul_ps(pa[k], x), _mm256_mul_ps(pb[k], y));
             s = _mm256_add_ps(s, _mm256_mul_ps(pc[k], z));
             s = _mm256_add_ps(s, pd[k]);
             const unsigned m = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s, zero, _CMP_LT_OQ));
-            bytes |= _pdep_u64(m, 0x0101010101010101ull) << live[k];
+            bytes |= _pdep_u64(m, 0x0101010101010101ull) << cs.live[k];
         }
         memcpy(cullBits + j, &bytes, 8);
     }
-    for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, frontBits);
+    for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, cs.frontBits);
     return 0;
 }
 
@@ -308,18 +314,15 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
                                                    const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
                                                    uint8_t *cullBits) {
     if (numVerts < 0) return 0;
-    const int frontBits = sv_cull_front_bits(surfaceBounds, lightPlanes);
-    if (frontBits == (1 << SV_NUM_LIGHT_PLANES) - 1) return 1;
-    Plane lp[SV_NUM_LIGHT_PLANES];
-    int live[SV_NUM_LIGHT_PLANES];
-    const int nlive = live_planes(frontBits, lightPlanes, lp, live);
+    CullSetup cs;
+    if (cull_setup(surfaceBounds, lightPlanes, &cs)) return 1;
     __m512 pa[SV_NUM_LIGHT_PLANES], pb[SV_NUM_LIGHT_PLANES], pc[SV_NUM_LIGHT_PLANES],
         pd[SV_NUM_LIGHT_PLANES];
     __m128i bit[SV_NUM_LIGHT_PLANES];
-    for (int k = 0; k < nlive; k++) {
-        pa[k] = _mm512_set1_ps(lp[k].a), pb[k] = _mm512_set1_ps(lp[k].b);
-        pc[k] = _mm512_set1_ps(lp[k].c), pd[k] = _mm512_set1_ps(lp[k].d);
-        bit[k] = _mm_set1_epi8((char)(1 << live[k]));
+    for (int k = 0; k < cs.nlive; k++) {
+        pa[k] = _mm512_set1_ps(cs.lp[k].a), pb[k] = _mm512_set1_ps(cs.lp[k].b);
+        pc[k] = _mm512_set1_ps(cs.lp[k].c), pd[k] = _mm512_set1_ps(cs.lp[k].d);
+        bit[k] = _mm_set1_epi8((char)(1 << cs.live[k]));
     }
     const __m512 zero = _mm512_setzero_ps();
     const float *v = &positions[0].x;
@@ -331,7 +334,7 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
         transpose16(r[0], r[1], r[2], r[3], &x, &y, &z, &w);
         (void)w;
         __m128i bytes = _mm_setzero_si128();
-        for (int k = 0; k < nlive; k++) {
+        for (int k = 0; k < cs.nlive; k++) {
             __m512 s = _mm512_add_ps(_mm512_mul_ps(pa[k], x), _mm512_mul_ps(pb[k], y));
             s = _mm512_add_ps(s, _mm512_mul_ps(pc[k], z));
             s = _mm512_add_ps(s, pd[k]);
