@@ -122,16 +122,6 @@ void paper(JsonWriter &j, const Row &r) {
     j.end_object();
 }
 
-/* A figure of a row that passed, else null: a failed row has none. */
-void figure(JsonWriter &j, const char *name, const Row &r, double v) {
-    j.key(name);
-    if (r.ok) {
-        j.value(v);
-    } else {
-        j.null();
-    }
-}
-
 void result(JsonWriter &j, const ModelRun &m, const Row &r, uint64_t step) {
     const Workload &w = m.workload;
     const double el = std::max(1, elements_of(r.routine, w));
@@ -158,10 +148,10 @@ void result(JsonWriter &j, const ModelRun &m, const Row &r, uint64_t step) {
     j.value(m.table.runs);
     j.key("batch");
     j.value(std::max(1, r.batch));
-    figure(j, "ticks_min", r, r.min);
-    figure(j, "ticks_median", r, r.median);
-    figure(j, "ticks_per_element_min", r, r.min / el);
-    figure(j, "ticks_per_element_median", r, r.median / el);
+    write_row_figure(j, "ticks_min", r, r.min);
+    write_row_figure(j, "ticks_median", r, r.median);
+    write_row_figure(j, "ticks_per_element_min", r, r.min / el);
+    write_row_figure(j, "ticks_per_element_median", r, r.median / el);
     const Row *ref = reference_row(m.table.rows, r);
     j.key("speedup_vs_c_ref");
     if (r.ok && ref && r.median > 0) {
@@ -171,12 +161,7 @@ void result(JsonWriter &j, const ModelRun &m, const Row &r, uint64_t step) {
     }
     j.key("below_noise");
     j.value(r.ok && (below_noise(r, step) || (ref && below_noise(*ref, step))));
-    j.key("checked");
-    j.value(r.ok);
-    if (!r.ok) {
-        j.key("failure");
-        j.value(r.failure);
-    }
+    write_row_check(j, r);
     paper(j, r);
     j.end_object();
 }
@@ -257,6 +242,24 @@ void write_machine_fields(JsonWriter &j, const MachineTiming &m) {
     j.value(git_commit());
     j.key("timer");
     j.value(timer_name(m.timer));
+}
+
+void write_row_figure(JsonWriter &j, const char *name, const Row &r, double v) {
+    j.key(name);
+    if (r.ok) {
+        j.value(v);
+    } else {
+        j.null();
+    }
+}
+
+void write_row_check(JsonWriter &j, const Row &r) {
+    j.key("checked");
+    j.value(r.ok);
+    if (!r.ok) {
+        j.key("failure");
+        j.value(r.failure);
+    }
 }
 
 void write_isa_fields(JsonWriter &j, const std::vector<const BenchVariant *> &variants) {

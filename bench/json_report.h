@@ -69,6 +69,12 @@ void write_machine_fields(JsonWriter &j, const MachineTiming &m);
  * names of VARIANTS, the ones this run measured). */
 void write_isa_fields(JsonWriter &j, const std::vector<const BenchVariant *> &variants);
 
+/* Per row, in both documents: the figure V under NAME when the row passed
+ * its check, else null (a failed row has no figure). */
+void write_row_figure(JsonWriter &j, const char *name, const Row &r, double v);
+/* Per row, in both documents: "checked", and "failure" when it failed. */
+void write_row_check(JsonWriter &j, const Row &r);
+
 } // namespace svbench
 
 #endif

@@ -83,16 +83,6 @@ void model(JsonWriter &j, const ScalingMesh &m) {
     j.end_object();
 }
 
-/* A figure of a row that passed, else null: a failed row has none. */
-void figure(JsonWriter &j, const char *name, const Row &r, double v) {
-    j.key(name);
-    if (r.ok) {
-        j.value(v);
-    } else {
-        j.null();
-    }
-}
-
 void result(JsonWriter &j, const ScalingMesh &m, const Row &r, uint64_t step) {
     const Workload &w = m.workload;
     const double el = std::max(1, elements_of(r.routine, w));
@@ -114,20 +104,15 @@ void result(JsonWriter &j, const ScalingMesh &m, const Row &r, uint64_t step) {
     j.value(element_name(element_of(r.routine)));
     j.key("runs");
     j.value(m.table.runs);
-    figure(j, "ticks_per_element_min", r, r.min / el);
-    figure(j, "ticks_per_element_median", r, r.median / el);
+    write_row_figure(j, "ticks_per_element_min", r, r.min / el);
+    write_row_figure(j, "ticks_per_element_median", r, r.median / el);
     j.key("below_noise");
     j.value(r.ok && below_noise(r, step));
     j.key("working_set_bytes"); /* an estimate: whole bytes */
     j.value(std::round(ws));
     j.key("fits");
     j.value(smallest_cache_holding(cache_sizes(), ws));
-    j.key("checked");
-    j.value(r.ok);
-    if (!r.ok) {
-        j.key("failure");
-        j.value(r.failure);
-    }
+    write_row_check(j, r);
     j.end_object();
 }
 
