@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "header_lines.h"
 #include "sysinfo.h"
 #include "timer.h"
 #include "working_set.h"
@@ -101,25 +102,9 @@ void print_scaling_header(FILE *out, const ScalingRun &run) {
                  "shadowvol %s bench --scaling: cost per element as the mesh grows, moving "
                  "light\n",
                  project_version().c_str());
-    std::fprintf(out, "cpu       %s%s\n", cpu_model().c_str(),
-                 m.cpu >= 0 ? (" (measuring thread pinned to cpu " + std::to_string(m.cpu) + ")")
-                                  .c_str()
-                            : " (could not pin the measuring thread: expect noise)");
-    std::fprintf(out, "isa       %s (cpuid + xgetbv)\n", cpu_isa_flags().c_str());
+    print_cpu_lines(out, m.cpu);
     std::fprintf(out, "caches    %s\n", cache_summary(cache_sizes()).c_str());
-    std::fprintf(out, "variants ");
-    for (const BenchVariant *v : o.variants) {
-        std::fprintf(out, " %s", v->name);
-    }
-    std::fprintf(out, " (%sISA level %s", run.variantsChosen ? "--variant; " : "",
-                 sv_isa_level_name());
-    if (!run.isaLimit.empty()) {
-        std::fprintf(out, "; limit: %s", run.isaLimit.c_str());
-    }
-    std::fprintf(out, ")\n");
-    for (const SkippedVariant &s : run.skipped) {
-        std::fprintf(out, "skipped   variant %s: %s\n", s.name.c_str(), s.why.c_str());
-    }
+    print_variant_lines(out, o.variants, run.variantsChosen, run.isaLimit, run.skipped);
     std::fprintf(out, "routines ");
     for (Routine r : o.routines) {
         std::fprintf(out, " %s", routine_name(r));

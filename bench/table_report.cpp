@@ -8,6 +8,7 @@
 #include <string>
 
 #include "paper_results.h"
+#include "header_lines.h"
 #include "sysinfo.h"
 
 namespace svbench {
@@ -191,26 +192,8 @@ void print_run_header(FILE *out, const BenchRun &run) {
                  "shadowvol %s bench: the cycle table of J.M.P. van Waveren, \"Shadow Volume "
                  "Construction\" (Id Software, 2005), section 8\n",
                  project_version().c_str());
-    std::fprintf(out, "cpu       %s", cpu_model().c_str());
-    if (m.cpu >= 0) {
-        std::fprintf(out, " (measuring thread pinned to cpu %d)\n", m.cpu);
-    } else {
-        std::fprintf(out, " (could not pin the measuring thread: expect noise)\n");
-    }
-    std::fprintf(out, "isa       %s (cpuid + xgetbv)\n", cpu_isa_flags().c_str());
-    std::fprintf(out, "variants ");
-    for (const BenchVariant *v : o.variants) {
-        std::fprintf(out, " %s", v->name);
-    }
-    std::fprintf(out, " (%sISA level %s", run.variantsChosen ? "--variant; " : "",
-                 sv_isa_level_name());
-    if (!run.isaLimit.empty()) {
-        std::fprintf(out, "; limit: %s", run.isaLimit.c_str());
-    }
-    std::fprintf(out, ")\n");
-    for (const SkippedVariant &s : run.skipped) {
-        std::fprintf(out, "skipped   variant %s: %s\n", s.name.c_str(), s.why.c_str());
-    }
+    print_cpu_lines(out, m.cpu);
+    print_variant_lines(out, o.variants, run.variantsChosen, run.isaLimit, run.skipped);
     std::fprintf(out,
                  "tsc       %.3f GHz (rdtsc against CLOCK_MONOTONIC over %.0f ms), steps of %llu "
                  "ticks, invariant-TSC bit %s;\n          unit: ticks, not core cycles\n",
