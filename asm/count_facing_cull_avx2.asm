@@ -90,7 +90,8 @@ positions:
 align 4
 eight:  dd 8
 
-; EMIT8 / EMIT32: asm/avx2_left_pack.inc (r11 = the table above).
+; EMIT8 / EMIT32 and pass 1 (LIST_NONFACING): asm/avx2_left_pack.inc (r11 = the
+; table above).
 
 ; CULL1 k: list entry k of the current group of four.
 %macro CULL1 1
@@ -139,39 +140,7 @@ FUNCTION sv_count_facing_cull_avx2
         lea     r9, [rbx + CHUNK]
         cmp     r9, r13
         cmova   r9, r13                 ; chunk end
-        lea     r10, [rsi + 32]
-        cmp     r10, r9
-        ja      .partial
-.block32:
-        vpcmpeqb ymm0, ymm5, [r12 + rsi]
-        vpmovmskb edx, ymm0             ; bit j: facing[rsi + j] == 0
-        EMIT32
-        add     rsi, 32
-        lea     r10, [rsi + 32]
-        cmp     r10, r9
-        jbe     .block32
-.partial:
-        mov     rcx, r9
-        sub     rcx, rsi                ; 0..31 triangles left (only at the end)
-        jz      .pass2
-        cmp     r13, 32
-        jb      .tiny
-        ; the 32 bytes ending at facing + n; keep the bits of the last rcx
-        vpcmpeqb ymm0, ymm5, [r12 + r13 - 32]
-        vpmovmskb edx, ymm0
-        neg     ecx
-        add     ecx, 32
-        shrx    edx, edx, ecx
-        EMIT32
-        jmp     .pass2
-.tiny:                                  ; n < 32: the mask bit by bit, from the top
-        xor     edx, edx
-.tinybit:
-        cmp     byte [r12 + rcx - 1], 1 ; CF = (facing == 0)
-        adc     edx, edx
-        dec     rcx
-        jnz     .tinybit
-        EMIT32
+        LIST_NONFACING r12, r13, r9, r10, .pass2
 
         ; ---- pass 2: the cull test for each listed triangle
 .pass2:

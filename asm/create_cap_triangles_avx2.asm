@@ -81,7 +81,8 @@ align 64
 positions3:
         SET_BIT_POSITIONS 3, 0
 
-; EMIT8 / EMIT32: asm/avx2_left_pack.inc (r11 = the table above).
+; EMIT8 / EMIT32 and pass 1 (LIST_NONFACING): asm/avx2_left_pack.inc (r11 = the
+; table above).
 ; CAP1 k, ymm: the six indices of list entry eax + k, from its 32-byte
 ; window of indices.
 %macro CAP1 2
@@ -132,39 +133,7 @@ FUNCTION sv_create_cap_triangles_avx2
         lea     rdi, [rbx + CHUNK]
         cmp     rdi, r10
         cmova   rdi, r10
-        lea     rax, [rsi + 32]
-        cmp     rax, rdi
-        ja      .partial
-.block32:
-        vpcmpeqb ymm0, ymm5, [r15 + rsi]
-        vpmovmskb edx, ymm0             ; bit j: facing[rsi + j] == 0
-        EMIT32
-        add     rsi, 32
-        lea     rax, [rsi + 32]
-        cmp     rax, rdi
-        jbe     .block32
-.partial:
-        mov     rcx, rdi
-        sub     rcx, rsi                ; 0..31 triangles left (only at the end)
-        jz      .emit
-        cmp     r10, 32
-        jb      .tiny
-        ; the 32 facing bytes ending at facing + n; keep the last rcx bits
-        vpcmpeqb ymm0, ymm5, [r15 + r10 - 32]
-        vpmovmskb edx, ymm0
-        neg     ecx
-        add     ecx, 32
-        shrx    edx, edx, ecx
-        EMIT32
-        jmp     .emit
-.tiny:                                  ; n < 32: the mask bit by bit, from the top
-        xor     edx, edx
-.tinybit:
-        cmp     byte [r15 + rcx - 1], 1 ; CF = (facing == 0)
-        adc     edx, edx
-        dec     rcx
-        jnz     .tinybit
-        EMIT32
+        LIST_NONFACING r15, r10, rdi, rax, .emit
 
         ; ---- phase 2: six indices per listed triangle, in order
 .emit:
