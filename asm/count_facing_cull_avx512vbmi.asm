@@ -289,7 +289,7 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         vpmaxud zmm3, zmm0, zmm1
         vpcmpud k1, zmm3, zmm2, 6               ; > 1023
         kortestw k1, k1
-        jnz     .list_early
+        jnz     .list
         add     r9, 128
         sub     r10, 128
         jae     .max_loop128
@@ -427,7 +427,6 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         pop     r12
         jmp     sv_count_facing_avx512 wrt ..plt ; (vzeroupper there)
 
-.list_early:
 .list:  ; same arguments, untouched
         vzeroupper
         jmp     sv_count_facing_cull_avx512 wrt ..plt
