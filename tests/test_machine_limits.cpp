@@ -1,0 +1,109 @@
+// bench/machine_limits.asm, the throughput primitives of `shadowvol bench
+// --limits`, as routines: through the ABI-checking trampoline (callee-saved
+// registers kept, int/long arguments with garbage upper halves where they
+// are ints), at iteration counts 0, negative and small, each store
+// primitive writing exactly its documented bytes (guards around them), and
+// the wrap of the load walk at the buffer's size. No timing is asserted.
+//
+// Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "shadowvol.h"
+#include "test_support.h"
+
+extern "C" {
+void svb_scalar_loads(const uint8_t *buf, long iters);
+void svb_vector_loads_zmm(const uint8_t *buf, long iters, long bytes);
+void svb_vector_loads_ymm(const uint8_t *buf, long iters, long bytes);
+void svb_vector_stores_zmm(uint8_t *buf, long iters);
+void svb_vector_stores_ymm(uint8_t *buf, long iters);
+void svb_gather_lanes_zmm(const uint8_t *buf, long iters);
+void svb_gather_lanes_ymm(const uint8_t *buf, long iters);
+}
+
+using namespace svtest;
+
+namespace {
+
+constexpr size_t kGuard = 256;
+constexpr size_t kBuffer = 16 * 1024;
+
+struct Form {
+    const char *name;
+    unsigned isa;
+    const void *loads, *stores, *gather;
+    size_t storeBytes; // what one call of the store primitive writes
+};
+
+const Form kForms[] = {
+    {"ymm", SV_ISA_AVX2, (const void *)svb_vector_loads_ymm, (const void *)svb_vector_stores_ymm,
+     (const void *)svb_gather_lanes_ymm, 256},
+    {"zmm", SV_ISA_AVX512, (const void *)svb_vector_loads_zmm,
+     (const void *)svb_vector_stores_zmm, (const void *)svb_gather_lanes_zmm, 512},
+};
+
+// A 64-byte aligned buffer of kBuffer bytes between two guards of kGuard.
+struct Guarded {
+    std::vector<uint8_t> raw = std::vector<uint8_t>(kBuffer + 2 * kGuard + 64, 0xA5);
+    uint8_t *data() {
+        uintptr_t p = (uintptr_t)raw.data() + kGuard;
+        return (uint8_t *)((p + 63) & ~(uintptr_t)63);
+    }
+    // Bytes [from, to) of the data that are not 0xA5, and the guards.
+    size_t changed(size_t from, size_t to) {
+        size_t n = 0;
+        for (size_t i = from; i < to; i++) n += data()[i] != 0xA5;
+        return n;
+    }
+    bool guards_intact() {
+        const uint8_t *d = data();
+        for (const uint8_t *q = raw.data(); q < d; q++)
+            if (*q != 0xA5) return false;
+        for (const uint8_t *q = d + kBuffer; q < raw.data() + raw.size(); q++)
+            if (*q != 0xA5) return false;
+        return true;
+    }
+};
+
+} // namespace
+
+TEST(MachineLimits, ScalarLoadsKeepTheAbiAndWriteNothing) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("MachineLimits.Scalar");
+    Guarded g;
+    for (long iters : {0L, -1L, 1L, 3L}) {
+        checked_call(rng, (const void *)svb_scalar_loads, ptr_arg(g.data()), (uint64_t)iters);
+        EXPECT_EQ(g.changed(0, kBuffer), 0u) << iters;
+        EXPECT_TRUE(g.guards_intact()) << iters;
+    }
+}
+
+TEST(MachineLimits, VectorPrimitivesKeepTheAbiAndTheirBytes) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("MachineLimits.Vector");
+    for (const Form &f : kForms) {
+        if ((sv_cpu_isa() & f.isa) != f.isa) {
+            std::printf("[  SKIPPED ] %s forms: this CPU lacks their instruction set\n", f.name);
+            continue;
+        }
+        for (long iters : {0L, -2L, 1L, 5L}) {
+            Guarded g;
+            // loads over 512 bytes (one iteration wraps at once) and the whole buffer
+            for (long bytes : {512L, (long)kBuffer}) {
+                checked_call(rng, f.loads, ptr_arg(g.data()), (uint64_t)iters, (uint64_t)bytes);
+            }
+            checked_call(rng, f.gather, ptr_arg(g.data()), (uint64_t)iters);
+            EXPECT_EQ(g.changed(0, kBuffer), 0u) << f.name << " loads wrote, iters " << iters;
+            checked_call(rng, f.stores, ptr_arg(g.data()), (uint64_t)iters);
+            // zeros in exactly the first storeBytes when it ran, nothing otherwise
+            EXPECT_EQ(g.changed(0, f.storeBytes), iters > 0 ? f.storeBytes : 0u)
+                << f.name << " iters " << iters;
+            EXPECT_EQ(g.changed(f.storeBytes, kBuffer), 0u) << f.name << " iters " << iters;
+            EXPECT_TRUE(g.guards_intact()) << f.name << " iters " << iters;
+        }
+    }
+}
