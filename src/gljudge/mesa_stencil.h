@@ -78,7 +78,11 @@ public:
      * LP_NUM_THREADS before the first context is made (1: single-threaded
      * llvmpipe, the issue's comparison); it has effect only once per
      * process. Returns nullptr and sets *why_not when no context can be
-     * made (library missing at build time, or creation fails). */
+     * made (library missing at build time, a size that is not positive or
+     * beyond this GL's limits, or OSMesa's context creation fails). Throws
+     * std::runtime_error when the context is made but the judge cannot be
+     * set up on it (shaders, framebuffer): that is a bug to see, not a
+     * reason to skip the comparison. */
     static std::unique_ptr<MesaContext> create(int width, int height, int threads,
                                                std::string *why_not);
     virtual ~MesaContext() = default;
@@ -87,6 +91,20 @@ public:
     /* Draws the job and reads back stencil and depth. Throws
      * std::runtime_error on a GL error or a job that does not fit. */
     virtual MesaStencilResult run(const MesaStencilJob &job) = 0;
+
+    /* How run() reads the stencil back. create() picks stencil_index when
+     * glReadPixels(GL_STENCIL_INDEX, GL_UNSIGNED_BYTE) works on the FBO (it
+     * does on Mesa 22.3.6's core profile), else depth_stencil_packed
+     * (GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV: depth and
+     * stencil in one read). Both give the same images; set_readback lets a
+     * test prove that. */
+    enum class Readback { stencil_index, depth_stencil_packed };
+    virtual Readback readback() const = 0;
+    virtual void set_readback(Readback r) = 0;
+    /* The LP_NUM_THREADS this process's llvmpipe was started with (the
+     * THREADS of the first create(); 0: llvmpipe's own default, one per
+     * CPU). A later create() with other THREADS cannot change it. */
+    virtual int lp_num_threads() const = 0;
 };
 
 /* True when the build has OSMesa (SV_HAVE_OSMESA). */
