@@ -66,6 +66,24 @@ struct Snapped {
     double z;     /* window depth */
 };
 
+/* Window coordinates of the clipped polygon, snapped to 1/256 pixel (round
+ * to nearest), and window depth. False when a vertex is not drawable (w <=
+ * 0 or not finite: only a degenerate input gets here after clipping). */
+bool snap_polygon(const ClipVertex *poly, int n, int width, int height, Snapped *s) {
+    for (int i = 0; i < n; i++) {
+        const ClipVertex &q = poly[i];
+        if (!(q.w > 0) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
+            return false;
+        }
+        const double xs = (q.x / q.w + 1) * 0.5 * width;
+        const double ys = (1 - q.y / q.w) * 0.5 * height;
+        s[i].X = (int64_t)std::nearbyint(xs * kSubPixel);
+        s[i].Y = (int64_t)std::nearbyint(ys * kSubPixel);
+        s[i].z = (q.z / q.w + 1) * 0.5;
+    }
+    return true;
+}
+
 inline bool snapped_less(const Snapped &a, const Snapped &b) {
     if (a.X != b.X) return a.X < b.X;
     if (a.Y != b.Y) return a.Y < b.Y;
@@ -218,17 +236,9 @@ void Rasterizer::rasterize(const ClipVertex v[3], int width, int height, PassCou
         }
     }
     Snapped s[kMaxPolygon];
-    for (int i = 0; i < n; i++) {
-        const ClipVertex &q = poly[i];
-        if (!(q.w > 0) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
-            c.triangles_degenerate++;
-            return;
-        }
-        const double xs = (q.x / q.w + 1) * 0.5 * width;
-        const double ys = (1 - q.y / q.w) * 0.5 * height;
-        s[i].X = (int64_t)std::nearbyint(xs * kSubPixel);
-        s[i].Y = (int64_t)std::nearbyint(ys * kSubPixel);
-        s[i].z = (q.z / q.w + 1) * 0.5;
+    if (!snap_polygon(poly, n, width, height, s)) {
+        c.triangles_degenerate++;
+        return;
     }
     const DepthPlane dp = canonical_plane(s, n);
     if (!dp.ok) {
@@ -343,6 +353,16 @@ void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode
     });
 }
 
+Rasterizer::PlaneCoefficients Rasterizer::depth_plane(const ClipVertex v[3], int width,
+                                                     int height) const {
+    ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
+    const int n = clip_polygon(poly, 3);
+    Snapped s[kMaxPolygon];
+    if (n < 3 || !snap_polygon(poly, n, width, height, s)) return {0, 0, 0, 0, 0, false};
+    const DepthPlane d = canonical_plane(s, n);
+    return {d.x0, d.y0, d.z0, d.a, d.b, d.ok};
+}
+
 std::vector<Rasterizer::WindowTriangle> Rasterizer::window_triangles(const ClipVertex v[3],
                                                                      int width,
                                                                      int height) const {
@@ -351,13 +371,7 @@ std::vector<Rasterizer::WindowTriangle> Rasterizer::window_triangles(const ClipV
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
     const int n = clip_polygon(poly, 3);
     Snapped s[kMaxPolygon];
-    for (int i = 0; i < n; i++) {
-        const ClipVertex &q = poly[i];
-        if (!(q.w > 0)) return {};
-        s[i].X = (int64_t)std::nearbyint((q.x / q.w + 1) * 0.5 * width * kSubPixel);
-        s[i].Y = (int64_t)std::nearbyint((1 - q.y / q.w) * 0.5 * height * kSubPixel);
-        s[i].z = (q.z / q.w + 1) * 0.5;
-    }
+    if (n < 3 || !snap_polygon(poly, n, width, height, s)) return {};
     for (int k = 1; k + 1 < n; k++) {
         const Snapped *t[3] = {&s[0], &s[k], &s[k + 1]};
         WindowTriangle w;

@@ -132,6 +132,18 @@ public:
     std::vector<WindowTriangle> window_triangles(const ClipVertex v[3], int width,
                                                  int height) const;
 
+    /* The depth plane the rasteriser uses for the triangle (after
+     * clipping), as depth = z0 + a (x - x0) + b (y - y0) in pixels: for
+     * tests that it does not depend on the corners' order (coefficients
+     * that differ in the last bit of a double rarely change a float depth,
+     * so comparing depth buffers alone would hardly notice). ok = false
+     * when nothing is left to draw. */
+    struct PlaneCoefficients {
+        double x0, y0, z0, a, b;
+        bool ok;
+    };
+    PlaneCoefficients depth_plane(const ClipVertex v[3], int width, int height) const;
+
 private:
     const RowKernels *kernels_;
     template <class Emit>
