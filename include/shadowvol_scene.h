@@ -69,6 +69,9 @@ struct SceneLight {
     double inner_degrees = 0, outer_degrees = 45; /* spot: half-angles */
     std::array<float, 3> color{1, 1, 1};
     double intensity = 1;
+    /* Given as "KIND:auto" on the command line: to be replaced by
+     * auto_light once the scene's surfaces are known. */
+    bool placed_automatically = false;
     /* The light as shadowvol.h takes it: (x, y, z, 1) for point and spot,
      * (-direction, 0) for directional (xyz TOWARDS the light). */
     Vec4 shadow_light() const;
@@ -133,6 +136,13 @@ Camera frame_camera(const Scene &scene, double aspect);
  * (from above right), placed so that the surfaces' shadows fall on the
  * ground in front of the camera. */
 std::vector<SceneLight> default_lights(const Scene &scene);
+
+/* A light of KIND placed around the non-ground surfaces' bounds so that
+ * their shadows fall on the ground in view of frame_camera: a point light
+ * in front, left and above; a spot above right aimed at the bounds' foot
+ * (cone 20..40 degrees); a directional light from above, in front and to
+ * the right. Intensity: irradiance 1 at the bounds' centre. */
+SceneLight auto_light(const Scene &scene, LightKind kind);
 
 /* Checks the scene for what would make a silent wrong picture and throws
  * SceneError: no surface with a triangle, a light at a vertex (its

@@ -50,25 +50,8 @@ Scene model_on_ground(const std::string &path) {
 
 /* A point, a spot and a directional light around the scene's bounds. */
 std::vector<SceneLight> three_lights(const Scene &s) {
-    Vec3d lo, hi;
-    s.bounds(lo, hi, false);
-    const Vec3d c{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
-    const double r = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-    SceneLight point;
-    point.kind = LightKind::point;
-    point.position = {c.x - 0.8 * r, hi.y + 0.9 * r, c.z + 0.7 * r};
-    SceneLight spot;
-    spot.kind = LightKind::spot;
-    spot.position = {c.x + 0.7 * r, hi.y + 1.1 * r, c.z + 0.4 * r};
-    spot.direction = {c.x - spot.position.x, lo.y - spot.position.y, c.z - spot.position.z};
-    spot.inner_degrees = 20;
-    spot.outer_degrees = 40;
-    SceneLight dir;
-    dir.kind = LightKind::directional;
-    dir.direction = {0.4, -1, -0.5};
-    std::vector<SceneLight> out = {point, spot, dir};
-    for (SceneLight &l : out) default_intensity(s, l);
-    return out;
+    return {auto_light(s, LightKind::point), auto_light(s, LightKind::spot),
+            auto_light(s, LightKind::directional)};
 }
 
 void expect_truth_holds(const Scene &scene, const Frame &f, const std::string &what) {
@@ -342,6 +325,8 @@ TEST(Scene, BadInputIsRefusedClearly) {
     EXPECT_EQ(m.placement.scale, 2);
     const SceneLight l = parse_light("dir:0,-2,0");
     EXPECT_DOUBLE_EQ(l.direction.y, -1.0);
+    EXPECT_TRUE(parse_light("spot:auto").placed_automatically);
+    EXPECT_THROW(parse_light("laser:auto"), SceneError);
 
     Scene scene = model_on_ground(SV_MODELS_DIR "/character_1344.glb");
     SceneLight at_vertex;

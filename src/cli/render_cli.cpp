@@ -162,6 +162,7 @@ void render_usage(FILE *out) {
         "  --light point:x,y,z[,range]   a point light (repeatable, any kind)\n"
         "  --light spot:x,y,z,dx,dy,dz,inner_deg,outer_deg\n"
         "  --light dir:x,y,z             a directional light travelling along (x,y,z)\n"
+        "  --light point:auto | spot:auto | dir:auto   placed around the models\n"
         "  --camera eye=x,y,z,target=x,y,z[,fov=deg][,near=d][,up=x,y,z]\n"
         "                                default: framed from the front and above\n"
         "  (no light: a point light and a directional light whose shadows fall on the\n"
@@ -250,6 +251,9 @@ int render_main(int argc, char **argv) {
     const double aspect = (double)args.width / args.height;
     scene.camera = args.has_camera ? args.camera : sv::frame_camera(scene, aspect);
     scene.lights = args.lights.empty() ? sv::default_lights(scene) : args.lights;
+    for (sv::SceneLight &l : scene.lights) {
+        if (l.placed_automatically) l = sv::auto_light(scene, l.kind);
+    }
     for (sv::SceneLight &l : scene.lights) sv::default_intensity(scene, l);
     try {
         sv::validate_scene(scene);

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace sv::render {
 namespace {
@@ -76,9 +77,16 @@ double irradiance(const SceneLight &l, const Vec3d &p, const Vec3d &n) {
     return a;
 }
 
+/* Linear [0, 1] to 8-bit gamma 2.2, through a table of 4096 steps (a pow
+ * per channel and pixel was most of the lighting pass). */
 uint8_t to_srgb8(double linear) {
+    static const std::vector<uint8_t> table = [] {
+        std::vector<uint8_t> t(4097);
+        for (int i = 0; i <= 4096; i++) t[(std::size_t)i] = (uint8_t)std::lround(255.0 * std::pow(i / 4096.0, 1.0 / 2.2));
+        return t;
+    }();
     const double c = std::clamp(linear, 0.0, 1.0);
-    return (uint8_t)std::lround(255.0 * std::pow(c, 1.0 / 2.2));
+    return table[(std::size_t)(c * 4096.0 + 0.5)];
 }
 
 } // namespace
@@ -155,10 +163,8 @@ bool near_plane_may_be_shadowed(const Camera &camera, double aspect, const Scene
 
 Vec3d visible_point(const Frame &f, const Scene &scene, int surface, int triangle, int px,
                     int py) {
-    const CameraBasis b = basis(f.camera);
-    const double aspect = (double)f.width / f.height;
     const double nx = ((px + 0.5) / f.width) * 2 - 1, ny = 1 - ((py + 0.5) / f.height) * 2;
-    const Vec3d dir = add(b.f, add(mul(b.s, nx * b.tan_half * aspect), mul(b.u, ny * b.tan_half)));
+    const Vec3d dir = add(f.ray_forward, add(mul(f.ray_right, nx), mul(f.ray_up, ny)));
     const PreparedSurface &p = scene.surfaces[surface].prepared;
     const int *tri = &p.indices[3 * triangle];
     const Vec3d a = vertex(p, tri[0]);
@@ -180,6 +186,12 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     const raster::RowKernels *kernels = opt.kernels ? opt.kernels : raster::row_kernels_best();
     const sv_variant *variant = opt.variant ? opt.variant : sv_best_variant();
     const sv_facing_variant *facing_v = opt.facing ? opt.facing : sv_best_facing_variant();
+    {
+        const CameraBasis b = basis(scene.camera);
+        f.ray_forward = b.f;
+        f.ray_right = mul(b.s, b.tan_half * aspect);
+        f.ray_up = mul(b.u, b.tan_half);
+    }
     f.kernels = kernels->name;
     f.variant = variant->name;
     const raster::Rasterizer rast(kernels);

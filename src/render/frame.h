@@ -75,6 +75,9 @@ struct Frame {
     double seconds_depth = 0;
     std::vector<LightFrame> lights;
     std::vector<uint8_t> rgb;     /* shaded image, 3 bytes per pixel, row 0 = top */
+    /* The camera ray through pixel centre (px, py):
+     * ray_forward + nx * ray_right + ny * ray_up, nx and ny in [-1, 1]. */
+    Vec3d ray_forward, ray_right, ray_up;
     /* ids[] = surface_first_id[s] + triangle of surface s. */
     std::vector<int32_t> surface_first_id;
     void decode_id(int32_t id, int &surface, int &triangle) const;

@@ -277,6 +277,33 @@ std::vector<SceneLight> default_lights(const Scene &scene) {
     return {point, sun};
 }
 
+SceneLight auto_light(const Scene &scene, LightKind kind) {
+    Vec3d lo, hi;
+    scene.bounds(lo, hi, false);
+    const Vec3d c{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
+    const double r = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-3});
+    SceneLight l;
+    l.kind = kind;
+    switch (kind) {
+    case LightKind::point:
+        l.position = {c.x - 0.8 * r, hi.y + 0.9 * r, c.z + 0.7 * r};
+        break;
+    case LightKind::spot:
+        l.position = {c.x + 0.7 * r, hi.y + 1.1 * r, c.z + 0.4 * r};
+        l.direction = normalized(sub({c.x, lo.y, c.z}, l.position));
+        l.inner_degrees = 20;
+        l.outer_degrees = 40;
+        break;
+    case LightKind::directional:
+        l.direction = normalized({0.4, -1, -0.5});
+        l.intensity = 1;
+        return l;
+    }
+    const Vec3d d = sub(c, l.position);
+    l.intensity = dot(d, d);
+    return l;
+}
+
 void validate_scene(Scene &scene) {
     if (scene.triangles() == 0) throw SceneError("the scene has no triangles to render");
     const Camera &cam = scene.camera;

@@ -54,9 +54,18 @@ SceneLight parse_light(const std::string &text) {
     if (colon == std::string::npos) {
         throw SceneError("--light " + text + ": expected point:..., spot:... or dir:...");
     }
-    const std::vector<double> v = parse_numbers(text.substr(colon + 1), "--light " + text);
     SceneLight l;
     l.intensity = 0;
+    if (text.substr(colon + 1) == "auto") {
+        /* Placed by auto_light once the scene is known. */
+        if (kind != "point" && kind != "spot" && kind != "dir") {
+            throw SceneError("--light " + text + ": unknown kind '" + kind + "' (point, spot or dir)");
+        }
+        l.kind = kind == "point" ? LightKind::point : kind == "spot" ? LightKind::spot : LightKind::directional;
+        l.placed_automatically = true;
+        return l;
+    }
+    const std::vector<double> v = parse_numbers(text.substr(colon + 1), "--light " + text);
     if (kind == "point") {
         if (v.size() != 3 && v.size() != 4) throw SceneError("--light " + text + ": expected point:x,y,z[,range]");
         l.kind = LightKind::point;

@@ -5,6 +5,7 @@
  *   point:x,y,z[,range]
  *   spot:x,y,z,dx,dy,dz,inner_degrees,outer_degrees
  *   dir:x,y,z                    (the direction the light travels)
+ *   point:auto, spot:auto, dir:auto   (placed by auto_light)
  *   eye=x,y,z,target=x,y,z,fov=deg[,near=d]
  * Every number must be finite; a malformed value throws SceneError with
  * the text and what was expected.
