@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# `shadowvol render`: with no arguments (the bundled character on the
+# ground, 1280x1024, both judges) it must pass and write its four PNGs and
+# a shadowvol-render/1 document; then each kind of bad input must end with
+# its documented exit status and a message, never a crash.
+# usage: check_render_cli.sh PATH/TO/shadowvol MODELS_DIR
+set -u
+sv="$1"; models="$2"
+fail=0
+err() { echo "FAIL: $*"; fail=1; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+
+cd "$tmp"
+"$sv" render --json "$tmp/render.json" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+cat "$tmp/out"
+[ $rc -eq 0 ] || err "render with no arguments exited $rc: $(cat "$tmp/err")"
+grep -q '^PASSED' "$tmp/out" || err "render did not print PASSED"
+for f in shaded stencil truth; do
+  [ "$(head -c 8 "shadowvol-render/$f.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] \
+    || err "shadowvol-render/$f.png is not a PNG"
+done
+if grep -q 'no Mesa GL context' "$tmp/err"; then
+  echo "NOTE: no Mesa context here: gl_diff.png not checked"
+else
+  [ -s shadowvol-render/gl_diff.png ] || err "no gl_diff.png although Mesa ran"
+fi
+grep -q '"schema": "shadowvol-render/1"' "$tmp/render.json" || err "JSON without its schema"
+grep -q '"passed": true' "$tmp/render.json" || err "JSON does not say passed"
+grep -q '"width": 1280' "$tmp/render.json" || err "the default size is not 1280x1024"
+
+# A small scene of every light kind, both modes, written elsewhere.
+for mode in zpass zfail; do
+  "$sv" render --add "$models/character_1344.glb@0.5,0,0,90,1.5" --ground --light point:auto \
+      --light spot:-1,3,1,0.3,-1,-0.2,15,35 --light dir:0.3,-1,0.2 --size 200x160 --mode $mode \
+      --out "$tmp/small" >"$tmp/out" 2>"$tmp/err" || err "small scene ($mode) exited $?: $(cat "$tmp/out" "$tmp/err")"
+done
+[ -s "$tmp/small/stencil.png" ] || err "--out was not used"
+
+# expect STATUS ARGS...: exits STATUS with a message on stderr.
+expect() {
+  local want=$1; shift
+  "$sv" render --size 64x48 --no-gl --out "$tmp/bad" "$@" >"$tmp/out" 2>"$tmp/err"
+  local rc=$?
+  [ $rc -eq "$want" ] || err "render $* exited $rc, expected $want: $(cat "$tmp/err")"
+  [ $rc -eq 0 ] || [ -s "$tmp/err" ] || err "render $* printed no message"
+  [ $rc -lt 126 ] || err "render $* crashed ($rc)"
+}
+expect 2 --size 0x10
+expect 2 --size 8193x100
+expect 2 --size 640
+expect 2 --size 8192x8193
+expect 2 --mode sideways
+expect 2 --light point:nan,1,1
+expect 2 --light point:1,inf,1
+expect 2 --light spot:0,3,0,0,-1,0,50,40
+expect 2 --light dir:0,0,0
+expect 2 --light torch:1,2,3
+expect 2 --camera eye=0,1,2
+expect 2 --camera eye=0,1,2,target=0,1,2
+expect 2 --camera eye=0,1,2,target=0,0,0,fov=0
+expect 2 --add "$models/character_1344.glb@1,2"
+expect 2 --add "$models/character_1344.glb@0,0,0,0,-1"
+expect 2 --kernels mmx
+expect 2 --variant nope
+expect 2 --frobnicate
+expect 2 --out /proc/version/x
+expect 3 --add "$tmp/missing.glb"
+printf 'glTF\002\000\000\000\014\000\000\000' >"$tmp/short.glb"
+expect 3 --add "$tmp/short.glb"
+echo '{"asset": {"version": "2.0"}, "meshes": []}' >"$tmp/empty.gltf"
+expect 3 --add "$tmp/empty.gltf"
+"$sv" render --help >"$tmp/out" 2>&1 || err "render --help failed"
+grep -q -- '--light spot:' "$tmp/out" || err "render --help does not describe --light"
+
+[ $fail -eq 0 ] && echo "PASSED: render CLI"
+exit $fail
