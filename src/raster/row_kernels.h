@@ -36,6 +36,14 @@ struct RowSpan {
     int x_begin, x_end; /* pixels [x_begin, x_end) of the row */
 };
 
+/* Spans of at most this many pixels go to the C kernel from the SIMD ones:
+ * a shadow volume's silhouette quads are long slivers, most of whose rows
+ * are a few pixels wide, and there the vector set-up costs more than it
+ * saves (measured with a sliver of 3 and of 8 pixels per row: C 44 and 105
+ * ns a row, AVX2 63 and 115; from 16 pixels on AVX2 is ahead). The result
+ * is the same either way: the versions are bit-identical. */
+constexpr int kShortSpan = 8;
+
 /* Bytes the SIMD kernels may READ past a row's last pixel (a whole vector
  * of depth from the span's last block; nothing outside [x_begin, x_end) is
  * ever written). Masked loads would avoid it, but on AMD cores a masked

@@ -99,6 +99,7 @@ inline RowSpan aligned(const RowSpan &s) {
 }
 
 SV_TARGET_AVX2 RowCounts depth_avx2(const RowSpan &s, const RowBuffers &buf, int32_t id) {
+    if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id);
     RowCounts n;
     Block8 b;
     setup(aligned(s), b);
@@ -126,6 +127,9 @@ SV_TARGET_AVX2 RowCounts depth_avx2(const RowSpan &s, const RowBuffers &buf, int
 
 template <bool kFail>
 SV_TARGET_AVX2 RowCounts stencil_avx2(const RowSpan &s, const RowBuffers &buf, uint8_t delta) {
+    if (s.x_end - s.x_begin <= kShortSpan) {
+        return (kFail ? kRowKernelsC.zfail : kRowKernelsC.zpass)(s, buf, delta);
+    }
     RowCounts n;
     Block8 b;
     setup(aligned(s), b);

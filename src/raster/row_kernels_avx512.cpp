@@ -94,6 +94,7 @@ inline RowSpan aligned(const RowSpan &s) {
 }
 
 SV_TARGET_AVX512 RowCounts depth_avx512(const RowSpan &s, const RowBuffers &buf, int32_t id) {
+    if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id);
     RowCounts n;
     Block16 b;
     setup(aligned(s), b);
@@ -116,6 +117,9 @@ SV_TARGET_AVX512 RowCounts depth_avx512(const RowSpan &s, const RowBuffers &buf,
 
 template <bool kFail>
 SV_TARGET_AVX512 RowCounts stencil_avx512(const RowSpan &s, const RowBuffers &buf, uint8_t delta) {
+    if (s.x_end - s.x_begin <= kShortSpan) {
+        return (kFail ? kRowKernelsC.zfail : kRowKernelsC.zpass)(s, buf, delta);
+    }
     RowCounts n;
     Block16 b;
     setup(aligned(s), b);

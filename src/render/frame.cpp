@@ -334,7 +334,10 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                     for (int c = 0; c < 3; c++) rgb[c] += e * lf.light.color[(std::size_t)c];
                 }
             }
-            for (int c = 0; c < 3; c++) out[c] = to_srgb8(rgb[c] * s.albedo[(std::size_t)c]);
+            /* A soft shoulder (1 - e^-x) instead of clipping at 1, so
+             * several lights overlapping do not wash out the shadows of
+             * one of them. */
+            for (int c = 0; c < 3; c++) out[c] = to_srgb8(1.0 - std::exp(-1.2 * rgb[c] * s.albedo[(std::size_t)c]));
         }
     }
     const uint64_t shading = __rdtsc() - k0;
