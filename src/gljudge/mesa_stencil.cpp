@@ -33,9 +33,10 @@
  *     fraction), which is what a rasteriser must reproduce at ties.
  *
  * Stencil read-back: glReadPixels(GL_STENCIL_INDEX, GL_UNSIGNED_BYTE) from
- * the FBO works in the core profile on this Mesa (the create() probe checks
- * it on every run and falls back to GL_DEPTH_STENCIL /
- * GL_FLOAT_32_UNSIGNED_INT_24_8_REV where it would not). Depth:
+ * the FBO works in the core profile on this Mesa; create() checks it with a
+ * 1x1 read and falls back to GL_DEPTH_STENCIL /
+ * GL_FLOAT_32_UNSIGNED_INT_24_8_REV (one read, both values) where it would
+ * not. Depth:
  * glReadPixels(GL_DEPTH_COMPONENT, GL_FLOAT), the float depth buffer's
  * values exactly.
  *
