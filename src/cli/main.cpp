@@ -5,7 +5,7 @@
  * dispatches.
  *
  * Exit status: 0 done; 1 a correctness check failed; 2 bad arguments; 3 a
- * model file could not be loaded (inspect, verify).
+ * model file could not be loaded (inspect, verify, render).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -15,6 +15,7 @@
 #include "bench_cli.h"
 #include "accuracy_cli.h"
 #include "model_cli.h"
+#include "render_cli.h"
 
 #ifndef SV_PROJECT_VERSION
 #define SV_PROJECT_VERSION "unknown"
@@ -38,6 +39,8 @@ const Command kCommands[] = {
      svcli::verify_main, svcli::verify_usage},
     {"accuracy", "speed against accuracy of the facing decision, per variant, model and light",
      svcli::accuracy_main, svcli::accuracy_usage},
+    {"render", "render a scene's shadows in the project's stencil, checked by rays and by Mesa",
+     svcli::render_main, svcli::render_usage},
 };
 
 const Command *find_command(const char *name) {

@@ -1,0 +1,513 @@
+/*
+ * shadowvol render (issue 12): a scene of glTF surfaces, lights and a
+ * camera; its shadow volumes drawn into the project's stencil; the shaded
+ * picture; and both judges: ray-cast truth at every pixel and Mesa's
+ * OpenGL stencil fed the very same index lists.
+ *
+ * Exit status: 0 done; 1 a stencil mismatch against the truth off a
+ * shadow boundary (or a GL difference off every volume edge and depth
+ * tie); 2 bad arguments; 3 a model that cannot be loaded.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "render_cli.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_args.h"
+#include "frame.h"
+#include "gl_compare.h"
+#include "images.h"
+#include "json_writer.h"
+#include "scene_options.h"
+#include "shadowvol_gltf.h"
+#include "timer.h"
+#include "truth.h"
+
+#ifndef SV_MODELS_DIR
+#define SV_MODELS_DIR "models"
+#endif
+
+namespace svcli {
+namespace {
+
+constexpr int kExitMismatch = 1, kExitUsage = 2, kExitBadModel = 3;
+
+struct RenderArgs {
+    std::vector<sv::ModelPlacement> models;
+    bool ground = false;
+    std::vector<sv::SceneLight> lights;
+    bool has_camera = false;
+    sv::Camera camera;
+    int width = 1280, height = 1024;
+    sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
+    std::string out_dir = "shadowvol-render";
+    std::string json_path;
+    std::string kernels, variant;
+    bool truth = true, gl = true;
+    int threads = 0;
+};
+
+void parse_size(const std::string &s, int &w, int &h) {
+    const std::size_t x = s.find('x');
+    auto num = [&](const std::string &t) -> long long {
+        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
+        return std::stoll(t);
+    };
+    const long long a = x == std::string::npos ? -1 : num(s.substr(0, x));
+    const long long b = x == std::string::npos ? -1 : num(s.substr(x + 1));
+    if (a < 1 || b < 1 || a > sv::render::kMaxFrameSide || b > sv::render::kMaxFrameSide ||
+        a * b > sv::render::kMaxFramePixels) {
+        usage_error("--size needs WxH with 1 <= W, H <= " + std::to_string(sv::render::kMaxFrameSide) +
+                    " (not '" + s + "')");
+    }
+    w = (int)a, h = (int)b;
+}
+
+RenderArgs parse(int argc, char **argv, bool &help) {
+    RenderArgs r;
+    ArgReader a(argc, argv);
+    while (a.next()) {
+        if (a.is_flag("--help") || a.is_flag("-h")) {
+            help = true;
+            return r;
+        } else if (a.is("--add")) {
+            r.models.push_back(sv::parse_model_placement(a.value()));
+        } else if (a.is_flag("--ground")) {
+            r.ground = true;
+        } else if (a.is("--light")) {
+            r.lights.push_back(sv::parse_light(a.value()));
+        } else if (a.is("--camera")) {
+            r.camera = sv::parse_camera(a.value());
+            r.has_camera = true;
+        } else if (a.is("--size")) {
+            parse_size(a.value(), r.width, r.height);
+        } else if (a.is("--mode")) {
+            const std::string m = a.value();
+            if (m == "zpass") r.mode = sv::render::ModeChoice::zpass;
+            else if (m == "zfail") r.mode = sv::render::ModeChoice::zfail;
+            else if (m == "auto") r.mode = sv::render::ModeChoice::automatic;
+            else usage_error("--mode needs zpass, zfail or auto, not '" + m + "'");
+        } else if (a.is("--out")) {
+            r.out_dir = a.value();
+        } else if (a.is("--json")) {
+            r.json_path = a.value();
+        } else if (a.is("--kernels")) {
+            r.kernels = a.value();
+        } else if (a.is("--variant")) {
+            r.variant = a.value();
+        } else if (a.is_flag("--no-truth")) {
+            r.truth = false;
+        } else if (a.is_flag("--no-gl")) {
+            r.gl = false;
+        } else if (a.is("--threads")) {
+            r.threads = (int)a.integer(1, 256);
+        } else {
+            usage_error("unknown option '" + a.arg() + "'");
+        }
+    }
+    return r;
+}
+
+double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz : 0; }
+
+bool make_dir(const std::string &d) {
+    if (mkdir(d.c_str(), 0777) == 0 || errno == EEXIST) {
+        struct stat st;
+        return stat(d.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+    }
+    return false;
+}
+
+void counters_json(svbench::JsonWriter &j, const sv::raster::PassCounters &c) {
+    j.begin_object(true);
+    j.key("triangles"), j.value((unsigned long long)c.triangles);
+    j.key("clipped"), j.value((unsigned long long)c.triangles_clipped);
+    j.key("outside"), j.value((unsigned long long)c.triangles_outside);
+    j.key("degenerate"), j.value((unsigned long long)c.triangles_degenerate);
+    j.key("pixels_tested"), j.value((unsigned long long)c.pixels_tested);
+    j.key("pixels_written"), j.value((unsigned long long)c.pixels_written);
+    j.key("depth_bytes_read"), j.value((unsigned long long)c.depth_bytes_read);
+    j.key("depth_bytes_written"), j.value((unsigned long long)c.depth_bytes_written);
+    j.key("stencil_bytes_read"), j.value((unsigned long long)c.stencil_bytes_read);
+    j.key("stencil_bytes_written"), j.value((unsigned long long)c.stencil_bytes_written);
+    j.end_object();
+}
+
+} // namespace
+
+void render_usage(FILE *out) {
+    std::fprintf(
+        out,
+        "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
+        "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
+        "\n"
+        "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
+        "rasteriser, and checks every pixel against ray-cast truth and against Mesa's\n"
+        "OpenGL (llvmpipe) fed the same index lists. Writes DIR/shaded.png,\n"
+        "DIR/stencil.png (one panel per light), DIR/truth.png and DIR/gl_diff.png.\n"
+        "With no scene options: the bundled character on a ground plane.\n"
+        "\n"
+        "scene:\n"
+        "  --add FILE[@x,y,z[,yaw_degrees[,scale]]]   a glTF model, placed (repeatable)\n"
+        "  --ground                      a ground plane under the models\n"
+        "  --light point:x,y,z[,range]   a point light (repeatable, any kind)\n"
+        "  --light spot:x,y,z,dx,dy,dz,inner_deg,outer_deg\n"
+        "  --light dir:x,y,z             a directional light travelling along (x,y,z)\n"
+        "  --light point:auto | spot:auto | dir:auto   placed around the models\n"
+        "  --camera eye=x,y,z,target=x,y,z[,fov=deg][,near=d][,up=x,y,z]\n"
+        "                                default: framed from the front and above\n"
+        "  (no light: a point light and a directional light whose shadows fall on the\n"
+        "  ground in view; a light's intensity makes it give irradiance 1 at the\n"
+        "  scene's centre)\n"
+        "\n"
+        "frame:\n"
+        "  --size WxH        default 1280x1024; at most %d per side\n"
+        "  --mode M          zpass (silhouettes only), zfail (with caps), or auto\n"
+        "                    (default: z-fail for a volume only where the camera's near\n"
+        "                    rectangle may lie inside it)\n"
+        "  --kernels K       the rasteriser's row kernels: c, avx2, avx512 (default: best)\n"
+        "  --variant NAME    the library's volume kernels (default: best)\n"
+        "  --no-truth        skip the ray-cast truth\n"
+        "  --no-gl           skip the Mesa comparison\n"
+        "  --threads N       threads for the truth's rays (default: the CPU's)\n"
+        "  --out DIR         where the PNGs go (default shadowvol-render)\n"
+        "  --json FILE       the report as JSON (schema shadowvol-render/1; - for stdout)\n"
+        "\n"
+        "Exit status: 0 done; 1 a mismatch against the truth off a shadow boundary, or a\n"
+        "difference from Mesa off every volume edge and depth tie; 2 bad arguments;\n"
+        "3 a model could not be loaded.\n",
+        sv::render::kMaxFrameSide);
+}
+
+int render_main(int argc, char **argv) {
+    RenderArgs args;
+    try {
+        bool help = false;
+        args = parse(argc, argv, help);
+        if (help) {
+            render_usage(stdout);
+            return 0;
+        }
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "shadowvol render: %s\nTry 'shadowvol render --help'.\n", e.message.c_str());
+        return kExitUsage;
+    } catch (const sv::SceneError &e) {
+        std::fprintf(stderr, "shadowvol render: %s\n", e.what());
+        return kExitUsage;
+    }
+    const sv::raster::RowKernels *kernels = nullptr;
+    if (!args.kernels.empty()) {
+        kernels = sv::raster::row_kernels_by_name(args.kernels.c_str());
+        if (!kernels || (kernels->isa & sv_cpu_isa()) != kernels->isa) {
+            std::fprintf(stderr, "shadowvol render: --kernels %s: %s\n", args.kernels.c_str(),
+                         kernels ? "this CPU (or SV_ISA) does not run it" : "unknown (c, avx2, avx512)");
+            return kExitUsage;
+        }
+    }
+    const sv_variant *variant = nullptr;
+    if (!args.variant.empty()) {
+        variant = sv_variant_by_name(args.variant.c_str());
+        if (!variant || (variant->isa & sv_cpu_isa()) != variant->isa) {
+            std::fprintf(stderr, "shadowvol render: --variant %s: %s\n", args.variant.c_str(),
+                         variant ? "this CPU (or SV_ISA) does not run it" : "unknown variant");
+            return kExitUsage;
+        }
+    }
+    const bool bundled = args.models.empty();
+    if (bundled) {
+        args.models.push_back({std::string(SV_MODELS_DIR) + "/character_1344.glb", {}});
+        args.ground = true;
+    }
+
+    sv::Scene scene;
+    for (const sv::ModelPlacement &m : args.models) {
+        try {
+            sv::add_model(scene, m.path, m.placement);
+        } catch (const sv::GltfError &e) {
+            std::fprintf(stderr, "shadowvol render: %s\n", e.what());
+            return kExitBadModel;
+        } catch (const sv::PrepareError &e) {
+            std::fprintf(stderr, "shadowvol render: %s: %s\n", m.path.c_str(), e.what());
+            return kExitBadModel;
+        } catch (const sv::SceneError &e) {
+            std::fprintf(stderr, "shadowvol render: %s\n", e.what());
+            return kExitUsage;
+        }
+    }
+    if (scene.triangles() == 0) {
+        std::fprintf(stderr, "shadowvol render: the models have no triangles to render\n");
+        return kExitBadModel;
+    }
+    if (args.ground) sv::add_ground(scene);
+    const double aspect = (double)args.width / args.height;
+    scene.camera = args.has_camera ? args.camera : sv::frame_camera(scene, aspect);
+    scene.lights = args.lights.empty() ? sv::default_lights(scene) : args.lights;
+    for (sv::SceneLight &l : scene.lights) {
+        if (l.placed_automatically) l = sv::auto_light(scene, l.kind);
+    }
+    for (sv::SceneLight &l : scene.lights) sv::default_intensity(scene, l);
+    try {
+        sv::validate_scene(scene);
+    } catch (const sv::SceneError &e) {
+        std::fprintf(stderr, "shadowvol render: %s\n", e.what());
+        return kExitUsage;
+    }
+    for (const std::string &n : scene.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+
+    const uint64_t bytes = sv::render::frame_bytes(args.width, args.height, (int)scene.lights.size());
+    std::fprintf(stderr, "shadowvol render: %dx%d, %zu light(s), %lld triangles; the frame needs %.1f MiB\n",
+                 args.width, args.height, scene.lights.size(), (long long)scene.triangles(),
+                 (double)bytes / (1 << 20));
+    if (!make_dir(args.out_dir)) {
+        std::fprintf(stderr, "shadowvol render: --out %s: cannot create the folder\n", args.out_dir.c_str());
+        return kExitUsage;
+    }
+
+    sv::render::RenderOptions opt;
+    opt.width = args.width;
+    opt.height = args.height;
+    opt.mode = args.mode;
+    opt.kernels = kernels;
+    opt.variant = variant;
+    const sv::render::Frame frame = sv::render::render_frame(scene, opt);
+    const double hz = svbench::estimate_tsc_hz(0.05);
+    const int threads = args.threads ? args.threads : (int)std::max(1u, std::thread::hardware_concurrency());
+
+    /* The judges. */
+    std::vector<sv::render::Truth> truths;
+    std::vector<sv::render::Comparison> cmps;
+    if (args.truth) {
+        std::fprintf(stderr, "shadowvol render: casting the truth's rays...\n");
+        const sv::render::TruthCaster caster(scene);
+        for (std::size_t li = 0; li < frame.lights.size(); li++) {
+            truths.push_back(caster.cast(frame, (int)li, threads));
+            cmps.push_back(sv::render::compare_with_stencil(truths.back(), frame.lights[li].stencil,
+                                                            frame.width, frame.height));
+        }
+    }
+    std::vector<sv::render::GlComparison> gls;
+    std::string gl_renderer, gl_note;
+    if (args.gl) {
+        std::fprintf(stderr, "shadowvol render: drawing the same volumes with Mesa...\n");
+        gls = sv::render::compare_with_mesa(scene, frame, &gl_renderer, &gl_note);
+        if (!gl_note.empty()) std::fprintf(stderr, "NOTE: %s\n", gl_note.c_str());
+    }
+
+    /* Pictures. */
+    sv::render::Image shaded(frame.width, frame.height);
+    shaded.rgb = frame.rgb;
+    std::vector<sv::render::Image> stencil_panels, truth_panels, gl_panels;
+    for (std::size_t li = 0; li < frame.lights.size(); li++) {
+        stencil_panels.push_back(sv::render::stencil_image(frame.lights[li].stencil, shaded));
+        if (li < truths.size()) {
+            truth_panels.push_back(sv::render::truth_image(truths[li], frame.lights[li].stencil,
+                                                           frame.width, frame.height));
+        }
+        if (li < gls.size()) gl_panels.push_back(sv::render::difference_image(gls[li].cls, shaded));
+    }
+    try {
+        sv::render::write_png(args.out_dir + "/shaded.png", shaded);
+        sv::render::write_png(args.out_dir + "/stencil.png", sv::render::side_by_side(stencil_panels));
+        if (!truth_panels.empty()) {
+            sv::render::write_png(args.out_dir + "/truth.png", sv::render::side_by_side(truth_panels));
+        }
+        if (!gl_panels.empty()) {
+            sv::render::write_png(args.out_dir + "/gl_diff.png", sv::render::side_by_side(gl_panels));
+        }
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "shadowvol render: %s\n", e.what());
+        return kExitUsage;
+    }
+
+    /* The report. */
+    bool failed = false;
+    std::printf("scene: %zu surface(s), %lld triangles, %zu light(s); camera eye (%g, %g, %g) target (%g, %g, %g) fov %g near %g\n",
+                scene.surfaces.size(), (long long)scene.triangles(), scene.lights.size(), scene.camera.eye.x,
+                scene.camera.eye.y, scene.camera.eye.z, scene.camera.target.x, scene.camera.target.y,
+                scene.camera.target.z, scene.camera.fov_y_degrees, scene.camera.near_distance);
+    std::printf("frame: %dx%d, mode %s, row kernels %s, volume kernels %s, TSC %.3f GHz\n", frame.width,
+                frame.height, sv::render::mode_name(args.mode), frame.kernels.c_str(), frame.variant.c_str(),
+                hz / 1e9);
+    std::printf("depth pass: %llu triangles, %llu pixels tested, %llu written, %.2f ms (%llu ticks)\n",
+                (unsigned long long)frame.depth_counters.triangles,
+                (unsigned long long)frame.depth_counters.pixels_tested,
+                (unsigned long long)frame.depth_counters.pixels_written, ms(frame.ticks_depth, hz),
+                (unsigned long long)frame.ticks_depth);
+    std::printf("\n%-3s %-46s %4s %5s %8s %8s | %9s %9s %9s %9s | %10s %10s %9s | %8s %8s %8s %6s %6s | %8s %8s %7s\n",
+                "#", "light", "vols", "zfail", "indices", "drawn", "facing", "volume", "stencil", "shading",
+                "st.tested", "st.written", "st.bytes", "lit", "shadowed", "boundary", "mism", "off",
+                "gl.diff", "gl.other", "gl/own");
+    std::printf("%-3s %-46s %4s %5s %8s %8s | %9s %9s %9s %9s | %10s %10s %9s | %8s %8s %8s %6s %6s | %8s %8s %7s\n",
+                "", "", "", "", "", "", "ms", "ms", "ms", "ms", "", "", "r+w", "", "", "", "", "", "", "", "x");
+    for (std::size_t li = 0; li < frame.lights.size(); li++) {
+        const sv::render::LightFrame &lf = frame.lights[li];
+        const sv::render::Comparison *c = li < cmps.size() ? &cmps[li] : nullptr;
+        const sv::render::GlComparison *g = li < gls.size() ? &gls[li] : nullptr;
+        std::string desc = lf.light.describe();
+        if (desc.size() > 46) desc = desc.substr(0, 46);
+        char truth_cols[128] = "", gl_cols[96] = "";
+        if (c) {
+            std::snprintf(truth_cols, sizeof truth_cols, "%8llu %8llu %8llu %6llu %6llu",
+                          (unsigned long long)c->lit, (unsigned long long)c->shadowed,
+                          (unsigned long long)c->boundary, (unsigned long long)c->mismatches,
+                          (unsigned long long)c->off_boundary_mismatches);
+            failed |= c->off_boundary_mismatches > 0;
+        } else {
+            std::snprintf(truth_cols, sizeof truth_cols, "%8s %8s %8s %6s %6s", "-", "-", "-", "-", "-");
+        }
+        if (g) {
+            std::snprintf(gl_cols, sizeof gl_cols, "%8llu %8llu %7.2f", (unsigned long long)g->differing,
+                          (unsigned long long)g->other,
+                          lf.seconds_stencil > 0 ? g->mesa_stencil_seconds / lf.seconds_stencil : 0.0);
+            failed |= g->other > 0;
+        } else {
+            std::snprintf(gl_cols, sizeof gl_cols, "%8s %8s %7s", "-", "-", "-");
+        }
+        std::printf("%-3zu %-46s %4zu %5d %8lld %8lld | %9.3f %9.3f %9.3f %9.3f | %10llu %10llu %9llu | %s | %s\n",
+                    li, desc.c_str(), lf.volumes.size(), lf.zfail_volumes, (long long)lf.indices,
+                    (long long)lf.drawn_indices, ms(lf.ticks_facing, hz), ms(lf.ticks_volume, hz),
+                    ms(lf.ticks_stencil, hz), ms(lf.ticks_shading, hz),
+                    (unsigned long long)lf.stencil_counters.pixels_tested,
+                    (unsigned long long)lf.stencil_counters.pixels_written,
+                    (unsigned long long)(lf.stencil_counters.stencil_bytes_read +
+                                         lf.stencil_counters.stencil_bytes_written),
+                    truth_cols, gl_cols);
+    }
+    for (std::size_t li = 0; li < truths.size(); li++) {
+        std::printf("truth %zu: %llu rays in %.2f s (%.2f M rays/s, %d threads, BVH of src/verify)\n", li,
+                    (unsigned long long)truths[li].rays, truths[li].seconds,
+                    truths[li].seconds > 0 ? (double)truths[li].rays / truths[li].seconds / 1e6 : 0.0, threads);
+        for (int p : cmps[li].first_off_boundary) {
+            std::printf("  off-boundary mismatch at pixel (%d, %d): stencil %u\n", p % frame.width,
+                        p / frame.width, frame.lights[li].stencil[(std::size_t)p]);
+        }
+    }
+    if (!gls.empty()) {
+        std::printf("mesa: %s\n", gl_renderer.c_str());
+        for (std::size_t li = 0; li < gls.size(); li++) {
+            const sv::render::GlComparison &g = gls[li];
+            std::printf("gl %zu: %llu pixels differ (%.6f%%): %llu on a volume triangle's edge, %llu at a depth tie, %llu other; "
+                        "Mesa's stencil pass %.2f ms against ours %.2f ms (Mesa / ours = %.2f)\n",
+                        li, (unsigned long long)g.differing,
+                        100.0 * (double)g.differing / ((double)frame.width * frame.height),
+                        (unsigned long long)g.on_edge, (unsigned long long)g.depth_tie,
+                        (unsigned long long)g.other, 1e3 * g.mesa_stencil_seconds,
+                        1e3 * frame.lights[li].seconds_stencil,
+                        frame.lights[li].seconds_stencil > 0 ? g.mesa_stencil_seconds / frame.lights[li].seconds_stencil : 0.0);
+        }
+    }
+    std::printf("images: %s/shaded.png stencil.png%s%s\n", args.out_dir.c_str(),
+                truth_panels.empty() ? "" : " truth.png", gl_panels.empty() ? "" : " gl_diff.png");
+
+    if (!args.json_path.empty()) {
+        svbench::JsonWriter j;
+        j.begin_object();
+        j.key("schema"), j.value("shadowvol-render/1");
+        j.key("width"), j.value(frame.width);
+        j.key("height"), j.value(frame.height);
+        j.key("mode"), j.value(sv::render::mode_name(args.mode));
+        j.key("row_kernels"), j.value(frame.kernels);
+        j.key("volume_kernels"), j.value(frame.variant);
+        j.key("tsc_hz"), j.value(hz);
+        j.key("surfaces");
+        j.begin_array();
+        for (const sv::SceneSurface &s : scene.surfaces) {
+            j.begin_object(true);
+            j.key("name"), j.value(s.name);
+            j.key("triangles"), j.value(s.prepared.num_triangles());
+            j.key("ground"), j.value(s.ground);
+            j.end_object();
+        }
+        j.end_array();
+        j.key("depth_pass");
+        j.begin_object();
+        j.key("ticks"), j.value((unsigned long long)frame.ticks_depth);
+        j.key("counters");
+        counters_json(j, frame.depth_counters);
+        j.end_object();
+        j.key("lights");
+        j.begin_array();
+        for (std::size_t li = 0; li < frame.lights.size(); li++) {
+            const sv::render::LightFrame &lf = frame.lights[li];
+            j.begin_object();
+            j.key("light"), j.value(lf.light.describe());
+            j.key("volumes"), j.value((int)lf.volumes.size());
+            j.key("zfail_volumes"), j.value(lf.zfail_volumes);
+            j.key("indices"), j.value((long long)lf.indices);
+            j.key("drawn_indices"), j.value((long long)lf.drawn_indices);
+            j.key("ticks");
+            j.begin_object(true);
+            j.key("facing"), j.value((unsigned long long)lf.ticks_facing);
+            j.key("volume"), j.value((unsigned long long)lf.ticks_volume);
+            j.key("stencil"), j.value((unsigned long long)lf.ticks_stencil);
+            j.key("shading"), j.value((unsigned long long)lf.ticks_shading);
+            j.end_object();
+            j.key("stencil_counters");
+            counters_json(j, lf.stencil_counters);
+            if (li < cmps.size()) {
+                const sv::render::Comparison &c = cmps[li];
+                j.key("truth");
+                j.begin_object(true);
+                j.key("compared"), j.value((unsigned long long)c.compared);
+                j.key("lit"), j.value((unsigned long long)c.lit);
+                j.key("shadowed"), j.value((unsigned long long)c.shadowed);
+                j.key("boundary"), j.value((unsigned long long)c.boundary);
+                j.key("mismatches"), j.value((unsigned long long)c.mismatches);
+                j.key("off_boundary_mismatches"), j.value((unsigned long long)c.off_boundary_mismatches);
+                j.key("rays"), j.value((unsigned long long)truths[li].rays);
+                j.key("seconds"), j.value(truths[li].seconds);
+                j.end_object();
+            } else {
+                j.key("truth"), j.null();
+            }
+            if (li < gls.size()) {
+                const sv::render::GlComparison &g = gls[li];
+                j.key("gl");
+                j.begin_object(true);
+                j.key("differing"), j.value((unsigned long long)g.differing);
+                j.key("on_edge"), j.value((unsigned long long)g.on_edge);
+                j.key("depth_tie"), j.value((unsigned long long)g.depth_tie);
+                j.key("other"), j.value((unsigned long long)g.other);
+                j.key("mesa_stencil_seconds"), j.value(g.mesa_stencil_seconds);
+                j.key("own_stencil_seconds"), j.value(lf.seconds_stencil);
+                j.end_object();
+            } else {
+                j.key("gl"), j.null();
+            }
+            j.end_object();
+        }
+        j.end_array();
+        j.key("gl_renderer"), j.value(gl_renderer);
+        j.key("notes");
+        j.begin_array();
+        for (const std::string &n : scene.notes) j.value(n);
+        if (!gl_note.empty()) j.value(gl_note);
+        j.end_array();
+        j.key("passed"), j.value(!failed);
+        j.end_object();
+        const std::string &doc = j.str();
+        FILE *f = args.json_path == "-" ? stdout : std::fopen(args.json_path.c_str(), "w");
+        if (!f || std::fwrite(doc.data(), 1, doc.size(), f) != doc.size() || (f != stdout && std::fclose(f) != 0)) {
+            std::fprintf(stderr, "shadowvol render: --json %s: cannot write\n", args.json_path.c_str());
+            return kExitUsage;
+        }
+    }
+    if (failed) {
+        std::printf("FAILED: a stencil pixel disagrees with the truth off a shadow boundary, or with Mesa off every edge and depth tie\n");
+        return kExitMismatch;
+    }
+    std::printf("PASSED: every mismatch against the truth lies on a shadow boundary%s\n",
+                gls.empty() ? "" : "; every difference from Mesa on a volume edge or a depth tie");
+    return 0;
+}
+
+} // namespace svcli

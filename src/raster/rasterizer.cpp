@@ -1,0 +1,391 @@
+/*
+ * Triangle setup of the rasteriser (see rasterizer.h): clipping, snapping,
+ * edge functions and the depth plane; each row span goes to a row kernel.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "rasterizer.h"
+
+#include <sys/mman.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "fill_rule.h"
+
+namespace sv::raster {
+namespace {
+
+constexpr int kSubPixelBits = 8;
+constexpr double kSubPixel = 1 << kSubPixelBits;
+constexpr int kMaxPolygon = 3 + 5; /* a triangle cut by 5 planes */
+
+/* Signed distance to clip plane P (>= 0 inside). */
+inline double plane_distance(int p, const ClipVertex &v) {
+    switch (p) {
+    case 0: return v.z + v.w; /* near */
+    case 1: return v.x + v.w; /* left */
+    case 2: return v.w - v.x; /* right */
+    case 3: return v.y + v.w; /* bottom */
+    default: return v.w - v.y; /* top */
+    }
+}
+
+/* The point where edge (IN, OUT) meets plane P, always computed from the
+ * inside end, so both triangles of a shared edge get the same bits. */
+inline ClipVertex cut(const ClipVertex &in, double d_in, const ClipVertex &out, double d_out) {
+    const double t = d_in / (d_in - d_out);
+    return {in.x + t * (out.x - in.x), in.y + t * (out.y - in.y), in.z + t * (out.z - in.z),
+            in.w + t * (out.w - in.w)};
+}
+
+/* Sutherland-Hodgman against the five planes. Returns the vertex count
+ * (0: nothing left). */
+int clip_polygon(ClipVertex poly[kMaxPolygon], int n) {
+    ClipVertex tmp[kMaxPolygon];
+    for (int p = 0; p < 5 && n > 0; p++) {
+        int m = 0;
+        for (int i = 0; i < n; i++) {
+            const ClipVertex &a = poly[i], &b = poly[(i + 1) % n];
+            const double da = plane_distance(p, a), db = plane_distance(p, b);
+            if (da >= 0) tmp[m++] = a;
+            if ((da >= 0) != (db >= 0)) {
+                tmp[m++] = da >= 0 ? cut(a, da, b, db) : cut(b, db, a, da);
+            }
+        }
+        n = m;
+        std::memcpy(poly, tmp, sizeof(ClipVertex) * (std::size_t)n);
+    }
+    return n;
+}
+
+struct Snapped {
+    int64_t X, Y; /* 1/256 pixel, y down */
+    double z;     /* window depth */
+};
+
+/* Window coordinates of the clipped polygon, snapped to 1/256 pixel (round
+ * to nearest), and window depth. False when a vertex is not drawable (w <=
+ * 0 or not finite: only a degenerate input gets here after clipping). */
+bool snap_polygon(const ClipVertex *poly, int n, int width, int height, Snapped *s) {
+    for (int i = 0; i < n; i++) {
+        const ClipVertex &q = poly[i];
+        if (!(q.w > 0) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
+            return false;
+        }
+        const double xs = (q.x / q.w + 1) * 0.5 * width;
+        const double ys = (1 - q.y / q.w) * 0.5 * height;
+        s[i].X = (int64_t)std::nearbyint(xs * kSubPixel);
+        s[i].Y = (int64_t)std::nearbyint(ys * kSubPixel);
+        s[i].z = (q.z / q.w + 1) * 0.5;
+    }
+    return true;
+}
+
+inline bool snapped_less(const Snapped &a, const Snapped &b) {
+    if (a.X != b.X) return a.X < b.X;
+    if (a.Y != b.Y) return a.Y < b.Y;
+    return a.z < b.z;
+}
+
+/* floor(v) for |v| <= 2^62, without a call to libm (x86-64's baseline
+ * has no roundsd). */
+inline int64_t floor_to_int(double v) {
+    const int64_t t = (int64_t)v;
+    return (double)t > v ? t - 1 : t;
+}
+
+inline int64_t floor_div(int64_t a, int64_t b) { /* b > 0 */
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+/* Depth as z0 + a * (x - x0) + b * (y - y0), x and y in pixels. */
+struct DepthPlane {
+    double x0, y0, z0, a, b;
+    bool ok;
+};
+
+DepthPlane plane_of(const Snapped &p, const Snapped &q, const Snapped &r) {
+    const double x0 = (double)p.X / kSubPixel, y0 = (double)p.Y / kSubPixel;
+    const double x1 = (double)q.X / kSubPixel - x0, y1 = (double)q.Y / kSubPixel - y0;
+    const double x2 = (double)r.X / kSubPixel - x0, y2 = (double)r.Y / kSubPixel - y0;
+    const double z1 = q.z - p.z, z2 = r.z - p.z;
+    const double det = x1 * y2 - x2 * y1;
+    DepthPlane d{x0, y0, p.z, 0, 0, det != 0};
+    if (d.ok) {
+        d.a = (z1 * y2 - z2 * y1) / det;
+        d.b = (x1 * z2 - x2 * z1) / det;
+        d.ok = std::isfinite(d.a) && std::isfinite(d.b);
+    }
+    return d;
+}
+
+/* The plane of a polygon from a choice of three vertices that does not
+ * depend on their order: the vertices sorted, and the triple of largest
+ * |area| (the first such in sorted order). */
+DepthPlane canonical_plane(const Snapped *v, int n) {
+    Snapped s[kMaxPolygon];
+    /* Insertion sort: at most 8 vertices. */
+    for (int i = 0; i < n; i++) {
+        int j = i;
+        for (; j > 0 && snapped_less(v[i], s[j - 1]); j--) s[j] = s[j - 1];
+        s[j] = v[i];
+    }
+    if (n == 3) return plane_of(s[0], s[1], s[2]);
+    int64_t best = -1;
+    int bi = 0, bj = 1, bk = 2;
+    for (int i = 0; i < n; i++) {
+        for (int j = i + 1; j < n; j++) {
+            for (int k = j + 1; k < n; k++) {
+                const int64_t a2 = (s[j].X - s[i].X) * (s[k].Y - s[i].Y) -
+                                   (s[k].X - s[i].X) * (s[j].Y - s[i].Y);
+                const int64_t mag = a2 < 0 ? -a2 : a2;
+                if (mag > best) best = mag, bi = i, bj = j, bk = k;
+            }
+        }
+    }
+    return plane_of(s[bi], s[bj], s[bk]);
+}
+
+/* The slivers of a shadow volume walk down the rows a few pixels at a time,
+ * a new cache line of depth (and of stencil) per row, with a stride the
+ * hardware prefetchers follow poorly: ask for the line a few rows ahead. */
+constexpr int kPrefetchRows = 6;
+inline void prefetch_ahead(const Target &t, int y, int x, bool stencil) {
+    if (y + kPrefetchRows >= t.height) return;
+    const std::size_t i = (std::size_t)(y + kPrefetchRows) * (std::size_t)t.width + (std::size_t)(x & ~15);
+    __builtin_prefetch(t.depth.data() + i);
+    if (stencil) __builtin_prefetch(t.stencil.data() + i, 1);
+}
+
+} // namespace
+
+void *allocate_frame_bytes(std::size_t bytes) {
+    constexpr std::size_t kHuge = 2u << 20;
+    /* kFrameSlack readable bytes after the last element, for the row
+     * kernels' whole-vector loads (row_kernels.h). */
+    const std::size_t rounded = (bytes + kFrameSlack + kHuge - 1) / kHuge * kHuge;
+    void *p = std::aligned_alloc(kHuge, rounded);
+    if (!p) throw std::bad_alloc();
+    madvise(p, rounded, MADV_HUGEPAGE); /* a hint: without it the buffer still works */
+    return p;
+}
+
+void free_frame_bytes(void *p) noexcept { std::free(p); }
+
+void PassCounters::add(const PassCounters &o) {
+    triangles += o.triangles;
+    triangles_clipped += o.triangles_clipped;
+    triangles_outside += o.triangles_outside;
+    triangles_degenerate += o.triangles_degenerate;
+    pixels_tested += o.pixels_tested;
+    pixels_written += o.pixels_written;
+    depth_bytes_read += o.depth_bytes_read;
+    depth_bytes_written += o.depth_bytes_written;
+    stencil_bytes_read += o.stencil_bytes_read;
+    stencil_bytes_written += o.stencil_bytes_written;
+}
+
+uint64_t Target::bytes_for(int width, int height) {
+    return (uint64_t)width * (uint64_t)height * (sizeof(float) + sizeof(int32_t) + 1);
+}
+
+void Target::resize(int w, int h) {
+    width = w;
+    height = h;
+    const std::size_t n = (std::size_t)w * (std::size_t)h;
+    depth.assign(n, 1.0f);
+    ids.assign(n, -1);
+    stencil.assign(n, 0);
+}
+
+void Target::clear_depth() {
+    std::fill(depth.begin(), depth.end(), 1.0f);
+    std::fill(ids.begin(), ids.end(), -1);
+}
+
+void Target::clear_stencil() { std::fill(stencil.begin(), stencil.end(), 0); }
+
+Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
+
+/* Clips, snaps and walks the rows of V; EMIT(span, y, front) per row. */
+template <class Emit>
+void Rasterizer::rasterize(const ClipVertex v[3], int width, int height, PassCounters &c,
+                           Emit &&emit) const {
+    c.triangles++;
+    ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
+    int n = 3;
+    bool inside_all = true;
+    for (int p = 0; p < 5; p++) {
+        const double d0 = plane_distance(p, v[0]), d1 = plane_distance(p, v[1]),
+                     d2 = plane_distance(p, v[2]);
+        if (d0 < 0 && d1 < 0 && d2 < 0) {
+            c.triangles_outside++;
+            return;
+        }
+        if (d0 < 0 || d1 < 0 || d2 < 0) inside_all = false;
+    }
+    if (!inside_all) {
+        c.triangles_clipped++;
+        n = clip_polygon(poly, n);
+        if (n < 3) {
+            c.triangles_outside++;
+            return;
+        }
+    }
+    Snapped s[kMaxPolygon];
+    if (!snap_polygon(poly, n, width, height, s)) {
+        c.triangles_degenerate++;
+        return;
+    }
+    const DepthPlane dp = canonical_plane(s, n);
+    if (!dp.ok) {
+        c.triangles_degenerate++;
+        return;
+    }
+    bool drew = false;
+    for (int k = 1; k + 1 < n; k++) {
+        Snapped t[3] = {s[0], s[k], s[k + 1]};
+        const int64_t a2 = (t[1].X - t[0].X) * (t[2].Y - t[0].Y) - (t[2].X - t[0].X) * (t[1].Y - t[0].Y);
+        if (a2 == 0) continue;
+        /* Counter-clockwise with y up is clockwise with y down: a2 < 0. */
+        const bool front = a2 < 0;
+        if (front) std::swap(t[1], t[2]);
+        drew = true;
+        int64_t ex[3], ey[3], e_origin[3], step_x[3], step_y[3];
+        for (int e = 0; e < 3; e++) {
+            const Snapped &a = t[e], &b = t[(e + 1) % 3];
+            ex[e] = b.X - a.X;
+            ey[e] = b.Y - a.Y;
+            /* E(P) = ex * (Py - a.Y) - ey * (Px - a.X), at the centre of
+             * pixel (0, 0): P = (128, 128). */
+            const int64_t half = (int64_t)kSubPixel / 2;
+            e_origin[e] = ex[e] * (half - a.Y) - ey[e] * (half - a.X) + fill_rule_bias(ex[e], ey[e]);
+            step_x[e] = -ey[e] * (int64_t)kSubPixel;
+            step_y[e] = ex[e] * (int64_t)kSubPixel;
+        }
+        const int64_t min_x = std::min({t[0].X, t[1].X, t[2].X}), max_x = std::max({t[0].X, t[1].X, t[2].X});
+        const int64_t min_y = std::min({t[0].Y, t[1].Y, t[2].Y}), max_y = std::max({t[0].Y, t[1].Y, t[2].Y});
+        const int64_t sub = (int64_t)kSubPixel, half = sub / 2;
+        const int x_first = (int)std::max<int64_t>(0, floor_div(min_x - half + sub - 1, sub));
+        const int x_last = (int)std::min<int64_t>(width - 1, floor_div(max_x - half, sub));
+        const int y_first = (int)std::max<int64_t>(0, floor_div(min_y - half + sub - 1, sub));
+        const int y_last = (int)std::min<int64_t>(height - 1, floor_div(max_y - half, sub));
+        if (x_first > x_last || y_first > y_last) continue;
+        /* Each edge's x bound on a row, -E_row / step_x, by a product
+         * with the reciprocal: a conservative span, padded by a pixel
+         * (the kernel's integer test is the exact one; the product's
+         * rounding is far below a pixel for E below 2^53). */
+        double inv_step[3];
+        int64_t e_row[3];
+        for (int e = 0; e < 3; e++) {
+            inv_step[e] = step_x[e] != 0 ? 1.0 / (double)step_x[e] : 0;
+            e_row[e] = e_origin[e] + step_y[e] * y_first;
+        }
+        for (int y = y_first; y <= y_last; y++) {
+            int lo = x_first, hi = x_last;
+            bool empty = false;
+            for (int e = 0; e < 3; e++) {
+                if (step_x[e] == 0) {
+                    empty |= e_row[e] < 0;
+                    continue;
+                }
+                const double bound = std::clamp(-(double)e_row[e] * inv_step[e], -1e9, 1e9);
+                const int64_t b = floor_to_int(bound);
+                if (step_x[e] > 0) {
+                    lo = (int)std::max<int64_t>(lo, b - 1);
+                } else {
+                    hi = (int)std::min<int64_t>(hi, b + 1);
+                }
+            }
+            if (empty || lo > hi) {
+                for (int e = 0; e < 3; e++) e_row[e] += step_y[e];
+                continue;
+            }
+            RowSpan span;
+            for (int e = 0; e < 3; e++) {
+                span.e[e] = e_row[e] + step_x[e] * lo;
+                span.step[e] = step_x[e];
+            }
+            span.zrow = dp.z0 + dp.b * (((double)y + 0.5) - dp.y0);
+            span.dzdx = dp.a;
+            span.x0 = dp.x0;
+            span.x_begin = lo;
+            span.x_end = hi + 1;
+            emit(span, y, front);
+            for (int e = 0; e < 3; e++) e_row[e] += step_y[e];
+        }
+    }
+    if (!drew) c.triangles_degenerate++;
+}
+
+void Rasterizer::draw_depth(Target &t, const ClipVertex v[3], int32_t id, PassCounters &c) const {
+    rasterize(v, t.width, t.height, c, [&](const RowSpan &span, int y, bool) {
+        const std::size_t row = (std::size_t)y * (std::size_t)t.width;
+        prefetch_ahead(t, y, span.x_begin, false);
+        const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
+        const RowCounts r = kernels_->depth(span, b, id);
+        c.pixels_tested += r.tested;
+        c.pixels_written += r.written;
+        c.depth_bytes_read += 4 * r.tested;
+        c.depth_bytes_written += 4 * r.written;
+    });
+}
+
+void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
+                              PassCounters &c) const {
+    rasterize(v, t.width, t.height, c, [&](const RowSpan &span, int y, bool front) {
+        const std::size_t row = (std::size_t)y * (std::size_t)t.width;
+        prefetch_ahead(t, y, span.x_begin, true);
+        const RowBuffers b{t.depth.data() + row, nullptr, t.stencil.data() + row};
+        /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
+        const bool increment = (mode == StencilMode::zpass) == front;
+        const uint8_t delta = increment ? 1 : 255;
+        const RowCounts r = mode == StencilMode::zpass ? kernels_->zpass(span, b, delta)
+                                                       : kernels_->zfail(span, b, delta);
+        c.pixels_tested += r.tested;
+        c.pixels_written += r.written;
+        c.depth_bytes_read += 4 * r.tested;
+        c.stencil_bytes_read += r.written;
+        c.stencil_bytes_written += r.written;
+    });
+}
+
+Rasterizer::PlaneCoefficients Rasterizer::depth_plane(const ClipVertex v[3], int width,
+                                                     int height) const {
+    ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
+    const int n = clip_polygon(poly, 3);
+    Snapped s[kMaxPolygon];
+    if (n < 3 || !snap_polygon(poly, n, width, height, s)) return {0, 0, 0, 0, 0, false};
+    const DepthPlane d = canonical_plane(s, n);
+    return {d.x0, d.y0, d.z0, d.a, d.b, d.ok};
+}
+
+std::vector<Rasterizer::WindowTriangle> Rasterizer::window_triangles(const ClipVertex v[3],
+                                                                     int width,
+                                                                     int height) const {
+    /* The same clipping and snapping as rasterize(), kept as pixels. */
+    std::vector<WindowTriangle> out;
+    ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
+    const int n = clip_polygon(poly, 3);
+    Snapped s[kMaxPolygon];
+    if (n < 3 || !snap_polygon(poly, n, width, height, s)) return {};
+    for (int k = 1; k + 1 < n; k++) {
+        const Snapped *t[3] = {&s[0], &s[k], &s[k + 1]};
+        WindowTriangle w;
+        for (int i = 0; i < 3; i++) {
+            w.x[i] = (double)t[i]->X / kSubPixel;
+            w.y[i] = (double)t[i]->Y / kSubPixel;
+            w.z[i] = t[i]->z;
+        }
+        const double a2 = (w.x[1] - w.x[0]) * (w.y[2] - w.y[0]) - (w.x[2] - w.x[0]) * (w.y[1] - w.y[0]);
+        if (a2 == 0) continue;
+        w.front = a2 < 0;
+        out.push_back(w);
+    }
+    return out;
+}
+
+} // namespace sv::raster

@@ -1,0 +1,156 @@
+/*
+ * The project's own triangle rasteriser for depth and stencil (issue 12):
+ * deterministic, watertight, and counting what it touches.
+ *
+ * Pipeline per triangle, given its three vertices in clip space (double):
+ *  1. Homogeneous clipping against the near plane (z >= -w) and the four
+ *     side planes (|x|, |y| <= w). There is no far plane: with the
+ *     infinite projection of shadowvol_scene.h, vertices at w = 0 (the
+ *     extruded ones) land at depth 1 - 2^-21. An edge is always cut from
+ *     its inside end towards its outside end, so the two triangles sharing
+ *     an edge get bit-identical new vertices (watertight after clipping).
+ *  2. Window coordinates, y down (row 0 = the image's top), snapped to
+ *     1/256 pixel (8 sub-pixel bits), round to nearest.
+ *  3. Fixed-point edge functions in 64-bit integers, sampled at pixel
+ *     centres (x + 1/2, y + 1/2), with the fill rule below: every pixel
+ *     centre on an edge shared by two triangles is covered by exactly one.
+ *  4. Depth: window depth (z_ndc + 1) / 2 as an affine function of the
+ *     snapped window position, from a canonical choice of three polygon
+ *     vertices, so the same triangle drawn with its corners in any order
+ *     (a near cap is the triangle reversed) gets bit-identical depths.
+ *     Evaluated in double, rounded to float, compared with LESS.
+ *
+ * Fill rule: see fill_rule.h (the one place that decides it).
+ *
+ * Front faces are counter-clockwise in GL window space (y up), as in
+ * OpenGL's default, so the same index list has the same facing here and in
+ * Mesa.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_RASTER_RASTERIZER_H
+#define SV_RASTER_RASTERIZER_H
+
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "row_kernels.h"
+
+namespace sv::raster {
+
+/* A clip-space vertex (x, y, z, w). */
+struct ClipVertex {
+    double x, y, z, w;
+};
+
+/* What a pass touched. "Tested": covered pixel centres whose depth was
+ * compared; "written": pixels whose depth (depth pass) or stencil
+ * (stencil pass) changed hands. Bytes count one read per test and one
+ * write per written pixel, per buffer. */
+struct PassCounters {
+    uint64_t triangles = 0;          /* submitted */
+    uint64_t triangles_clipped = 0;  /* crossed a clip plane and were cut */
+    uint64_t triangles_outside = 0;  /* wholly outside the view volume */
+    uint64_t triangles_degenerate = 0; /* zero area after snapping */
+    uint64_t pixels_tested = 0;
+    uint64_t pixels_written = 0;
+    uint64_t depth_bytes_read = 0;
+    uint64_t depth_bytes_written = 0;
+    uint64_t stencil_bytes_read = 0;
+    uint64_t stencil_bytes_written = 0;
+    void add(const PassCounters &o);
+};
+
+/* An allocator for frame buffers: 2 MiB aligned, and asks the kernel for
+ * transparent huge pages (madvise). A shadow volume's slivers are tall and
+ * thin: with 4 KiB pages every row of a 1280-pixel depth buffer is a page
+ * of its own, and the stencil pass was bound by TLB misses, one per row. */
+template <class T> struct FrameAllocator {
+    using value_type = T;
+    FrameAllocator() noexcept = default;
+    template <class U> FrameAllocator(const FrameAllocator<U> &) noexcept {}
+    T *allocate(std::size_t n);
+    void deallocate(T *p, std::size_t n) noexcept;
+    template <class U> bool operator==(const FrameAllocator<U> &) const noexcept { return true; }
+    template <class U> bool operator!=(const FrameAllocator<U> &) const noexcept { return false; }
+};
+/* At least kFrameSlack bytes after the end of every frame buffer are
+ * allocated and readable (never written). */
+void *allocate_frame_bytes(std::size_t bytes);
+void free_frame_bytes(void *p) noexcept;
+template <class T> T *FrameAllocator<T>::allocate(std::size_t n) {
+    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+    return static_cast<T *>(allocate_frame_bytes(n * sizeof(T)));
+}
+template <class T> void FrameAllocator<T>::deallocate(T *p, std::size_t) noexcept {
+    free_frame_bytes(p);
+}
+template <class T> using FrameBuffer = std::vector<T, FrameAllocator<T>>;
+
+/* The buffers of one frame. Depth is window depth in [0, 1]; ids name the
+ * triangle that wrote the depth (-1: none). */
+struct Target {
+    int width = 0, height = 0;
+    FrameBuffer<float> depth;
+    FrameBuffer<int32_t> ids;
+    FrameBuffer<uint8_t> stencil;
+    /* Bytes a WIDTH x HEIGHT target takes (depth, ids, stencil). */
+    static uint64_t bytes_for(int width, int height);
+    void resize(int width, int height);
+    void clear_depth();   /* depth 1, ids -1 */
+    void clear_stencil(); /* 0 */
+};
+
+enum class StencilMode { zpass, zfail };
+
+class Rasterizer {
+public:
+    /* KERNELS: the row kernels to use (row_kernels_by_name / best). */
+    explicit Rasterizer(const RowKernels *kernels);
+    const RowKernels &kernels() const { return *kernels_; }
+
+    /* Depth pass: where the triangle is nearer (LESS), write its depth and
+     * ID. Both faces are drawn (no culling). */
+    void draw_depth(Target &t, const ClipVertex v[3], int32_t id, PassCounters &c) const;
+
+    /* Stencil pass, depth read only. zpass: front faces +1, back faces -1
+     * (mod 256) where the depth test passes; zfail: back faces +1, front
+     * faces -1 where it fails. */
+    void draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
+                      PassCounters &c) const;
+
+    /* For tests and the GL comparison: the triangle's pieces after
+     * clipping, as window-space triangles in pixels (x, y down, depth),
+     * the coordinates the coverage test uses (snapped). */
+    struct WindowTriangle {
+        double x[3], y[3], z[3];
+        bool front;
+    };
+    std::vector<WindowTriangle> window_triangles(const ClipVertex v[3], int width,
+                                                 int height) const;
+
+    /* The depth plane the rasteriser uses for the triangle (after
+     * clipping), as depth = z0 + a (x - x0) + b (y - y0) in pixels: for
+     * tests that it does not depend on the corners' order (coefficients
+     * that differ in the last bit of a double rarely change a float depth,
+     * so comparing depth buffers alone would hardly notice). ok = false
+     * when nothing is left to draw. */
+    struct PlaneCoefficients {
+        double x0, y0, z0, a, b;
+        bool ok;
+    };
+    PlaneCoefficients depth_plane(const ClipVertex v[3], int width, int height) const;
+
+private:
+    const RowKernels *kernels_;
+    template <class Emit>
+    void rasterize(const ClipVertex v[3], int width, int height, PassCounters &c,
+                   Emit &&emit) const;
+};
+
+} // namespace sv::raster
+
+#endif

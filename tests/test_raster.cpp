@@ -1,0 +1,423 @@
+/*
+ * The rasteriser (src/raster): watertightness, the fill rule, clipping,
+ * vertices at w = 0, 8-bit wrap-around, a canonical depth, and the SIMD
+ * row kernels bit-identical to the C.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "frame.h"
+#include "rasterizer.h"
+#include "shadowvol.h"
+#include "shadowvol_scene.h"
+
+namespace {
+
+using namespace sv::raster;
+
+/* Window pixel (x, y down) and depth to clip space with w = 1. */
+ClipVertex px(double x, double y, double z, int w, int h) {
+    return {x / w * 2 - 1, 1 - y / h * 2, z * 2 - 1, 1};
+}
+
+std::vector<const RowKernels *> runnable_kernels() {
+    int n = 0;
+    const RowKernels *const *all = row_kernels_all(&n);
+    std::vector<const RowKernels *> out;
+    for (int i = 0; i < n; i++) {
+        if ((all[i]->isa & sv_cpu_isa()) == all[i]->isa) {
+            out.push_back(all[i]);
+        } else {
+            std::printf("NOTE: row kernels '%s' not run: this CPU lacks them\n", all[i]->name);
+        }
+    }
+    return out;
+}
+
+int8_t signed_count(uint8_t s) { return (int8_t)s; }
+
+/* The bundled character, as clip-space triangles seen from DIR. */
+struct Mesh {
+    std::vector<ClipVertex> v;
+    std::vector<int> idx;
+};
+Mesh character_in_view(double yaw, double pitch, double distance, double fov) {
+    sv::Scene scene;
+    sv::add_model(scene, SV_MODELS_DIR "/character_1344.glb", {});
+    const sv::PreparedSurface &p = scene.surfaces[0].prepared;
+    const sv::Vec3d target{0, 0.9, 0};
+    const sv::Vec3d eye{target.x + distance * std::cos(pitch) * std::sin(yaw),
+                        target.y + distance * std::sin(pitch),
+                        target.z + distance * std::cos(pitch) * std::cos(yaw)};
+    const sv::Mat4d vp = sv::infinite_projection(fov, 1.25, 0.05) * sv::look_at(eye, target, {0, 1, 0});
+    Mesh m;
+    for (int i = 0; i < p.num_vertices(); i++) {
+        m.v.push_back(sv::render::to_clip(vp, p.positions[3 * i], p.positions[3 * i + 1],
+                                          p.positions[3 * i + 2], 1));
+    }
+    m.idx.assign(p.indices.begin(), p.indices.end());
+    return m;
+}
+
+/* A closed mesh drawn into the stencil with nothing in the depth buffer
+ * (z-pass, every fragment passes): front +1, back -1. */
+std::vector<uint8_t> closed_mesh_sum(const Mesh &m, const RowKernels *k, int w, int h) {
+    Target t;
+    t.resize(w, h);
+    const Rasterizer r(k);
+    PassCounters c;
+    for (std::size_t i = 0; i < m.idx.size(); i += 3) {
+        const ClipVertex v[3] = {m.v[(std::size_t)m.idx[i]], m.v[(std::size_t)m.idx[i + 1]],
+                                 m.v[(std::size_t)m.idx[i + 2]]};
+        r.draw_stencil(t, v, StencilMode::zpass, c);
+    }
+    return std::vector<uint8_t>(t.stencil.begin(), t.stencil.end());
+}
+
+TEST(Raster, ClosedMeshSumsToZeroAtEveryPixel) {
+    /* Every pixel centre covered by the character's front faces is covered
+     * as often by its back faces: no pixel is lost or counted twice on any
+     * of its 2016 shared edges. Views from all around, at sizes that put
+     * centres on edges in different ways; near enough that the side
+     * planes cut it. */
+    for (const RowKernels *k : runnable_kernels()) {
+        int views = 0;
+        for (double yaw = 0; yaw < 6.28; yaw += 0.7) {
+            for (double pitch : {-0.6, 0.0, 0.5, 1.2}) {
+                for (double dist : {1.2, 3.0, 12.0}) {
+                    const Mesh m = character_in_view(yaw, pitch, dist, 50);
+                    const std::vector<uint8_t> s = closed_mesh_sum(m, k, 160, 128);
+                    for (std::size_t i = 0; i < s.size(); i++) {
+                        ASSERT_EQ(s[i], 0) << k->name << " yaw " << yaw << " pitch " << pitch
+                                           << " distance " << dist << " pixel " << i % 160 << ","
+                                           << i / 160;
+                    }
+                    views++;
+                }
+            }
+        }
+        EXPECT_EQ(views, 9 * 4 * 3);
+    }
+}
+
+TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
+    /* Quads split along a diagonal that passes exactly through pixel
+     * centres (vertices at half-integer positions), in both windings and
+     * all four diagonal directions, and axis-aligned edges on centres: each
+     * centre of the quad is covered exactly once. */
+    const int w = 64, h = 64;
+    std::mt19937 rng(7);
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        for (int trial = 0; trial < 200; trial++) {
+            std::uniform_int_distribution<int> d(2, 60);
+            int x0 = d(rng), y0 = d(rng), x1 = d(rng), y1 = d(rng);
+            if (x0 == x1 || y0 == y1) continue;
+            if (x0 > x1) std::swap(x0, x1);
+            if (y0 > y1) std::swap(y0, y1);
+            const double X0 = x0 + 0.5, Y0 = y0 + 0.5, X1 = x1 + 0.5, Y1 = y1 + 0.5;
+            const ClipVertex a = px(X0, Y0, 0.5, w, h), b = px(X1, Y0, 0.5, w, h),
+                             c = px(X1, Y1, 0.5, w, h), e = px(X0, Y1, 0.5, w, h);
+            Target t;
+            t.resize(w, h);
+            PassCounters pc;
+            const bool flip = trial & 1, other_diagonal = trial & 2;
+            ClipVertex t1[3] = {a, b, c}, t2[3] = {a, c, e};
+            if (other_diagonal) {
+                t1[0] = a, t1[1] = b, t1[2] = e;
+                t2[0] = b, t2[1] = c, t2[2] = e;
+            }
+            if (flip) std::swap(t1[1], t1[2]), std::swap(t2[1], t2[2]);
+            r.draw_stencil(t, t1, StencilMode::zpass, pc);
+            r.draw_stencil(t, t2, StencilMode::zpass, pc);
+            for (int y = 0; y < h; y++) {
+                for (int x = 0; x < w; x++) {
+                    const uint8_t s = t.stencil[(std::size_t)y * w + x];
+                    /* Inside the quad: the top and left edges own their
+                     * centres, the bottom and right ones do not. */
+                    const bool inside = x >= x0 && x < x1 && y >= y0 && y < y1;
+                    ASSERT_EQ(s != 0, inside) << k->name << " trial " << trial << " at " << x << "," << y;
+                    if (inside) {
+                        ASSERT_TRUE(s == 1 || s == 255) << "covered twice at " << x << "," << y;
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(Raster, TopLeftRule) {
+    /* A right triangle with corners on pixel centres (2.5, 2.5), (10.5,
+     * 2.5), (2.5, 10.5): its top edge (y = 2.5) and left edge (x = 2.5)
+     * own their centres; its hypotenuse (x + y = 13) does not. */
+    const int w = 16, h = 16;
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        for (bool reversed : {false, true}) {
+            Target t;
+            t.resize(w, h);
+            PassCounters pc;
+            ClipVertex v[3] = {px(2.5, 2.5, 0.5, w, h), px(10.5, 2.5, 0.5, w, h), px(2.5, 10.5, 0.5, w, h)};
+            if (reversed) std::swap(v[1], v[2]);
+            r.draw_stencil(t, v, StencilMode::zpass, pc);
+            for (int y = 0; y < h; y++) {
+                for (int x = 0; x < w; x++) {
+                    const bool expect = x >= 2 && y >= 2 && (x + 0.5) + (y + 0.5) < 13;
+                    EXPECT_EQ(t.stencil[(std::size_t)y * w + x] != 0, expect)
+                        << k->name << (reversed ? " reversed" : "") << " at " << x << "," << y;
+                }
+            }
+            EXPECT_EQ(pc.pixels_tested, 8u + 7 + 6 + 5 + 4 + 3 + 2 + 1) << k->name;
+        }
+    }
+}
+
+TEST(Raster, FrontIsCounterClockwiseWithYUp) {
+    /* Counter-clockwise on the screen with y up (GL's default front face)
+     * counts +1 in z-pass, the other winding -1 (255). */
+    const int w = 8, h = 8;
+    const Rasterizer r(&kRowKernelsC);
+    Target t;
+    t.resize(w, h);
+    PassCounters pc;
+    /* Window y down: (1,7) (7,7) (1,1) is counter-clockwise with y up. */
+    const ClipVertex ccw[3] = {px(1, 7, 0.5, w, h), px(7, 7, 0.5, w, h), px(1, 1, 0.5, w, h)};
+    r.draw_stencil(t, ccw, StencilMode::zpass, pc);
+    EXPECT_EQ(t.stencil[3 * w + 2], 1);
+    const ClipVertex cw[3] = {ccw[0], ccw[2], ccw[1]};
+    r.draw_stencil(t, cw, StencilMode::zpass, pc);
+    r.draw_stencil(t, cw, StencilMode::zpass, pc);
+    EXPECT_EQ(t.stencil[3 * w + 2], 255);
+}
+
+TEST(Raster, StencilWrapsAround256) {
+    const int w = 8, h = 8;
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        Target t;
+        t.resize(w, h);
+        PassCounters pc;
+        const ClipVertex full[3] = {{-1, -1, 0, 1}, {3, -1, 0, 1}, {-1, 3, 0, 1}};
+        for (int i = 0; i < 300; i++) r.draw_stencil(t, full, StencilMode::zpass, pc);
+        for (uint8_t s : t.stencil) ASSERT_EQ(s, 300 % 256) << k->name;
+        const ClipVertex back[3] = {full[0], full[2], full[1]};
+        for (int i = 0; i < 556; i++) r.draw_stencil(t, back, StencilMode::zpass, pc);
+        for (uint8_t s : t.stencil) ASSERT_EQ(s, (uint8_t)(300 - 556)) << k->name;
+        EXPECT_EQ(pc.pixels_written, 856u * w * h);
+    }
+}
+
+TEST(Raster, ZPassAndZFailAgainstTheDepth) {
+    /* A receiver at depth 0.5; a triangle in front counts in z-pass only,
+     * one behind in z-fail only; a triangle at exactly the receiver's
+     * depth fails LESS, so it counts in z-fail. */
+    const int w = 16, h = 16;
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        Target t;
+        t.resize(w, h);
+        PassCounters pc;
+        const ClipVertex recv[3] = {{-1, -1, 0, 1}, {3, -1, 0, 1}, {-1, 3, 0, 1}};
+        r.draw_depth(t, recv, 7, pc);
+        EXPECT_EQ(t.ids[5], 7);
+        for (double z : {-0.5, 0.5, 0.0}) {
+            for (StencilMode m : {StencilMode::zpass, StencilMode::zfail}) {
+                t.clear_stencil();
+                const ClipVertex tri[3] = {{-1, -1, z, 1}, {3, -1, z, 1}, {-1, 3, z, 1}};
+                r.draw_stencil(t, tri, m, pc);
+                const bool in_front = z < 0.0;
+                const bool counts = (m == StencilMode::zpass) == in_front;
+                /* Front face: z-pass +1, z-fail -1. */
+                const uint8_t expect = !counts ? 0 : m == StencilMode::zpass ? 1 : 255;
+                for (uint8_t s : t.stencil) ASSERT_EQ(s, expect) << k->name << " z " << z;
+            }
+        }
+    }
+}
+
+TEST(Raster, VertexAtInfinityLandsAtTheVanishingPoint) {
+    /* The extruded vertices have w = 0: a direction. Straight ahead
+     * (0, 0, -1, 0) in eye space projects to the screen's centre at depth
+     * 1 - 2^-21 with the infinite projection. */
+    const int w = 64, h = 64;
+    const sv::Mat4d p = sv::infinite_projection(60, 1, 0.1);
+    const auto far = sv::render::to_clip(p, 0, 0, -1, 0);
+    EXPECT_DOUBLE_EQ(far.z / far.w, 1 - sv::kInfiniteFarEpsilon);
+    const ClipVertex a = sv::render::to_clip(p, -1, -1, -2, 1), b = sv::render::to_clip(p, 1, -1, -2, 1);
+    const ClipVertex v[3] = {a, b, far};
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        Target t;
+        t.resize(w, h);
+        PassCounters pc;
+        r.draw_depth(t, v, 1, pc);
+        /* Just below the centre: covered, almost at the far plane. */
+        EXPECT_EQ(t.ids[(std::size_t)(h / 2 + 1) * w + w / 2], 1) << k->name;
+        EXPECT_EQ(t.ids[(std::size_t)(h / 2 - 2) * w + w / 2], -1) << k->name; /* above: not */
+        const float zc = t.depth[(std::size_t)(h / 2 + 1) * w + w / 2];
+        EXPECT_GT(zc, 0.99f);
+        EXPECT_LT(zc, 1.0f);
+        EXPECT_EQ(pc.triangles_outside, 0u);
+    }
+}
+
+TEST(Raster, NearPlaneClipsAVolumeWatertight) {
+    /* The character from so close that the near plane cuts it: the part in
+     * front of the near plane is gone, so z-pass sums are no longer zero
+     * where the cut is; but pixels whose whole column lies behind the near
+     * plane still sum to zero, and clipping created no pixel that is
+     * counted twice: every sum is -1, 0 or +1. */
+    for (const RowKernels *k : runnable_kernels()) {
+        const Mesh m = character_in_view(0.3, 0.1, 0.12, 70);
+        const std::vector<uint8_t> s = closed_mesh_sum(m, k, 200, 160);
+        int nonzero = 0;
+        for (uint8_t v : s) {
+            ASSERT_TRUE(v == 0 || v == 1 || v == 255) << k->name << ": " << (int)signed_count(v);
+            nonzero += v != 0;
+        }
+        EXPECT_GT(nonzero, 0) << "the near plane was expected to cut the mesh";
+    }
+}
+
+TEST(Raster, DepthDoesNotDependOnCornerOrder) {
+    /* The same triangle drawn in all six corner orders (a near cap is the
+     * triangle reversed), also cut by the near plane and the sides, gives
+     * bitwise the same depths: a receiver never fights its own cap. */
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.5, 1.5), zz(-1.2, 1.0), ww(0.2, 2.0);
+    const int w = 48, h = 40;
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        for (int trial = 0; trial < 100; trial++) {
+            ClipVertex v[3];
+            for (ClipVertex &q : v) {
+                const double wv = ww(rng);
+                q = {u(rng) * wv, u(rng) * wv, zz(rng) * wv, wv};
+            }
+            std::vector<float> first;
+            Rasterizer::PlaneCoefficients first_plane{};
+            const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}, {1, 0, 2}, {0, 2, 1}};
+            for (const auto &o : orders) {
+                Target t;
+                t.resize(w, h);
+                PassCounters pc;
+                const ClipVertex q[3] = {v[o[0]], v[o[1]], v[o[2]]};
+                r.draw_depth(t, q, 1, pc);
+                const Rasterizer::PlaneCoefficients pl = r.depth_plane(q, w, h);
+                std::vector<float> d(t.depth.begin(), t.depth.end());
+                if (first.empty()) {
+                    first = d;
+                    first_plane = pl;
+                } else {
+                    ASSERT_EQ(0, std::memcmp(first.data(), d.data(), d.size() * sizeof(float)))
+                        << k->name << " trial " << trial;
+                    ASSERT_EQ(first_plane.ok, pl.ok);
+                    const double a[5] = {first_plane.x0, first_plane.y0, first_plane.z0, first_plane.a, first_plane.b};
+                    const double b[5] = {pl.x0, pl.y0, pl.z0, pl.a, pl.b};
+                    if (pl.ok) ASSERT_EQ(0, std::memcmp(a, b, sizeof a)) << "trial " << trial;
+                }
+            }
+        }
+    }
+}
+
+TEST(Raster, SimdKernelsMatchTheCBitForBit) {
+    /* Random triangles of every shape (slivers, huge, cut by the near and
+     * side planes, vertices at w = 0), drawn in all three passes over a
+     * random depth buffer by each kernel: the buffers and the counters are
+     * identical to the C kernel's. */
+    const std::vector<const RowKernels *> ks = runnable_kernels();
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const int w = 97, h = 61; /* odd sizes: every block alignment and tail */
+    auto random_vertex = [&](int shape) -> ClipVertex {
+        const double s = shape == 0 ? 0.05 : shape == 1 ? 1.0 : 4.0;
+        const double wv = (rng() % 8 == 0) ? 0.0 : 0.3 + std::fabs(u(rng));
+        return {u(rng) * s, u(rng) * s, u(rng) * 1.2, wv == 0 ? 0.0 : wv};
+    };
+    for (int trial = 0; trial < 300; trial++) {
+        std::vector<std::array<ClipVertex, 3>> tris;
+        for (int i = 0; i < 40; i++) {
+            const int shape = (int)(rng() % 3);
+            std::array<ClipVertex, 3> t = {random_vertex(shape), random_vertex(shape), random_vertex(shape)};
+            if (rng() % 4 == 0) { /* a sliver */
+                t[1] = {t[0].x + 1e-3, t[0].y + u(rng), t[0].z, t[0].w == 0 ? 1 : t[0].w};
+            }
+            tris.push_back(t);
+        }
+        std::vector<float> depth0((std::size_t)w * h);
+        for (float &d : depth0) d = (float)(0.5 + 0.5 * u(rng));
+        std::vector<Target> results;
+        std::vector<PassCounters> counters;
+        for (const RowKernels *k : ks) {
+            const Rasterizer r(k);
+            Target t;
+            t.resize(w, h);
+            std::copy(depth0.begin(), depth0.end(), t.depth.begin());
+            PassCounters c;
+            for (std::size_t i = 0; i < tris.size(); i++) {
+                switch (i % 3) {
+                case 0: r.draw_depth(t, tris[i].data(), (int32_t)i, c); break;
+                case 1: r.draw_stencil(t, tris[i].data(), StencilMode::zpass, c); break;
+                default: r.draw_stencil(t, tris[i].data(), StencilMode::zfail, c); break;
+                }
+            }
+            results.push_back(std::move(t));
+            counters.push_back(c);
+        }
+        for (std::size_t k = 1; k < ks.size(); k++) {
+            ASSERT_EQ(0, std::memcmp(results[0].depth.data(), results[k].depth.data(), depth0.size() * 4))
+                << ks[k]->name << " trial " << trial;
+            ASSERT_TRUE(results[0].ids == results[k].ids) << ks[k]->name << " trial " << trial;
+            ASSERT_TRUE(results[0].stencil == results[k].stencil) << ks[k]->name << " trial " << trial;
+            ASSERT_EQ(counters[0].pixels_tested, counters[k].pixels_tested) << ks[k]->name;
+            ASSERT_EQ(counters[0].pixels_written, counters[k].pixels_written) << ks[k]->name;
+        }
+    }
+}
+
+TEST(Raster, KernelsWriteNothingOutsideTheSpan) {
+    /* One row span at every start and end inside a row of 40 pixels, over
+     * a buffer whose other pixels hold a pattern: every kernel changes
+     * only pixels of [x_begin, x_end), and matches the C there. */
+    for (const RowKernels *k : runnable_kernels()) {
+        for (int x0 = 0; x0 < 40; x0++) {
+            for (int x1 = x0; x1 <= 40; x1++) {
+                FrameBuffer<float> depth(120, 0.25f);
+                FrameBuffer<int32_t> ids(120, -5);
+                FrameBuffer<uint8_t> st(120, 77);
+                for (int mode = 0; mode < 3; mode++) {
+                    RowSpan s{};
+                    s.e[0] = s.e[1] = s.e[2] = 0; /* everything covered */
+                    s.step[0] = s.step[1] = s.step[2] = 0;
+                    s.zrow = mode == 0 ? 0.1 : 0.3; /* depth pass: nearer; stencil: behind */
+                    s.dzdx = 0;
+                    s.x0 = 0;
+                    s.x_begin = x0;
+                    s.x_end = x1;
+                    const RowBuffers b{depth.data() + 40, ids.data() + 40, st.data() + 40};
+                    RowCounts n = mode == 0 ? k->depth(s, b, 9) : mode == 1 ? k->zpass(s, b, 1) : k->zfail(s, b, 1);
+                    ASSERT_EQ(n.tested, (uint64_t)(x1 - x0));
+                }
+                for (int i = 0; i < 120; i++) {
+                    const bool in = i >= 40 + x0 && i < 40 + x1;
+                    ASSERT_EQ(depth[(std::size_t)i], in ? 0.1f : 0.25f) << k->name << " " << x0 << ".." << x1 << " at " << i;
+                    ASSERT_EQ(ids[(std::size_t)i], in ? 9 : -5) << k->name;
+                    /* z-pass: 0.3 is behind the new depth 0.1, no change;
+                     * z-fail: +1 there. */
+                    ASSERT_EQ(st[(std::size_t)i], in ? 78 : 77) << k->name << " " << x0 << ".." << x1 << " at " << i;
+                }
+            }
+        }
+    }
+}
+
+} // namespace
