@@ -3,25 +3,40 @@
  * llvmpipe, an FBO of GL_DEPTH32F_STENCIL8, and the two passes of a
  * stenciled shadow volume renderer, read back as images (row 0 = top).
  *
- * What llvmpipe does at the pixel level (Mesa 22.3.6, LLVM 15; found by
- * tests/test_mesa_stencil.cpp's FillRule tests, which assert it, so an
- * upgrade that changes it is noticed):
- *   - Pixel centres at half-integers: the centre of window pixel (i, j) is
- *     (i + 0.5, j + 0.5) in GL window coordinates (y up, row 0 at the
- *     bottom), as GL's default (lower-left origin, half-pixel centres)
- *     says.
+ * What llvmpipe does at the pixel level (Mesa 22.3.6, LLVM 15), found by
+ * experiment; tests/test_mesa_stencil.cpp's FillRule tests assert every
+ * point, so an upgrade that changes one is noticed. In GL WINDOW
+ * coordinates (x right, y UP, row 0 at the bottom), drawing into this FBO
+ * with GL's default lower-left origin:
+ *   - Pixel centres at half-integers: pixel (i, j) is sampled at
+ *     (i + 0.5, j + 0.5).
+ *   - A centre exactly on an edge is covered iff the triangle's interior is
+ *     on the +x side of the edge (a left edge, any slope), or the edge is
+ *     exactly horizontal with the interior on the +y side (the triangle's
+ *     bottom edge, y up). So for a counter-clockwise (y up) triangle and
+ *     its edge A -> B, d = B - A: inclusive iff d.y < 0 || (d.y == 0 &&
+ *     d.x > 0); either winding covers the same pixels. In the project's
+ *     image coordinates (row 0 at the top, y down) that is a BOTTOM-left
+ *     rule: left edges, and the horizontal edge whose triangle lies at
+ *     smaller row numbers (above it in the picture). Not Direct3D's
+ *     top-left rule in image coordinates.
  *   - Vertex positions are snapped to 1/256 pixel (8 sub-pixel bits),
- *     rounded to the nearest multiple; a position exactly halfway between
- *     two multiples rounds away from the pixel centre's side ... see the
- *     FillRule.SubPixelPrecision test and the report in the FillRule
- *     section of the test file for the measured thresholds.
- *   - Tie rule for a pixel centre exactly on an edge, in GL window
- *     coordinates (y up): see FILL_RULE below (filled in from the probe).
+ *     rounded to nearest; exactly halfway (1/512 off a pixel centre's grid
+ *     point, either side) goes onto the centre's point, as round-half-even
+ *     does (centres are even multiples of 1/256 from the origin).
+ *   - With vertices on the 1/256 grid the coverage is exactly the integer
+ *     edge-function rule above (FillRule.RandomTrianglesMatchTheReference-
+ *     RuleExactly: every pixel, overlapping triangles, ties and degenerate
+ *     ones). Window coordinates come from float arithmetic (VP * p in the
+ *     shader, x / w, x * W/2 + W/2): exact for power-of-two sizes and
+ *     binary-fraction positions, rounded otherwise (2/1280 is not a binary
+ *     fraction), which is what a rasteriser must reproduce at ties.
  *
  * Stencil read-back: glReadPixels(GL_STENCIL_INDEX, GL_UNSIGNED_BYTE) from
- * the FBO works in the core profile on this Mesa (the create() probe checks
- * it on every run and falls back to GL_DEPTH_STENCIL /
- * GL_FLOAT_32_UNSIGNED_INT_24_8_REV where it would not). Depth:
+ * the FBO works in the core profile on this Mesa; create() checks it with a
+ * 1x1 read and falls back to GL_DEPTH_STENCIL /
+ * GL_FLOAT_32_UNSIGNED_INT_24_8_REV (one read, both values) where it would
+ * not. Depth:
  * glReadPixels(GL_DEPTH_COMPONENT, GL_FLOAT), the float depth buffer's
  * values exactly.
  *
@@ -376,6 +391,10 @@ void OsMesaContext::destroy() {
         while (gl_.glGetError() != GL_NO_ERROR) {
         }
     }
+    /* Unbound first, so this thread is not left with a destroyed context
+     * current. (OSMesa 22.3.6 still keeps about 150 bytes of each
+     * context's window buffer: tests/lsan_osmesa.supp.) */
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(ctx_);
     ctx_ = nullptr;
 }
