@@ -141,9 +141,9 @@ TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
             for (int y = 0; y < h; y++) {
                 for (int x = 0; x < w; x++) {
                     const uint8_t s = t.stencil[(std::size_t)y * w + x];
-                    /* Inside the quad: the top and left edges own their
-                     * centres, the bottom and right ones do not. */
-                    const bool inside = x >= x0 && x < x1 && y >= y0 && y < y1;
+                    /* Inside the quad: the bottom and left edges own
+                     * their centres, the top and right ones do not. */
+                    const bool inside = x >= x0 && x < x1 && y > y0 && y <= y1;
                     ASSERT_EQ(s != 0, inside) << k->name << " trial " << trial << " at " << x << "," << y;
                     if (inside) {
                         ASSERT_TRUE(s == 1 || s == 255) << "covered twice at " << x << "," << y;
@@ -154,10 +154,13 @@ TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
     }
 }
 
-TEST(Raster, TopLeftRule) {
+TEST(Raster, BottomLeftRuleAsLlvmpipe) {
     /* A right triangle with corners on pixel centres (2.5, 2.5), (10.5,
-     * 2.5), (2.5, 10.5): its top edge (y = 2.5) and left edge (x = 2.5)
-     * own their centres; its hypotenuse (x + y = 13) does not. */
+     * 2.5), (2.5, 10.5): its left edge (x = 2.5) owns its centres; its top
+     * edge (y = 2.5, the triangle below it) and its hypotenuse (x + y =
+     * 13) do not. And the mirror image, with the horizontal edge at the
+     * bottom (y = 10.5, the triangle above it): that edge owns its
+     * centres. */
     const int w = 16, h = 16;
     for (const RowKernels *k : runnable_kernels()) {
         const Rasterizer r(k);
@@ -170,12 +173,28 @@ TEST(Raster, TopLeftRule) {
             r.draw_stencil(t, v, StencilMode::zpass, pc);
             for (int y = 0; y < h; y++) {
                 for (int x = 0; x < w; x++) {
-                    const bool expect = x >= 2 && y >= 2 && (x + 0.5) + (y + 0.5) < 13;
+                    const bool expect = x >= 2 && y >= 3 && (x + 0.5) + (y + 0.5) < 13;
                     EXPECT_EQ(t.stencil[(std::size_t)y * w + x] != 0, expect)
                         << k->name << (reversed ? " reversed" : "") << " at " << x << "," << y;
                 }
             }
-            EXPECT_EQ(pc.pixels_tested, 8u + 7 + 6 + 5 + 4 + 3 + 2 + 1) << k->name;
+            EXPECT_EQ(pc.pixels_tested, 7u + 6 + 5 + 4 + 3 + 2 + 1) << k->name;
+            /* Flipped upside down: (2.5, 10.5), (10.5, 10.5), (2.5, 2.5). */
+            t.clear_stencil();
+            PassCounters pb;
+            ClipVertex u[3] = {px(2.5, 10.5, 0.5, w, h), px(10.5, 10.5, 0.5, w, h), px(2.5, 2.5, 0.5, w, h)};
+            if (reversed) std::swap(u[1], u[2]);
+            r.draw_stencil(t, u, StencilMode::zpass, pb);
+            for (int y = 0; y < h; y++) {
+                for (int x = 0; x < w; x++) {
+                    /* Inside: x >= 2.5, y <= 10.5, y - x > 0 (the hypotenuse
+                     * from (2.5, 2.5) to (10.5, 10.5) is a right edge). */
+                    const bool expect = x >= 2 && y <= 10 && (y + 0.5) - (x + 0.5) > 0;
+                    EXPECT_EQ(t.stencil[(std::size_t)y * w + x] != 0, expect)
+                        << k->name << " flipped" << (reversed ? " reversed" : "") << " at " << x << "," << y;
+                }
+            }
+            EXPECT_EQ(pb.pixels_tested, 8u + 7 + 6 + 5 + 4 + 3 + 2 + 1) << k->name;
         }
     }
 }
@@ -404,7 +423,9 @@ TEST(Raster, KernelsWriteNothingOutsideTheSpan) {
                     s.x_begin = x0;
                     s.x_end = x1;
                     const RowBuffers b{depth.data() + 40, ids.data() + 40, st.data() + 40};
-                    RowCounts n = mode == 0 ? k->depth(s, b, 9) : mode == 1 ? k->zpass(s, b, 1) : k->zfail(s, b, 1);
+                    RowCounts n;
+                    if (mode == 0) k->depth(s, b, 9, n);
+                    else (mode == 1 ? k->zpass : k->zfail)(s, b, 1, n);
                     ASSERT_EQ(n.tested, (uint64_t)(x1 - x0));
                 }
                 for (int i = 0; i < 120; i++) {

@@ -322,20 +322,22 @@ void Rasterizer::rasterize(const ClipVertex v[3], int width, int height, PassCou
 }
 
 void Rasterizer::draw_depth(Target &t, const ClipVertex v[3], int32_t id, PassCounters &c) const {
+    RowCounts r;
     rasterize(v, t.width, t.height, c, [&](const RowSpan &span, int y, bool) {
         const std::size_t row = (std::size_t)y * (std::size_t)t.width;
         prefetch_ahead(t, y, span.x_begin, false);
         const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
-        const RowCounts r = kernels_->depth(span, b, id);
-        c.pixels_tested += r.tested;
-        c.pixels_written += r.written;
-        c.depth_bytes_read += 4 * r.tested;
-        c.depth_bytes_written += 4 * r.written;
+        kernels_->depth(span, b, id, r);
     });
+    c.pixels_tested += r.tested;
+    c.pixels_written += r.written;
+    c.depth_bytes_read += 4 * r.tested;
+    c.depth_bytes_written += 4 * r.written;
 }
 
 void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
                               PassCounters &c) const {
+    RowCounts r;
     rasterize(v, t.width, t.height, c, [&](const RowSpan &span, int y, bool front) {
         const std::size_t row = (std::size_t)y * (std::size_t)t.width;
         prefetch_ahead(t, y, span.x_begin, true);
@@ -343,14 +345,13 @@ void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode
         /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
         const bool increment = (mode == StencilMode::zpass) == front;
         const uint8_t delta = increment ? 1 : 255;
-        const RowCounts r = mode == StencilMode::zpass ? kernels_->zpass(span, b, delta)
-                                                       : kernels_->zfail(span, b, delta);
-        c.pixels_tested += r.tested;
-        c.pixels_written += r.written;
-        c.depth_bytes_read += 4 * r.tested;
-        c.stencil_bytes_read += r.written;
-        c.stencil_bytes_written += r.written;
+        (mode == StencilMode::zpass ? kernels_->zpass : kernels_->zfail)(span, b, delta, r);
     });
+    c.pixels_tested += r.tested;
+    c.pixels_written += r.written;
+    c.depth_bytes_read += 4 * r.tested;
+    c.stencil_bytes_read += r.written;
+    c.stencil_bytes_written += r.written;
 }
 
 Rasterizer::PlaneCoefficients Rasterizer::depth_plane(const ClipVertex v[3], int width,

@@ -66,9 +66,13 @@ struct RowCounts {
 
 /* depth:  covered and z < depth  ->  depth = z, ids = id
  * zpass:  covered and z < depth  ->  stencil += delta (mod 256)
- * zfail:  covered and !(z < depth) -> stencil += delta (mod 256) */
-typedef RowCounts (*row_depth_fn)(const RowSpan &s, const RowBuffers &b, int32_t id);
-typedef RowCounts (*row_stencil_fn)(const RowSpan &s, const RowBuffers &b, uint8_t delta);
+ * zfail:  covered and !(z < depth) -> stencil += delta (mod 256)
+ * The counts are ADDED to *n (a caller sums a triangle's rows there: a
+ * struct returned in rax:rdx and summed into memory was stored as two
+ * halves and reloaded as one vector by the compiler, a store-forwarding
+ * stall on every row). */
+typedef void (*row_depth_fn)(const RowSpan &s, const RowBuffers &b, int32_t id, RowCounts &n);
+typedef void (*row_stencil_fn)(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowCounts &n);
 
 struct RowKernels {
     const char *name;

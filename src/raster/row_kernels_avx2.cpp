@@ -98,9 +98,10 @@ inline RowSpan aligned(const RowSpan &s) {
     return a;
 }
 
-SV_TARGET_AVX2 RowCounts depth_avx2(const RowSpan &s, const RowBuffers &buf, int32_t id) {
-    if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id);
-    RowCounts n;
+SV_TARGET_AVX2 void depth_avx2(const RowSpan &s, const RowBuffers &buf, int32_t id, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
+    if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id, n);
     Block8 b;
     setup(aligned(s), b);
     const __m256i idv = _mm256_set1_epi32(id);
@@ -117,20 +118,22 @@ SV_TARGET_AVX2 RowCounts depth_avx2(const RowSpan &s, const RowBuffers &buf, int
                 _mm256_maskstore_ps(buf.depth + x, m, z);
                 _mm256_maskstore_epi32(buf.ids + x, m, idv);
             }
-            n.tested += (uint64_t)_mm_popcnt_u32(cov);
-            n.written += (uint64_t)_mm_popcnt_u32(less);
+            tested += (uint64_t)_mm_popcnt_u32(cov);
+            written += (uint64_t)_mm_popcnt_u32(less);
         }
         advance(b);
     }
-    return n;
+    n.tested += tested;
+    n.written += written;
 }
 
 template <bool kFail>
-SV_TARGET_AVX2 RowCounts stencil_avx2(const RowSpan &s, const RowBuffers &buf, uint8_t delta) {
+SV_TARGET_AVX2 void stencil_avx2(const RowSpan &s, const RowBuffers &buf, uint8_t delta, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
     if (s.x_end - s.x_begin <= kShortSpan) {
-        return (kFail ? kRowKernelsC.zfail : kRowKernelsC.zpass)(s, buf, delta);
+        return (kFail ? kRowKernelsC.zfail : kRowKernelsC.zpass)(s, buf, delta, n);
     }
-    RowCounts n;
     Block8 b;
     setup(aligned(s), b);
     for (int x = s.x_begin & ~7; x < s.x_end; x += 8) {
@@ -161,12 +164,13 @@ SV_TARGET_AVX2 RowCounts stencil_avx2(const RowSpan &s, const RowBuffers &buf, u
                     p = (uint8_t)(p + delta);
                 }
             }
-            n.tested += (uint64_t)_mm_popcnt_u32(cov);
-            n.written += (uint64_t)_mm_popcnt_u32(upd);
+            tested += (uint64_t)_mm_popcnt_u32(cov);
+            written += (uint64_t)_mm_popcnt_u32(upd);
         }
         advance(b);
     }
-    return n;
+    n.tested += tested;
+    n.written += written;
 }
 
 } // namespace

@@ -93,9 +93,10 @@ inline RowSpan aligned(const RowSpan &s) {
     return a;
 }
 
-SV_TARGET_AVX512 RowCounts depth_avx512(const RowSpan &s, const RowBuffers &buf, int32_t id) {
-    if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id);
-    RowCounts n;
+SV_TARGET_AVX512 void depth_avx512(const RowSpan &s, const RowBuffers &buf, int32_t id, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
+    if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id, n);
     Block16 b;
     setup(aligned(s), b);
     const __m512i idv = _mm512_set1_epi32(id);
@@ -107,20 +108,22 @@ SV_TARGET_AVX512 RowCounts depth_avx512(const RowSpan &s, const RowBuffers &buf,
             const __mmask16 less = _mm512_mask_cmp_ps_mask(cov, z, d, _CMP_LT_OQ);
             _mm512_mask_storeu_ps(buf.depth + x, less, z);
             _mm512_mask_storeu_epi32(buf.ids + x, less, idv);
-            n.tested += (uint64_t)__builtin_popcount(cov);
-            n.written += (uint64_t)__builtin_popcount(less);
+            tested += (uint64_t)__builtin_popcount(cov);
+            written += (uint64_t)__builtin_popcount(less);
         }
         advance(b);
     }
-    return n;
+    n.tested += tested;
+    n.written += written;
 }
 
 template <bool kFail>
-SV_TARGET_AVX512 RowCounts stencil_avx512(const RowSpan &s, const RowBuffers &buf, uint8_t delta) {
+SV_TARGET_AVX512 void stencil_avx512(const RowSpan &s, const RowBuffers &buf, uint8_t delta, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
     if (s.x_end - s.x_begin <= kShortSpan) {
-        return (kFail ? kRowKernelsC.zfail : kRowKernelsC.zpass)(s, buf, delta);
+        return (kFail ? kRowKernelsC.zfail : kRowKernelsC.zpass)(s, buf, delta, n);
     }
-    RowCounts n;
     Block16 b;
     setup(aligned(s), b);
     const __m128i dv = _mm_set1_epi8((char)delta);
@@ -135,12 +138,13 @@ SV_TARGET_AVX512 RowCounts stencil_avx512(const RowSpan &s, const RowBuffers &bu
                 const __m128i st = _mm_loadu_si128((const __m128i *)(buf.stencil + x)); /* kFrameSlack */
                 _mm_mask_storeu_epi8(buf.stencil + x, upd, _mm_add_epi8(st, dv));
             }
-            n.tested += (uint64_t)__builtin_popcount(cov);
-            n.written += (uint64_t)__builtin_popcount(upd);
+            tested += (uint64_t)__builtin_popcount(cov);
+            written += (uint64_t)__builtin_popcount(upd);
         }
         advance(b);
     }
-    return n;
+    n.tested += tested;
+    n.written += written;
 }
 
 } // namespace

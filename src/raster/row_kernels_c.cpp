@@ -17,39 +17,43 @@ inline float depth_at(const RowSpan &s, int x) {
     return (float)(s.zrow + s.dzdx * dx);
 }
 
-RowCounts depth_c(const RowSpan &s, const RowBuffers &b, int32_t id) {
-    RowCounts n;
+void depth_c(const RowSpan &s, const RowBuffers &b, int32_t id, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
     int64_t e0 = s.e[0], e1 = s.e[1], e2 = s.e[2];
     for (int x = s.x_begin; x < s.x_end; x++) {
         if ((e0 | e1 | e2) >= 0) {
-            n.tested++;
+            tested++;
             const float z = depth_at(s, x);
             if (z < b.depth[x]) {
                 b.depth[x] = z;
                 b.ids[x] = id;
-                n.written++;
+                written++;
             }
         }
         e0 += s.step[0], e1 += s.step[1], e2 += s.step[2];
     }
-    return n;
+    n.tested += tested;
+    n.written += written;
 }
 
-template <bool kFail> RowCounts stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta) {
-    RowCounts n;
+template <bool kFail> void stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
     int64_t e0 = s.e[0], e1 = s.e[1], e2 = s.e[2];
     for (int x = s.x_begin; x < s.x_end; x++) {
         if ((e0 | e1 | e2) >= 0) {
-            n.tested++;
+            tested++;
             const bool less = depth_at(s, x) < b.depth[x];
             if (less != kFail) {
                 b.stencil[x] = (uint8_t)(b.stencil[x] + delta);
-                n.written++;
+                written++;
             }
         }
         e0 += s.step[0], e1 += s.step[1], e2 += s.step[2];
     }
-    return n;
+    n.tested += tested;
+    n.written += written;
 }
 
 const RowKernels *const kAll[] = {&kRowKernelsC, &kRowKernelsAvx2, &kRowKernelsAvx512};
