@@ -395,11 +395,11 @@ int render_main(int argc, char **argv) {
         std::printf("mesa: %s\n", gl_renderer.c_str());
         for (std::size_t li = 0; li < gls.size(); li++) {
             const sv::render::GlComparison &g = gls[li];
-            std::printf("gl %zu: %llu pixels differ (%.6f%%): %llu on a volume triangle's edge, %llu at a depth tie, %llu other; "
+            std::printf("gl %zu: %llu pixels differ (%.6f%%): %llu on a volume triangle's edge (within %.4f px), %llu at a depth tie, %llu other; "
                         "Mesa's stencil pass %.2f ms against ours %.2f ms (Mesa / ours = %.2f)\n",
                         li, (unsigned long long)g.differing,
                         100.0 * (double)g.differing / ((double)frame.width * frame.height),
-                        (unsigned long long)g.on_edge, (unsigned long long)g.depth_tie,
+                        (unsigned long long)g.on_edge, g.max_edge_distance, (unsigned long long)g.depth_tie,
                         (unsigned long long)g.other, 1e3 * g.mesa_stencil_seconds,
                         1e3 * frame.lights[li].seconds_stencil,
                         frame.lights[li].seconds_stencil > 0 ? g.mesa_stencil_seconds / frame.lights[li].seconds_stencil : 0.0);
@@ -475,6 +475,7 @@ int render_main(int argc, char **argv) {
                 j.begin_object(true);
                 j.key("differing"), j.value((unsigned long long)g.differing);
                 j.key("on_edge"), j.value((unsigned long long)g.on_edge);
+                j.key("max_edge_distance"), j.value(g.max_edge_distance);
                 j.key("depth_tie"), j.value((unsigned long long)g.depth_tie);
                 j.key("other"), j.value((unsigned long long)g.other);
                 j.key("mesa_stencil_seconds"), j.value(g.mesa_stencil_seconds);

@@ -14,6 +14,10 @@ namespace sv::render {
 namespace {
 
 constexpr double kDepthTie = 1e-5;
+/* Two rasterisers that snap to 1/256 pixel put an edge at most a few
+ * 1/256 of a pixel apart (their float and double transforms differ far
+ * less); a difference further from every edge is a real one. */
+constexpr double kEdgeDistance = 1.0 / 16;
 
 double segment_distance(double px, double py, double ax, double ay, double bx, double by) {
     const double dx = bx - ax, dy = by - ay;
@@ -67,16 +71,16 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
     for (std::size_t i : diff) {
         const double px = (double)(i % (std::size_t)f.width) + 0.5;
         const double py = (double)(i / (std::size_t)f.width) + 0.5;
-        uint8_t c = 3;
+        double nearest = HUGE_VAL;
+        bool tie = false;
         for (const auto &t : tris) {
             const double x0 = std::min({t.x[0], t.x[1], t.x[2]}), x1 = std::max({t.x[0], t.x[1], t.x[2]});
             const double y0 = std::min({t.y[0], t.y[1], t.y[2]}), y1 = std::max({t.y[0], t.y[1], t.y[2]});
             if (px < x0 - 1 || px > x1 + 1 || py < y0 - 1 || py > y1 + 1) continue;
             for (int e = 0; e < 3; e++) {
                 const int k = (e + 1) % 3;
-                if (segment_distance(px, py, t.x[e], t.y[e], t.x[k], t.y[k]) <= 1.0) c = 1;
+                nearest = std::min(nearest, segment_distance(px, py, t.x[e], t.y[e], t.x[k], t.y[k]));
             }
-            if (c == 1) break;
             /* Inside: barycentric depth. */
             const double d = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
             if (d == 0) continue;
@@ -86,9 +90,11 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
             const double z = t.z[0] + b1 * (t.z[1] - t.z[0]) + b2 * (t.z[2] - t.z[0]);
             if (std::fabs(z - f.target.depth[i]) <= kDepthTie ||
                 (i < their_depth.size() && std::fabs(z - their_depth[i]) <= kDepthTie)) {
-                c = 2;
+                tie = true;
             }
         }
+        const uint8_t c = tie ? 2 : nearest <= kEdgeDistance ? 1 : 3;
+        if (c == 1) g.max_edge_distance = std::max(g.max_edge_distance, nearest);
         g.cls[i] = c;
         (c == 1 ? g.on_edge : c == 2 ? g.depth_tie : g.other)++;
     }
