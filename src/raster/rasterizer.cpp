@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "fill_rule.h"
+#include "row_kernels_c.h"
 
 namespace sv::raster {
 namespace {
@@ -336,7 +337,11 @@ void Rasterizer::draw_depth(Target &t, const ClipVertex v[3], int32_t id, PassCo
         const std::size_t row = (std::size_t)y * (std::size_t)t.width;
         prefetch_ahead(t, y, span.x_begin, false);
         const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
-        kernels_->depth(span, b, id, r);
+        if (span.x_end - span.x_begin <= kShortSpan) {
+            c_rows::depth_c(span, b, id, r);
+        } else {
+            kernels_->depth(span, b, id, r);
+        }
     });
     c.pixels_tested += r.tested;
     c.pixels_written += r.written;
@@ -352,9 +357,17 @@ void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode
         prefetch_ahead(t, y, span.x_begin, true);
         const RowBuffers b{t.depth.data() + row, nullptr, t.stencil.data() + row};
         /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
-        const bool increment = (mode == StencilMode::zpass) == front;
-        const uint8_t delta = increment ? 1 : 255;
-        (mode == StencilMode::zpass ? kernels_->zpass : kernels_->zfail)(span, b, delta, r);
+        const uint8_t delta = ((mode == StencilMode::zpass) == front) ? 1 : 255;
+        if (span.x_end - span.x_begin <= kShortSpan) {
+            /* The C rows, inline: the same bits as every kernel's. */
+            if (mode == StencilMode::zpass) {
+                c_rows::stencil_c<false>(span, b, delta, r);
+            } else {
+                c_rows::stencil_c<true>(span, b, delta, r);
+            }
+        } else {
+            (mode == StencilMode::zpass ? kernels_->zpass : kernels_->zfail)(span, b, delta, r);
+        }
     });
     c.pixels_tested += r.tested;
     c.pixels_written += r.written;

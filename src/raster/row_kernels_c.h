@@ -1,0 +1,64 @@
+/*
+ * The row kernels in plain C++, one pixel per step, as inline templates:
+ * the reference that the SIMD versions must match bit for bit
+ * (row_kernels_c.cpp puts them in the table), and the path the rasteriser
+ * takes itself for short spans (no call through the kernel table for a
+ * row of a few pixels: most rows of a shadow volume's slivers).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_RASTER_ROW_KERNELS_C_H
+#define SV_RASTER_ROW_KERNELS_C_H
+
+#include "row_kernels.h"
+
+namespace sv::raster::c_rows {
+
+/* The depth of pixel x, in the operation order every version uses. */
+inline float depth_at(const RowSpan &s, int x) {
+    const double dx = ((double)x + 0.5) - s.x0;
+    return (float)(s.zrow + s.dzdx * dx);
+}
+
+inline void depth_c(const RowSpan &s, const RowBuffers &b, int32_t id, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
+    int64_t e0 = s.e[0], e1 = s.e[1], e2 = s.e[2];
+    for (int x = s.x_begin; x < s.x_end; x++) {
+        if ((e0 | e1 | e2) >= 0) {
+            tested++;
+            const float z = depth_at(s, x);
+            if (z < b.depth[x]) {
+                b.depth[x] = z;
+                b.ids[x] = id;
+                written++;
+            }
+        }
+        e0 += s.step[0], e1 += s.step[1], e2 += s.step[2];
+    }
+    n.tested += tested;
+    n.written += written;
+}
+
+template <bool kFail> inline void stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowCounts &n) {
+    /* Local counts: a stencil byte store may alias *n, a local cannot. */
+    uint64_t tested = 0, written = 0;
+    int64_t e0 = s.e[0], e1 = s.e[1], e2 = s.e[2];
+    for (int x = s.x_begin; x < s.x_end; x++) {
+        if ((e0 | e1 | e2) >= 0) {
+            tested++;
+            const bool less = depth_at(s, x) < b.depth[x];
+            if (less != kFail) {
+                b.stencil[x] = (uint8_t)(b.stencil[x] + delta);
+                written++;
+            }
+        }
+        e0 += s.step[0], e1 += s.step[1], e2 += s.step[2];
+    }
+    n.tested += tested;
+    n.written += written;
+}
+
+} // namespace sv::raster::c_rows
+
+#endif
