@@ -375,12 +375,19 @@ int render_main(int argc, char **argv) {
         std::printf("%-3zu %-46s %4zu %5d %8lld %8lld | %9.3f %9.3f %9.3f %9.3f | %10llu %10llu %9llu | %s | %s\n",
                     li, desc.c_str(), lf.volumes.size(), lf.zfail_volumes, (long long)lf.indices,
                     (long long)lf.drawn_indices, ms(lf.ticks_facing, hz), ms(lf.ticks_volume, hz),
-                    ms(lf.ticks_stencil, hz), ms(lf.ticks_shading, hz),
+                    ms(lf.ticks_stencil, hz), ms(frame.ticks_shading, hz),
                     (unsigned long long)lf.stencil_counters.pixels_tested,
                     (unsigned long long)lf.stencil_counters.pixels_written,
                     (unsigned long long)(lf.stencil_counters.stencil_bytes_read +
                                          lf.stencil_counters.stencil_bytes_written),
                     truth_cols, gl_cols);
+    }
+    for (std::size_t li = 0; li < frame.lights.size(); li++) {
+        const sv::render::LightFrame &lf = frame.lights[li];
+        std::printf("ticks %zu: facing %llu, volume %llu, stencil %llu; the frame's depth pass %llu, lighting pass %llu\n", li,
+                    (unsigned long long)lf.ticks_facing, (unsigned long long)lf.ticks_volume,
+                    (unsigned long long)lf.ticks_stencil, (unsigned long long)frame.ticks_depth,
+                    (unsigned long long)frame.ticks_shading);
     }
     for (std::size_t li = 0; li < truths.size(); li++) {
         std::printf("truth %zu: %llu rays in %.2f s (%.2f M rays/s, %d threads, BVH of src/verify)\n", li,
@@ -428,6 +435,7 @@ int render_main(int argc, char **argv) {
             j.end_object();
         }
         j.end_array();
+        j.key("lighting_pass_ticks"), j.value((unsigned long long)frame.ticks_shading);
         j.key("depth_pass");
         j.begin_object();
         j.key("ticks"), j.value((unsigned long long)frame.ticks_depth);
@@ -449,7 +457,6 @@ int render_main(int argc, char **argv) {
             j.key("facing"), j.value((unsigned long long)lf.ticks_facing);
             j.key("volume"), j.value((unsigned long long)lf.ticks_volume);
             j.key("stencil"), j.value((unsigned long long)lf.ticks_stencil);
-            j.key("shading"), j.value((unsigned long long)lf.ticks_shading);
             j.end_object();
             j.key("stencil_counters");
             counters_json(j, lf.stencil_counters);

@@ -57,7 +57,7 @@ struct LightFrame {
     int zfail_volumes = 0;
     int64_t indices = 0;          /* in all volumes */
     int64_t drawn_indices = 0;
-    uint64_t ticks_facing = 0, ticks_volume = 0, ticks_stencil = 0, ticks_shading = 0;
+    uint64_t ticks_facing = 0, ticks_volume = 0, ticks_stencil = 0;
     double seconds_stencil = 0;
     raster::PassCounters stencil_counters;
     std::vector<uint8_t> stencil; /* the stencil after this light's pass */
@@ -73,6 +73,7 @@ struct Frame {
     raster::PassCounters depth_counters;
     uint64_t ticks_depth = 0;
     double seconds_depth = 0;
+    uint64_t ticks_shading = 0; /* the lighting pass, all lights */
     std::vector<LightFrame> lights;
     std::vector<uint8_t> rgb;     /* shaded image, 3 bytes per pixel, row 0 = top */
     /* The camera ray through pixel centre (px, py):
