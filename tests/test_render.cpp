@@ -58,7 +58,7 @@ void expect_truth_holds(const Scene &scene, const Frame &f, const std::string &w
     const TruthCaster caster(scene);
     for (std::size_t li = 0; li < f.lights.size(); li++) {
         const Truth t = caster.cast(f, (int)li, 2);
-        const Comparison c = compare_with_stencil(t, f.lights[li].stencil, f.width, f.height);
+        const Comparison c = caster.compare(f, (int)li, t);
         EXPECT_EQ(c.off_boundary_mismatches, 0u)
             << what << ", light " << f.lights[li].light.describe() << ": first at pixel "
             << (c.first_off_boundary.empty() ? -1 : c.first_off_boundary[0] % f.width) << ","
@@ -179,12 +179,12 @@ TEST(Render, CameraInsideAVolumeZPassWrongZFailRight) {
     o.width = kW, o.height = kH;
     o.mode = ModeChoice::zpass;
     const Frame zp = render_frame(scene, o);
-    const Comparison cp = compare_with_stencil(caster.cast(zp, 0, 2), zp.lights[0].stencil, kW, kH);
+    const Comparison cp = caster.compare(zp, 0, caster.cast(zp, 0, 2));
     EXPECT_GT(cp.off_boundary_mismatches, cp.compared / 10) << "z-pass should be wrong here";
     for (ModeChoice m : {ModeChoice::zfail, ModeChoice::automatic}) {
         o.mode = m;
         const Frame zf = render_frame(scene, o);
-        const Comparison cf = compare_with_stencil(caster.cast(zf, 0, 2), zf.lights[0].stencil, kW, kH);
+        const Comparison cf = caster.compare(zf, 0, caster.cast(zf, 0, 2));
         EXPECT_EQ(cf.off_boundary_mismatches, 0u) << mode_name(m);
         EXPECT_GT(cf.shadowed, cf.compared / 2) << "most of what the camera sees is in the slab's shadow";
         EXPECT_GE(zf.lights[0].zfail_volumes, 1) << mode_name(m);
@@ -355,7 +355,8 @@ TEST(Scene, NotesALightInsideAClosedSurface) {
     o.width = kW / 2, o.height = kH / 2;
     o.mode = ModeChoice::zfail;
     const Frame f = render_frame(scene, o);
-    const Comparison c = compare_with_stencil(TruthCaster(scene).cast(f, 0, 2), f.lights[0].stencil, f.width, f.height);
+    const TruthCaster caster(scene);
+    const Comparison c = caster.compare(f, 0, caster.cast(f, 0, 2));
     EXPECT_EQ(c.off_boundary_mismatches, 0u);
     EXPECT_EQ(c.lit, 0u);
 }

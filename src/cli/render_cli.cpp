@@ -290,8 +290,7 @@ int render_main(int argc, char **argv) {
         const sv::render::TruthCaster caster(scene);
         for (std::size_t li = 0; li < frame.lights.size(); li++) {
             truths.push_back(caster.cast(frame, (int)li, threads));
-            cmps.push_back(sv::render::compare_with_stencil(truths.back(), frame.lights[li].stencil,
-                                                            frame.width, frame.height));
+            cmps.push_back(caster.compare(frame, (int)li, truths.back()));
         }
     }
     std::vector<sv::render::GlComparison> gls;

@@ -13,6 +13,9 @@
 
 namespace sv::render {
 
+/* Mismatches looked at on the 7 x 7 grid, at most, per light. */
+constexpr int kMaxRefined = 2000;
+
 class SceneRays {
 public:
     RayTriangles tris; /* triangle k = frame id k */
@@ -74,6 +77,133 @@ TruthCaster::TruthCaster(const Scene &scene) : scene_(scene), rays_(new SceneRay
 
 TruthCaster::~TruthCaster() = default;
 
+uint8_t TruthCaster::light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
+                                 const Vec4 &L, int si, int t, const Vec3d &P, uint64_t *rays) const {
+    const Plane &pl = scene_.surfaces[(std::size_t)si].prepared.planes[(std::size_t)t];
+    const Vec3d nrm{pl.a, pl.b, pl.c};
+    if (!facing[(std::size_t)si][(std::size_t)t] || dot(nrm, sub(f.camera.eye, P)) <= 0) return kTruthDark;
+    const Point3 p{P.x, P.y, P.z};
+    Point3 r;
+    double s_max;
+    if (L.w == 0) {
+        r = {L.x, L.y, L.z};
+        s_max = HUGE_VAL;
+    } else {
+        r = {L.x - P.x, L.y - P.y, L.z - P.z};
+        s_max = 1.0;
+    }
+    (*rays)++;
+    const uint32_t id = (uint32_t)(f.surface_first_id[(std::size_t)si] + t);
+    return blocked(rays_->tris, p, r, 1e-9, s_max, id) ? kTruthShadowed : kTruthLit;
+}
+
+std::vector<std::vector<uint8_t>> TruthCaster::facing_bytes(const Vec4 &L) const {
+    std::vector<std::vector<uint8_t>> facing(scene_.surfaces.size());
+    for (std::size_t si = 0; si < scene_.surfaces.size(); si++) {
+        const PreparedSurface &p = scene_.surfaces[si].prepared;
+        facing[si].assign((std::size_t)p.num_triangles() + 1, 1);
+        sv_calculate_facing_c_ref(p.planes.data(), p.num_triangles(), &L, facing[si].data());
+    }
+    return facing;
+}
+
+uint8_t TruthCaster::classify_point(const Frame &f, int light, double x, double y) const {
+    const Vec4 L = f.lights[(std::size_t)light].shadow_light;
+    return classify_point(f, facing_bytes(L), L, x, y);
+}
+
+uint8_t TruthCaster::classify_point(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
+                                    const Vec4 &L, double x, double y) const {
+    const double nx = (x / f.width) * 2 - 1, ny = 1 - (y / f.height) * 2;
+    const Vec3d d{f.ray_forward.x + nx * f.ray_right.x + ny * f.ray_up.x,
+                  f.ray_forward.y + nx * f.ray_right.y + ny * f.ray_up.y,
+                  f.ray_forward.z + nx * f.ray_right.z + ny * f.ray_up.z};
+    const Point3 o{f.camera.eye.x, f.camera.eye.y, f.camera.eye.z}, r{d.x, d.y, d.z};
+    /* The nearest triangle the camera ray meets beyond the near plane
+     * (d has unit length along the view axis, so s is the view depth). */
+    double best = HUGE_VAL;
+    int32_t best_id = -1;
+    const RayTriangles &rt = rays_->tris;
+    rt.for_each_candidate(o, r, HUGE_VAL, [&](uint32_t t) {
+        const Point3 pv = cross3(r, rt.e2[t]);
+        const double det = dot3(rt.e1[t], pv);
+        if (det == 0) return true;
+        const double inv = 1.0 / det;
+        const Point3 tv{o.x - rt.a[t].x, o.y - rt.a[t].y, o.z - rt.a[t].z};
+        const double u = dot3(tv, pv) * inv;
+        if (u < 0 || u > 1) return true;
+        const Point3 qv = cross3(tv, rt.e1[t]);
+        const double v = dot3(r, qv) * inv;
+        if (v < 0 || u + v > 1) return true;
+        const double s = dot3(rt.e2[t], qv) * inv;
+        if (s >= f.camera.near_distance && s < best) best = s, best_id = (int32_t)t;
+        return true;
+    });
+    if (best_id < 0) return kTruthNone;
+    int si, t;
+    f.decode_id(best_id, si, t);
+    const Vec3d P{o.x + best * r.x, o.y + best * r.y, o.z + best * r.z};
+    uint64_t rays = 0;
+    return light_class(f, facing, L, si, t, P, &rays);
+}
+
+uint8_t TruthCaster::classify_stored_depth(const Frame &f,
+                                           const std::vector<std::vector<uint8_t>> &facing,
+                                           const Vec4 &L, int x, int y) const {
+    const std::size_t i = (std::size_t)y * f.width + x;
+    const int32_t id = f.target.ids[i];
+    if (id < 0) return kTruthNone;
+    /* Window depth back to view distance through the infinite projection:
+     * z_ndc = ((eps - 1) z + (eps - 2) n) / -z, so -z = (2 - eps) n /
+     * (1 - eps - z_ndc). */
+    const double z_ndc = 2.0 * f.target.depth[i] - 1.0;
+    const double den = 1.0 - kInfiniteFarEpsilon - z_ndc;
+    if (!(den > 0)) return kTruthNone;
+    const double dist = (2.0 - kInfiniteFarEpsilon) * f.camera.near_distance / den;
+    const double nx = ((x + 0.5) / f.width) * 2 - 1, ny = 1 - ((y + 0.5) / f.height) * 2;
+    const Vec3d P{f.camera.eye.x + dist * (f.ray_forward.x + nx * f.ray_right.x + ny * f.ray_up.x),
+                  f.camera.eye.y + dist * (f.ray_forward.y + nx * f.ray_right.y + ny * f.ray_up.y),
+                  f.camera.eye.z + dist * (f.ray_forward.z + nx * f.ray_right.z + ny * f.ray_up.z)};
+    int si, t;
+    f.decode_id(id, si, t);
+    uint64_t rays = 0;
+    return light_class(f, facing, L, si, t, P, &rays);
+}
+
+Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) const {
+    const Vec4 L = f.lights[(std::size_t)light].shadow_light;
+    const std::vector<std::vector<uint8_t>> facing = facing_bytes(L);
+    int looked_at = 0;
+    return compare_with_stencil(truth, f.lights[(std::size_t)light].stencil, f.width, f.height,
+                                [&](int x, int y) {
+                                    /* A frame with this many unexplained
+                                     * mismatches fails anyway. */
+                                    if (++looked_at > kMaxRefined) return false;
+                                    /* The point the depth test used: the
+                                     * camera ray at the stored depth. For a
+                                     * receiver seen edge-on, the depth of
+                                     * its snapped triangle can lie well off
+                                     * the exact one. */
+                                    const std::size_t i = (std::size_t)y * f.width + x;
+                                    const uint8_t at_depth = classify_stored_depth(f, facing, L, x, y);
+                                    if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[i] == kTruthLit)) {
+                                        return true;
+                                    }
+                                    bool lit = false, shadow = false;
+                                    for (int j = 0; j < 7; j++) {
+                                        for (int i = 0; i < 7; i++) {
+                                            const uint8_t c = classify_point(
+                                                f, facing, L, x - 1 + (i + 0.5) * 3 / 7.0,
+                                                y - 1 + (j + 0.5) * 3 / 7.0);
+                                            if (c == kTruthNone) continue;
+                                            (c == kTruthLit ? lit : shadow) = true;
+                                            if (lit && shadow) return true;
+                                        }
+                                    }
+                                    return false;
+                                });
+}
+
 Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
     const auto t0 = std::chrono::steady_clock::now();
     Truth out;
@@ -83,12 +213,7 @@ Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
     const Vec4 L = lf.shadow_light;
     /* Facing as the volumes saw it: the reference's bytes (every variant
      * gives the same). */
-    std::vector<std::vector<uint8_t>> facing(scene_.surfaces.size());
-    for (std::size_t si = 0; si < scene_.surfaces.size(); si++) {
-        const PreparedSurface &p = scene_.surfaces[si].prepared;
-        facing[si].assign((std::size_t)p.num_triangles() + 1, 1);
-        sv_calculate_facing_c_ref(p.planes.data(), p.num_triangles(), &L, facing[si].data());
-    }
+    const std::vector<std::vector<uint8_t>> facing = facing_bytes(L);
     std::vector<uint64_t> rays((std::size_t)std::max(threads, 1), 0);
     auto work = [&](int k, int step) {
         for (int py = k; py < f.height; py += step) {
@@ -99,25 +224,7 @@ Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
                 int si, t;
                 f.decode_id(id, si, t);
                 const Vec3d P = visible_point(f, scene_, si, t, px, py);
-                const Plane &pl = scene_.surfaces[(std::size_t)si].prepared.planes[(std::size_t)t];
-                const Vec3d nrm{pl.a, pl.b, pl.c};
-                if (!facing[(std::size_t)si][(std::size_t)t] || dot(nrm, sub(f.camera.eye, P)) <= 0) {
-                    out.cls[i] = kTruthDark;
-                    continue;
-                }
-                const Point3 p{P.x, P.y, P.z};
-                Point3 r;
-                double s_max;
-                if (L.w == 0) {
-                    r = {L.x, L.y, L.z};
-                    s_max = HUGE_VAL;
-                } else {
-                    r = {L.x - P.x, L.y - P.y, L.z - P.z};
-                    s_max = 1.0;
-                }
-                rays[(std::size_t)k]++;
-                out.cls[i] = blocked(rays_->tris, p, r, 1e-9, s_max, (uint32_t)id) ? kTruthShadowed
-                                                                                  : kTruthLit;
+                out.cls[i] = light_class(f, facing, L, si, t, P, &rays[(std::size_t)k]);
             }
         }
     };
@@ -146,7 +253,8 @@ bool on_boundary(const Truth &truth, int width, int height, int x, int y) {
 }
 
 Comparison compare_with_stencil(const Truth &truth, const std::vector<uint8_t> &stencil,
-                                int width, int height) {
+                                int width, int height,
+                                const std::function<bool(int x, int y)> &refine) {
     Comparison c;
     for (int y = 0; y < height; y++) {
         for (int x = 0; x < width; x++) {
@@ -155,12 +263,16 @@ Comparison compare_with_stencil(const Truth &truth, const std::vector<uint8_t> &
             if (t != kTruthLit && t != kTruthShadowed) continue;
             c.compared++;
             (t == kTruthLit ? c.lit : c.shadowed)++;
-            const bool boundary = on_boundary(truth, width, height, x, y);
+            bool boundary = on_boundary(truth, width, height, x, y);
+            const bool mismatch = (stencil[i] != 0) != (t == kTruthShadowed);
+            bool subpixel = false;
+            if (mismatch && !boundary && refine) boundary = subpixel = refine(x, y);
             c.boundary += boundary;
-            if ((stencil[i] != 0) == (t == kTruthShadowed)) continue;
+            if (!mismatch) continue;
             c.mismatches++;
             if (boundary) {
                 c.boundary_mismatches++;
+                c.subpixel_boundary_mismatches += subpixel;
             } else {
                 c.off_boundary_mismatches++;
                 if (c.first_off_boundary.size() < 16) c.first_off_boundary.push_back((int)i);
