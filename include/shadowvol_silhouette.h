@@ -106,11 +106,17 @@ public:
     /* Writes the silhouette to OUT (silhouette_capacity edges of room);
      * returns the count. */
     std::size_t find(const uint8_t *facing, DirectedEdge *out);
+    /* The array reserved (every candidate at once: 3 per triangle plus the
+     * dangling uses). */
     std::size_t temporary_bytes() const { return list_.capacity() * sizeof(DirectedEdge); }
+    /* The longest the list has been in any call so far: what a list grown
+     * on demand would have needed. */
+    std::size_t peak_bytes() const { return peak_ * sizeof(DirectedEdge); }
 
 private:
     const SilhouetteMesh *m_;
     std::vector<DirectedEdge> list_;
+    std::size_t peak_ = 0;
 };
 
 /* ---- Hash (seed 003's "fast"): rows = vertices, N columns ------------------
@@ -197,7 +203,9 @@ std::size_t find_silhouette_connectivity_branchless(const ConnectivityTable &c,
 /* AVX2 (x86-64-v3): eight triangles per step, the neighbours' facing bytes
  * gathered (vpgatherdd, so facing needs numTriangles + 4 bytes), the
  * triangles' own bytes spread with vpermd; the silhouette uses found from
- * the mask with tzcnt. */
+ * the mask with tzcnt. Eight unlit triangles in a row (and each vector of
+ * eight uses without a lit triangle) skip the gather: the seed's early out
+ * per step. */
 std::size_t find_silhouette_connectivity_avx2(const ConnectivityTable &c, const int *indices,
                                               int numTriangles, const uint8_t *facing,
                                               DirectedEdge *out);

@@ -48,12 +48,16 @@ std::size_t find_silhouette_connectivity_avx2(const ConnectivityTable &c, const 
     const int groups = numTriangles / 8;
     for (int g = 0; g < groups; g++) {
         const int u0 = 24 * g;
-        /* Eight own facing bytes as dwords (0 or 1). */
-        const __m256i own =
-            _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(facing + 8 * g)));
+        /* Eight own facing bytes; none lit (lit and unlit triangles come in
+         * patches, so this is common): no neighbour can matter, as in the
+         * seed's early out, but per eight triangles. */
+        const __m128i own8 = _mm_loadl_epi64((const __m128i *)(facing + 8 * g));
+        if (_mm_cvtsi128_si64(own8) == 0) continue;
+        const __m256i own = _mm256_cvtepu8_epi32(own8);
         const __m256i tri[3] = {tri0, tri1, tri2};
         for (int r = 0; r < 3; r++) {
             const __m256i lit = _mm256_permutevar8x32_epi32(own, tri[r]);
+            if (_mm256_testz_si256(lit, lit)) continue; /* skip the gather */
             const __m256i p = _mm256_loadu_si256((const __m256i *)(nb + u0 + 8 * r));
             const __m256i other =
                 _mm256_and_si256(_mm256_i32gather_epi32((const int *)facing, p, 1), low);
@@ -98,15 +102,18 @@ std::size_t find_silhouette_connectivity_avx512(const ConnectivityTable &c, cons
     const int groups = numTriangles / 16;
     for (int g = 0; g < groups; g++) {
         const int u0 = 48 * g;
-        const __m512i own =
-            _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i *)(facing + 16 * g)));
+        const __m128i own16 = _mm_loadu_si128((const __m128i *)(facing + 16 * g));
+        if (_mm_testz_si128(own16, own16)) continue; /* no triangle lit: as AVX2's */
+        const __m512i own = _mm512_cvtepu8_epi32(own16);
         for (int r = 0; r < 3; r++) {
             const __m512i lit =
                 _mm512_permutexvar_epi32(_mm512_load_si512((const void *)kTri16[r]), own);
             const __m512i p = _mm512_loadu_si512((const void *)(nb + u0 + 16 * r));
             const __m512i other = _mm512_i32gather_epi32(p, (const void *)facing, 1);
             /* lit and the neighbour's low byte 0 */
-            const __mmask16 cast = _mm512_test_epi32_mask(lit, one) &
+            const __mmask16 litMask = _mm512_test_epi32_mask(lit, one);
+            if (!litMask) continue; /* skip the gathers */
+            const __mmask16 cast = litMask &
                                    _mm512_testn_epi32_mask(other, _mm512_set1_epi32(0xFF));
             if (!cast) continue;
             const __m512i from = _mm512_loadu_si512((const void *)(indices + u0 + 16 * r));

@@ -101,6 +101,7 @@ std::size_t ClassicFinder::find(const uint8_t *facing, DirectedEdge *out) {
             }
         }
         list_.push_back({a, b});
+        peak_ = std::max(peak_, list_.size());
     };
     const int *idx = m_->indices;
     for (int t = 0; t < m_->num_triangles; t++) {
