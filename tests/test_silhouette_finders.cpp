@@ -8,8 +8,6 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include <gtest/gtest.h>
 
-#include <dirent.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,9 +15,9 @@
 #include <vector>
 
 #include "shadowvol.h"
-#include "shadowvol_gltf.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_silhouette.h"
+#include "model_surfaces.h"
 #include "test_support.h"
 
 using sv::DirectedEdge;
@@ -130,36 +128,6 @@ std::vector<Vec4> lights_for(const sv::PreparedSurface &s, Rng &rng, int count) 
     return l;
 }
 
-std::vector<std::string> model_paths() {
-    std::vector<std::string> p{std::string(SV_MODELS_DIR) + "/character_1344.glb"};
-    const std::string dir = SV_SHARED_MODELS_DIR;
-    if (DIR *d = opendir(dir.c_str())) {
-        std::vector<std::string> shared;
-        while (const dirent *e = readdir(d)) {
-            const std::string n = e->d_name;
-            if (n.size() > 4 && n.compare(n.size() - 4, 4, ".glb") == 0) shared.push_back(dir + "/" + n);
-        }
-        closedir(d);
-        std::sort(shared.begin(), shared.end());
-        p.insert(p.end(), shared.begin(), shared.end());
-    } else {
-        std::printf("[  NOTE    ] %s is missing: only the bundled character is tested\n",
-                    dir.c_str());
-    }
-    return p;
-}
-
-// The surfaces of a model, each prepared on its own.
-std::vector<sv::PreparedSurface> surfaces_of(const std::string &path) {
-    const sv::GltfModel m = sv::load_gltf(path);
-    std::vector<sv::PreparedSurface> out;
-    for (const sv::GltfSurface &g : m.surfaces) {
-        out.push_back(sv::prepare_surface(g.positions.data(), g.positions.size() / 3,
-                                          g.indices.data(), g.indices.size()));
-    }
-    return out;
-}
-
 // Above this many triangles the classic finder (quadratic) is run for the
 // two benchmark lights only, and the quadratic table is not built: the
 // sanitizer build would take minutes. The benchmark checks classic on
@@ -170,8 +138,8 @@ TEST(SilhouetteFinders, EveryModelAndLightMatchesTheSilEdges) {
     Rng rng = svtest::rng_for("SilhouetteFinders.Models");
     SCOPED_TRACE(svtest::seed_trace());
     int surfaces = 0, lights = 0;
-    for (const std::string &path : model_paths()) {
-        std::vector<sv::PreparedSurface> ss = surfaces_of(path);
+    for (const std::string &path : svtest::seed_model_paths()) {
+        std::vector<sv::PreparedSurface> ss = svtest::prepared_surfaces(path);
         for (std::size_t k = 0; k < ss.size(); k++) {
             const sv::PreparedSurface &s = ss[k];
             const bool big = s.num_triangles() > kBigSurface;
@@ -191,8 +159,8 @@ TEST(SilhouetteFinders, EveryModelAndLightMatchesTheSilEdges) {
 }
 
 TEST(SilhouetteFinders, QuadraticAndLinearTablesAgreeWithTheSilEdges) {
-    for (const std::string &path : model_paths()) {
-        for (const sv::PreparedSurface &s : surfaces_of(path)) {
+    for (const std::string &path : svtest::seed_model_paths()) {
+        for (const sv::PreparedSurface &s : svtest::prepared_surfaces(path)) {
             SCOPED_TRACE(path);
             const int nt = s.num_triangles();
             const sv::ConnectivityTable lin =

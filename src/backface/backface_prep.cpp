@@ -1,0 +1,103 @@
+/*
+ * The per-surface data of seed 001's layouts (include/shadowvol_backface.h)
+ * and the table of block kernels.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "shadowvol_accuracy.h"
+#include "shadowvol_backface.h"
+
+namespace sv {
+
+namespace {
+
+/* The three 16-bit vertex numbers of triangle T (0 when not kept). */
+void vertex_numbers(const PreparedSurface &s, int t, bool keep, uint16_t v[3]) {
+    for (int k = 0; k < 3; k++) v[k] = keep ? (uint16_t)s.indices[3 * (std::size_t)t + k] : 0;
+}
+
+bool keep_indices(const PreparedSurface &s, bool keepIndices) {
+    if (keepIndices && s.num_vertices() > 65536) {
+        throw BackfaceError("seed 001's layouts store 16-bit vertex numbers: at most 65536 "
+                            "vertices, and this surface has " +
+                            std::to_string(s.num_vertices()));
+    }
+    return keepIndices;
+}
+
+const float *corner(const PreparedSurface &s, int t, int k) {
+    return &s.positions[3 * (std::size_t)s.indices[3 * (std::size_t)t + k]];
+}
+
+} // namespace
+
+AlignedVector<sv_cull_triangle> cull_triangles(const PreparedSurface &s, bool keepIndices) {
+    const bool keep = keep_indices(s, keepIndices);
+    AlignedVector<sv_cull_triangle> out((std::size_t)s.num_triangles());
+    for (int t = 0; t < s.num_triangles(); t++) {
+        sv_cull_triangle &c = out[(std::size_t)t];
+        const float *p = corner(s, t, 0);
+        const Plane &pl = s.planes[(std::size_t)t];
+        c = sv_cull_triangle{p[0], p[1], p[2], pl.a, pl.b, pl.c, 0, 0, 0, 0};
+        uint16_t v[3];
+        vertex_numbers(s, t, keep, v);
+        c.v1 = v[0];
+        c.v2 = v[1];
+        c.v3 = v[2];
+    }
+    return out;
+}
+
+AlignedVector<sv_cull_triangle16> cull_triangles16(const PreparedSurface &s, bool keepIndices) {
+    const bool keep = keep_indices(s, keepIndices);
+    AlignedVector<sv_cull_triangle16> out((std::size_t)s.num_triangles());
+    for (int t = 0; t < s.num_triangles(); t++) {
+        sv_cull_triangle16 &c = out[(std::size_t)t];
+        int16_t q[3];
+        triangle_plane16(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), q, &c.tn);
+        c.nx = q[0];
+        c.ny = q[1];
+        c.nz = q[2];
+        uint16_t v[3];
+        vertex_numbers(s, t, keep, v);
+        c.v1 = v[0];
+        c.v2 = v[1];
+        c.v3 = v[2];
+    }
+    return out;
+}
+
+AlignedVector<sv_cull_block4> cull_blocks(const PreparedSurface &s, bool keepIndices) {
+    const bool keep = keep_indices(s, keepIndices);
+    /* Zero-initialised: the last block's unused lanes stay 0 (the kernels
+     * mask them off). */
+    AlignedVector<sv_cull_block4> out(((std::size_t)s.num_triangles() + SV_CULL_BLOCK - 1) /
+                                      SV_CULL_BLOCK);
+    for (int t = 0; t < s.num_triangles(); t++) {
+        sv_cull_block4 &b = out[(std::size_t)t / SV_CULL_BLOCK];
+        const int k = t % SV_CULL_BLOCK;
+        int16_t q[3];
+        triangle_plane16(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), q, &b.tn[k]);
+        b.nx[k] = q[0];
+        b.ny[k] = q[1];
+        b.nz[k] = q[2];
+        vertex_numbers(s, t, keep, b.v[k]);
+    }
+    return out;
+}
+
+const std::vector<BackfaceBlockVariant> &backface_block_variants() {
+    static const std::vector<BackfaceBlockVariant> v = {
+        {"compact_sse2", SV_ISA_SSE2, sv_backface_compact_sse2},
+        {"compact_sse2_prefetch", SV_ISA_SSE2, sv_backface_compact_sse2_prefetch},
+        {"compact_avx2", SV_ISA_SSE2 | SV_ISA_AVX2, sv_backface_compact_avx2},
+        {"compact_avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, sv_backface_compact_avx512},
+    };
+    return v;
+}
+
+static_assert(sizeof(sv_cull_triangle) == 32, "the seed's 32-byte triangle");
+static_assert(sizeof(sv_cull_triangle16) == 16, "the seed's 16-byte triangle");
+static_assert(sizeof(sv_cull_block4) == 64, "four triangles per cache line");
+
+} // namespace sv
