@@ -14,7 +14,10 @@
  *   compact     s  = ((qx*vx + qy*vy) + qz*vz) - tn*w,  v = V.xyz / 32767
  *               front = s >= 0  (the seed's TN <= 0 with TN = -s)
  * where q, tn are sv::triangle_plane16's 16-bit normal and precomputed dot
- * product: exactly the arithmetic of sv_calculate_facing_fixed16, so its
+ * product (tn = NaN for a triangle with a NaN or infinite corner, so that
+ * it is never front-facing, as in the non-compact method; a zero-area
+ * triangle has q = 0, tn = 0: s = 0, front-facing, as the seed's zero
+ * normal gives TN = 0): exactly the arithmetic of sv_calculate_facing_fixed16, so its
  * error bound holds (include/shadowvol_accuracy.h): front == (exact signed
  * distance of the viewer >= 0) wherever |D| > B_fixed16. A NaN makes a
  * triangle back-facing in both. The noncompact routine is the seed's
@@ -67,7 +70,7 @@ typedef struct sv_cull_triangle {
 } sv_cull_triangle;
 
 typedef struct sv_cull_triangle16 {
-    float tn;             /* sv::triangle_plane16's tn */
+    float tn;             /* sv::triangle_plane16's tn (NaN: a non-finite corner) */
     int16_t nx, ny, nz;   /* and its q */
     uint16_t v1, v2, v3;
 } sv_cull_triangle16;

@@ -4,6 +4,8 @@
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
+#include <cmath>
+
 #include "shadowvol_accuracy.h"
 #include "shadowvol_backface.h"
 
@@ -27,6 +29,21 @@ bool keep_indices(const PreparedSurface &s, bool keepIndices) {
 
 const float *corner(const PreparedSurface &s, int t, int k) {
     return &s.positions[3 * (std::size_t)s.indices[3 * (std::size_t)t + k]];
+}
+
+/* triangle_plane16, except that a triangle with a NaN or infinite corner
+ * gets tn = NaN, not the zero plane: s is then NaN and the triangle is
+ * never front-facing, as a NaN makes it in the non-compact method (the
+ * zero plane would give s = 0, front-facing by the seed's TN <= 0). A
+ * finite zero-area triangle keeps the zero plane: s = 0, front-facing, as
+ * its zero normal makes it in the seed's listings. */
+void cull_plane16(const PreparedSurface &s, int t, int16_t q[3], float *tn) {
+    triangle_plane16(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), q, tn);
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < 3; i++) {
+            if (!std::isfinite(corner(s, t, k)[i])) *tn = NAN;
+        }
+    }
 }
 
 } // namespace
@@ -54,7 +71,7 @@ AlignedVector<sv_cull_triangle16> cull_triangles16(const PreparedSurface &s, boo
     for (int t = 0; t < s.num_triangles(); t++) {
         sv_cull_triangle16 &c = out[(std::size_t)t];
         int16_t q[3];
-        triangle_plane16(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), q, &c.tn);
+        cull_plane16(s, t, q, &c.tn);
         c.nx = q[0];
         c.ny = q[1];
         c.nz = q[2];
@@ -77,7 +94,7 @@ AlignedVector<sv_cull_block4> cull_blocks(const PreparedSurface &s, bool keepInd
         sv_cull_block4 &b = out[(std::size_t)t / SV_CULL_BLOCK];
         const int k = t % SV_CULL_BLOCK;
         int16_t q[3];
-        triangle_plane16(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), q, &b.tn[k]);
+        cull_plane16(s, t, q, &b.tn[k]);
         b.nx[k] = q[0];
         b.ny[k] = q[1];
         b.nz[k] = q[2];
