@@ -122,16 +122,4 @@ void seed_json_header(JsonWriter &j, const char *schema, const SeedTimer &t) {
     j.value((long long)t.overhead);
 }
 
-std::string bytes_text(double bytes) {
-    char buf[32];
-    if (bytes < 1024) {
-        std::snprintf(buf, sizeof buf, "%.0f B", bytes);
-    } else if (bytes < 1024.0 * 1024) {
-        std::snprintf(buf, sizeof buf, "%.1f KiB", bytes / 1024);
-    } else {
-        std::snprintf(buf, sizeof buf, "%.1f MiB", bytes / (1024.0 * 1024));
-    }
-    return buf;
-}
-
 } // namespace svbench

@@ -82,9 +82,6 @@ void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pin
 class JsonWriter;
 void seed_json_header(JsonWriter &j, const char *schema, const SeedTimer &t);
 
-/* "12.3 KiB", "4.0 MiB". */
-std::string bytes_text(double bytes);
-
 } // namespace svbench
 
 #endif

@@ -27,6 +27,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "cache_info.h"
 #include "json_writer.h"
 #include "output_file.h"
 #include "rng.h"
@@ -140,6 +141,11 @@ std::vector<sv::DirectedEdge> edges_of_quads(const int *si, int numIndices) {
     }
     std::sort(e.begin(), e.end());
     return e;
+}
+
+/* format_bytes, with 0 as "0 B" (it prints "unknown" there). */
+std::string mem_cell(double bytes) {
+    return bytes > 0 ? format_bytes(bytes) : "0 B";
 }
 
 double ms_since(double t0) {
@@ -269,7 +275,7 @@ void print_mesh(FILE *out, const SilMesh &sm, const SeedTimer &t) {
                  sm.m.name.c_str(), w.numTriangles, w.numVerts, w.numSilEdges, w.numDangling,
                  sm.m.source.c_str());
     std::fprintf(out, "  connectivity table: %s permanent; precomputation ours O(n) %.2f ms, ",
-                 bytes_text((double)(3.0 * w.numTriangles + w.numDangling) * sizeof(int)).c_str(),
+                 mem_cell((double)(3.0 * w.numTriangles + w.numDangling) * sizeof(int)).c_str(),
                  sm.linearMs);
     if (sm.quadraticMs >= 0) {
         std::fprintf(out, "the seed's O(n^2) %.1f ms (%s)\n", sm.quadraticMs,
@@ -291,12 +297,12 @@ void print_mesh(FILE *out, const SilMesh &sm, const SeedTimer &t) {
                 std::fprintf(out, "    %-26s %12.0f %12.0f %10.1f %9.2f %10s %10s  ok (%d calls)\n",
                              r.variant.c_str(), r.t.median, r.t.min, us(t, r.t.median),
                              r.t.median / std::max(1, w.numTriangles),
-                             bytes_text(r.temporary).c_str(), bytes_text(r.permanent).c_str(),
+                             mem_cell(r.temporary).c_str(), mem_cell(r.permanent).c_str(),
                              r.t.calls);
             } else {
                 std::fprintf(out, "    %-26s %12s %12s %10s %9s %10s %10s  %s: %s\n",
-                             r.variant.c_str(), "-", "-", "-", "-", bytes_text(r.temporary).c_str(),
-                             bytes_text(r.permanent).c_str(), r.status.c_str(), r.note.c_str());
+                             r.variant.c_str(), "-", "-", "-", "-", mem_cell(r.temporary).c_str(),
+                             mem_cell(r.permanent).c_str(), r.status.c_str(), r.note.c_str());
             }
         }
     }
