@@ -220,6 +220,16 @@ TEST(Backface, EveryCountAndPaddingLanes) {
             c.ny = comp();
             c.nz = comp();
             c.tn = rng.chance(0.1) ? specials[rng.below(8)] : (float)(rng.unit() * 4 - 2);
+            if (t % 7 == 3) {
+                // Ties: a zero normal makes s = -tn * w exactly, so s = +0,
+                // -0, or a NaN of either sign. The scalar test (s >= 0:
+                // both zeros front-facing, NaN not) must hold in every
+                // lane (erratum B1-3: the seed's SIMD listing tested sign
+                // bits instead).
+                const float ties[] = {0.0f, -0.0f, NAN, -NAN};
+                c.nx = c.ny = c.nz = 0;
+                c.tn = ties[rng.below(4)];
+            }
             c.v1 = (uint16_t)rng.below((uint32_t)nv);
             c.v2 = (uint16_t)rng.below((uint32_t)nv);
             c.v3 = (uint16_t)rng.below((uint32_t)nv);
