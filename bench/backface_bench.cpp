@@ -24,7 +24,6 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -35,7 +34,6 @@
 #include "cache_info.h"
 #include "json_writer.h"
 #include "model_gen.h"
-#include "output_file.h"
 #include "rng.h"
 #include "scaling_report.h"
 #include "seed_bench.h"
@@ -87,7 +85,6 @@ Layouts make_layouts(const sv::PreparedSurface &base, int copies, float radius) 
     const size_t nt = (size_t)base.num_triangles();
     L.t32.reserve(nt * copies);
     L.t16.reserve(nt * copies);
-    L.blocks.reserve((nt * copies + 3) / 4);
     L.positions.resize((size_t)copies);
     sv::PreparedSurface s = base;
     for (int k = 0; k < copies; k++) {
@@ -102,19 +99,7 @@ Layouts make_layouts(const sv::PreparedSurface &base, int copies, float radius) 
         L.indices.insert(L.indices.end(), base.indices.begin(), base.indices.end());
     }
     /* Blocks of four over the concatenation (a copy may end mid-block). */
-    const size_t n = L.t16.size();
-    L.blocks.assign((n + 3) / 4, sv_cull_block4{});
-    for (size_t t = 0; t < n; t++) {
-        sv_cull_block4 &bl = L.blocks[t / 4];
-        const sv_cull_triangle16 &c = L.t16[t];
-        bl.tn[t % 4] = c.tn;
-        bl.nx[t % 4] = c.nx;
-        bl.ny[t % 4] = c.ny;
-        bl.nz[t % 4] = c.nz;
-        bl.v[t % 4][0] = c.v1;
-        bl.v[t % 4][1] = c.v2;
-        bl.v[t % 4][2] = c.v3;
-    }
+    L.blocks = sv::cull_blocks(L.t16.data(), L.t16.size());
     for (int k = 0; k < copies; k++) {
         const float *p = L.positions[(size_t)k].data();
         for (size_t u = 0; u < 3 * nt; u++) L.corners.push_back(p + 3 * (size_t)base.indices[u]);
@@ -334,14 +319,10 @@ std::string backface_json(const std::vector<CullSize> &sizes, const SeedTimer &t
         j.begin_array();
         for (const CullRow &r : s.rows) {
             j.begin_object(true);
-            j.key("routine"); j.value("backface_cull");
-            j.key("variant"); j.value(r.variant);
+            seed_json_row(j, "backface_cull", r.variant, r.t);
             j.key("vertex_bits"); j.value(r.bits);
             j.key("ok"); j.value(r.t.ok);
             if (!r.t.ok) { j.key("failure"); j.value(r.t.failure); }
-            j.key("calls"); j.value(r.t.calls);
-            j.key("median_ticks"); j.value(r.t.median);
-            j.key("min_ticks"); j.value(r.t.min);
             j.key("ticks_per_triangle"); j.value(r.t.median / std::max(1, s.triangles));
             j.end_object();
         }
@@ -356,9 +337,7 @@ std::string backface_json(const std::vector<CullSize> &sizes, const SeedTimer &t
 } // namespace
 
 int run_backface_bench(const SeedCommand &cmd) {
-    try {
-        OutputFile json("--json", cmd.json);
-        FILE *out = json.is_stdout() ? stderr : stdout;
+    return run_seed_frame(cmd, "back-face", [&](FILE *out, std::string *doc) {
         const int cpu = pin_to_current_cpu();
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
         print_seed_header(out, "shadowvol bench --backface: seed 001's view back-face culling "
@@ -414,24 +393,9 @@ int run_backface_bench(const SeedCommand &cmd) {
                 }
             }
         }
-        if (json.wanted() && !json.write(backface_json(sizes, timer))) {
-            std::fprintf(stderr, "shadowvol bench: --json: cannot write %s: %s\n",
-                         json.name().c_str(), std::strerror(errno));
-            return 1;
-        }
-        if (failed) {
-            std::fprintf(stderr, "shadowvol bench: %d back-face row%s failed the check\n", failed,
-                         failed == 1 ? "" : "s");
-            return 1;
-        }
-        return 0;
-    } catch (const OutputFileError &e) {
-        std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
-        return 2;
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());
-        return 1;
-    }
+        *doc = backface_json(sizes, timer);
+        return failed;
+    });
 }
 
 } // namespace svbench

@@ -4,10 +4,13 @@
 #include "seed_bench.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 #include "header_lines.h"
 #include "json_writer.h"
 #include "model_workload.h"
+#include "output_file.h"
 #include "scaling.h"
 #include "sysinfo.h"
 
@@ -120,6 +123,49 @@ void seed_json_header(JsonWriter &j, const char *schema, const SeedTimer &t) {
     j.value(t.tscHz);
     j.key("overhead_ticks");
     j.value((long long)t.overhead);
+}
+
+void seed_json_row(JsonWriter &j, const char *routine, const std::string &variant,
+                   const SeedTiming &t) {
+    j.key("routine");
+    j.value(routine);
+    j.key("variant");
+    j.value(variant);
+    j.key("calls");
+    j.value(t.calls);
+    j.key("median_ticks");
+    j.value(t.median);
+    j.key("min_ticks");
+    j.value(t.min);
+}
+
+int run_seed_frame(const SeedCommand &cmd, const char *what,
+                   const std::function<int(FILE *out, std::string *doc)> &body) {
+    try {
+        OutputFile json("--json", cmd.json);
+        std::string doc;
+        const int failed = body(json.is_stdout() ? stderr : stdout, &doc);
+        if (json.wanted() && !json.write(doc)) {
+            std::fprintf(stderr, "shadowvol bench: --json: cannot write %s: %s\n",
+                         json.name().c_str(), std::strerror(errno));
+            return 1;
+        }
+        if (failed) {
+            std::fprintf(stderr, "shadowvol bench: %d %s row%s failed the check\n", failed, what,
+                         failed == 1 ? "" : "s");
+            return 1;
+        }
+        return 0;
+    } catch (const OutputFileError &e) {
+        std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
+        return 2;
+    } catch (const WorkloadError &e) {
+        std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
+        return 3;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());
+        return 1;
+    }
 }
 
 } // namespace svbench

@@ -42,12 +42,22 @@ struct SeedCommand {
 int run_silhouette_bench(const SeedCommand &cmd);
 int run_backface_bench(const SeedCommand &cmd);
 
+/* The frame both commands share: the --json file opened before anything
+ * runs, BODY printing its tables to OUT (stdout; stderr when the JSON goes
+ * to stdout) and returning how many rows failed their check, with the JSON
+ * document in *DOC; then the document written and the exit status
+ * (run_silhouette_bench's). WHAT names the rows in the failure line. */
+int run_seed_frame(const SeedCommand &cmd, const char *what,
+                   const std::function<int(FILE *out, std::string *doc)> &body);
+
 struct SeedTiming {
     bool ok = true;
     std::string failure; /* the first check that failed */
     int calls = 0;       /* timed calls (each checked) */
     double min = 0, median = 0; /* ticks per call, the fences' cost subtracted */
 };
+
+class JsonWriter;
 
 struct SeedTimer {
     TimerKind kind = TimerKind::rdtscp;
@@ -65,6 +75,11 @@ SeedTimer make_seed_timer(TimerKind kind, bool quick);
 SeedTiming time_seed_row(const SeedTimer &t, const std::function<void(int)> &run,
                          const std::function<std::string(int)> &check);
 
+/* The members every JSON row of the seed benchmarks starts with: routine,
+ * variant, calls, median_ticks, min_ticks (in the open object). */
+void seed_json_row(JsonWriter &j, const char *routine, const std::string &variant,
+                   const SeedTiming &t);
+
 /* A mesh of the seed tables. */
 struct SeedMesh {
     std::string name;   /* "character_33600 (Dino size)", "spot.glb", ... */
@@ -79,7 +94,6 @@ SeedMesh loaded_seed_mesh(const std::string &path);
 /* The cpu and timer lines. */
 void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pinnedCpu);
 /* The same facts as JSON members of the open object. */
-class JsonWriter;
 void seed_json_header(JsonWriter &j, const char *schema, const SeedTimer &t);
 
 } // namespace svbench

@@ -17,7 +17,6 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -29,7 +28,6 @@
 
 #include "cache_info.h"
 #include "json_writer.h"
-#include "output_file.h"
 #include "rng.h"
 #include "seed_bench.h"
 #include "shadowvol_silhouette.h"
@@ -404,14 +402,10 @@ std::string silhouette_json(const std::vector<SilMesh> &meshes, const SeedTimer 
             j.begin_array();
             for (const SilRow &r : p.rows) {
                 j.begin_object(true);
-                j.key("routine"); j.value("find_silhouette");
-                j.key("variant"); j.value(r.variant);
+                seed_json_row(j, "find_silhouette", r.variant, r.t);
                 j.key("status"); j.value(r.status);
                 j.key("ok"); j.value(r.status != "FAILED");
                 if (!r.note.empty()) { j.key("note"); j.value(r.note); }
-                j.key("calls"); j.value(r.t.calls);
-                j.key("median_ticks"); j.value(r.t.median);
-                j.key("min_ticks"); j.value(r.t.min);
                 j.key("median_us"); j.value(us(t, r.t.median));
                 j.key("temporary_bytes"); j.value(r.temporary);
                 j.key("permanent_bytes"); j.value(r.permanent);
@@ -438,9 +432,7 @@ bool file_exists(const std::string &p) {
 } // namespace
 
 int run_silhouette_bench(const SeedCommand &cmd) {
-    try {
-        OutputFile json("--json", cmd.json);
-        FILE *out = json.is_stdout() ? stderr : stdout;
+    return run_seed_frame(cmd, "silhouette", [&](FILE *out, std::string *doc) {
         const int cpu = pin_to_current_cpu();
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
         print_seed_header(out, "shadowvol bench --silhouette: seed 003's silhouette finders beside "
@@ -492,27 +484,9 @@ int run_silhouette_bench(const SeedCommand &cmd) {
                 for (const SilRow &r : p.rows) failed += r.status == "FAILED";
             }
         }
-        if (json.wanted() && !json.write(silhouette_json(meshes, timer))) {
-            std::fprintf(stderr, "shadowvol bench: --json: cannot write %s: %s\n",
-                         json.name().c_str(), std::strerror(errno));
-            return 1;
-        }
-        if (failed) {
-            std::fprintf(stderr, "shadowvol bench: %d silhouette row%s failed the check\n", failed,
-                         failed == 1 ? "" : "s");
-            return 1;
-        }
-        return 0;
-    } catch (const OutputFileError &e) {
-        std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
-        return 2;
-    } catch (const WorkloadError &e) {
-        std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
-        return 3;
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());
-        return 1;
-    }
+        *doc = silhouette_json(meshes, timer);
+        return failed;
+    });
 }
 
 } // namespace svbench

@@ -137,6 +137,8 @@ AlignedVector<sv_cull_triangle> cull_triangles(const PreparedSurface &s, bool ke
 AlignedVector<sv_cull_triangle16> cull_triangles16(const PreparedSurface &s,
                                                    bool keepIndices = true);
 AlignedVector<sv_cull_block4> cull_blocks(const PreparedSurface &s, bool keepIndices = true);
+/* The same blocks from N 16-byte triangles (their transpose, four by four). */
+AlignedVector<sv_cull_block4> cull_blocks(const sv_cull_triangle16 *tris, std::size_t n);
 
 /* The block kernels by name: compact_sse2, compact_sse2_prefetch,
  * compact_avx2, compact_avx512. */

@@ -32,6 +32,19 @@
 /* The seed's SELECT_VTX: bit v % 32 of word v / 32. */
 #define SELECT_VTX(bits, v) ((bits)[(v) >> 5] |= 1u << ((v) & 31))
 
+/* A triangle's decision F: its front byte (when asked), and its three
+ * vertices marked when it is front-facing. Returns F (0 or 1). */
+static inline int record(int f, uint8_t *front, int i, uint32_t *bits, uint16_t a, uint16_t b,
+                         uint16_t c) {
+    if (front) front[i] = (uint8_t)f;
+    if (f && bits) {
+        SELECT_VTX(bits, a);
+        SELECT_VTX(bits, b);
+        SELECT_VTX(bits, c);
+    }
+    return f;
+}
+
 static void clear_bits(uint32_t *bits, int numVertices) {
     if (bits && numVertices > 0) memset(bits, 0, ((size_t)numVertices + 31) / 32 * sizeof *bits);
 }
@@ -58,16 +71,7 @@ __attribute__((noinline)) static int noncompact_body(const sv_cull_triangle *tri
          * exact) and its dot product with the normal, left to right. */
         const float tx = t->px * w - vx, ty = t->py * w - vy, tz = t->pz * w - vz;
         const float tn = tx * t->nx + ty * t->ny + tz * t->nz;
-        const int f = tn <= 0.0f;
-        if (front) front[i] = (uint8_t)f;
-        if (f) {
-            ff++;
-            if (bits) {
-                SELECT_VTX(bits, t->v1);
-                SELECT_VTX(bits, t->v2);
-                SELECT_VTX(bits, t->v3);
-            }
-        }
+        ff += record(tn <= 0.0f, front, i, bits, t->v1, t->v2, t->v3);
     }
     return ff;
 }
@@ -94,16 +98,7 @@ __attribute__((noinline)) static int compact_body(const sv_cull_triangle16 *tris
         const sv_cull_triangle16 *t = &tris[i];
         /* fixed16's s, left to right; int16 -> float is exact */
         const float s = (float)t->nx * v[0] + (float)t->ny * v[1] + (float)t->nz * v[2] - t->tn * v[3];
-        const int f = s >= 0.0f;
-        if (front) front[i] = (uint8_t)f;
-        if (f) {
-            ff++;
-            if (bits) {
-                SELECT_VTX(bits, t->v1);
-                SELECT_VTX(bits, t->v2);
-                SELECT_VTX(bits, t->v3);
-            }
-        }
+        ff += record(s >= 0.0f, front, i, bits, t->v1, t->v2, t->v3);
     }
     return ff;
 }

@@ -13,9 +13,12 @@ namespace sv {
 
 namespace {
 
-/* The three 16-bit vertex numbers of triangle T (0 when not kept). */
-void vertex_numbers(const PreparedSurface &s, int t, bool keep, uint16_t v[3]) {
-    for (int k = 0; k < 3; k++) v[k] = keep ? (uint16_t)s.indices[3 * (std::size_t)t + k] : 0;
+/* C's three 16-bit vertex numbers: triangle T's (0 when not kept). */
+template <class Triangle> void set_vertices(Triangle &c, const PreparedSurface &s, int t, bool keep) {
+    const int *v = &s.indices[3 * (std::size_t)t];
+    c.v1 = keep ? (uint16_t)v[0] : 0;
+    c.v2 = keep ? (uint16_t)v[1] : 0;
+    c.v3 = keep ? (uint16_t)v[2] : 0;
 }
 
 bool keep_indices(const PreparedSurface &s, bool keepIndices) {
@@ -56,11 +59,7 @@ AlignedVector<sv_cull_triangle> cull_triangles(const PreparedSurface &s, bool ke
         const float *p = corner(s, t, 0);
         const Plane &pl = s.planes[(std::size_t)t];
         c = sv_cull_triangle{p[0], p[1], p[2], pl.a, pl.b, pl.c, 0, 0, 0, 0};
-        uint16_t v[3];
-        vertex_numbers(s, t, keep, v);
-        c.v1 = v[0];
-        c.v2 = v[1];
-        c.v3 = v[2];
+        set_vertices(c, s, t, keep);
     }
     return out;
 }
@@ -75,32 +74,33 @@ AlignedVector<sv_cull_triangle16> cull_triangles16(const PreparedSurface &s, boo
         c.nx = q[0];
         c.ny = q[1];
         c.nz = q[2];
-        uint16_t v[3];
-        vertex_numbers(s, t, keep, v);
-        c.v1 = v[0];
-        c.v2 = v[1];
-        c.v3 = v[2];
+        set_vertices(c, s, t, keep);
+    }
+    return out;
+}
+
+AlignedVector<sv_cull_block4> cull_blocks(const sv_cull_triangle16 *tris, std::size_t n) {
+    /* Zero-initialised: the last block's unused lanes stay 0 (the kernels
+     * mask them off). */
+    AlignedVector<sv_cull_block4> out((n + SV_CULL_BLOCK - 1) / SV_CULL_BLOCK);
+    for (std::size_t t = 0; t < n; t++) {
+        sv_cull_block4 &b = out[t / SV_CULL_BLOCK];
+        const std::size_t k = t % SV_CULL_BLOCK;
+        const sv_cull_triangle16 &c = tris[t];
+        b.tn[k] = c.tn;
+        b.nx[k] = c.nx;
+        b.ny[k] = c.ny;
+        b.nz[k] = c.nz;
+        b.v[k][0] = c.v1;
+        b.v[k][1] = c.v2;
+        b.v[k][2] = c.v3;
     }
     return out;
 }
 
 AlignedVector<sv_cull_block4> cull_blocks(const PreparedSurface &s, bool keepIndices) {
-    const bool keep = keep_indices(s, keepIndices);
-    /* Zero-initialised: the last block's unused lanes stay 0 (the kernels
-     * mask them off). */
-    AlignedVector<sv_cull_block4> out(((std::size_t)s.num_triangles() + SV_CULL_BLOCK - 1) /
-                                      SV_CULL_BLOCK);
-    for (int t = 0; t < s.num_triangles(); t++) {
-        sv_cull_block4 &b = out[(std::size_t)t / SV_CULL_BLOCK];
-        const int k = t % SV_CULL_BLOCK;
-        int16_t q[3];
-        cull_plane16(s, t, q, &b.tn[k]);
-        b.nx[k] = q[0];
-        b.ny[k] = q[1];
-        b.nz[k] = q[2];
-        vertex_numbers(s, t, keep, b.v[k]);
-    }
-    return out;
+    const AlignedVector<sv_cull_triangle16> t = cull_triangles16(s, keepIndices);
+    return cull_blocks(t.data(), t.size());
 }
 
 const std::vector<BackfaceBlockVariant> &backface_block_variants() {
