@@ -22,6 +22,7 @@
 #include "output_file.h"
 #include "routines.h"
 #include "scaling_cli.h"
+#include "seed_bench.h"
 #include "synthetic_workload.h"
 #include "sysinfo.h"
 #include "table_report.h"
@@ -174,6 +175,8 @@ struct CliOptions {
     std::string json;               /* --json FILE; "" none, "-" stdout */
     bool scaling = false;           /* --scaling: scaling.h instead of the cycle table */
     bool limits = false;            /* --limits: machine_limits.h after each table */
+    bool silhouette = false;        /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
+    bool backface = false;          /* --backface: seed 001's culling (backface_bench.cpp) */
     std::string plot;               /* --plot FILE (with --scaling) */
     long maxTriangles = 0;          /* --max-triangles N (with --scaling) */
     bool regimeGiven = false;       /* options the scaling run has no use for */
@@ -287,6 +290,10 @@ CliOptions parse(int argc, char **argv) {
             }
         } else if (opt == "--scaling" && !hasValue) {
             c.scaling = true;
+        } else if (opt == "--silhouette" && !hasValue) {
+            c.silhouette = true;
+        } else if (opt == "--backface" && !hasValue) {
+            c.backface = true;
         } else if (opt == "--limits" && !hasValue) {
             c.limits = true;
         } else if (opt == "--plot") {
@@ -296,13 +303,26 @@ CliOptions parse(int argc, char **argv) {
             }
         } else if (opt == "--max-triangles") {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
-        } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits")) {
+        } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
+                                 opt == "--silhouette" || opt == "--backface")) {
             bad(opt + " takes no value");
         } else if (arg.rfind("-", 0) == 0) {
             bad("unknown option '" + arg + "'");
         } else {
             bad("unexpected argument '" + arg + "'");
         }
+    }
+    if (c.silhouette || c.backface) {
+        /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
+         * backface_bench.cpp). */
+        const std::string mode = c.silhouette ? "--silhouette" : "--backface";
+        if ((c.silhouette && c.backface) || c.scaling || c.limits || !c.plot.empty() ||
+            !c.models.empty() || c.lightGiven || c.regimeGiven || !c.table.routines.empty() ||
+            !c.variants.empty() || c.runs || c.table.batch || c.targets.facing != LightTargets{}.facing ||
+            c.targets.silhouette != LightTargets{}.silhouette) {
+            bad(mode + " takes --quick, --json, --max-triangles, --seed, --timer and --isa only");
+        }
+        return c;
     }
     if (!c.scaling && !c.plot.empty()) {
         bad("--plot draws the scaling run: add --scaling");
@@ -393,6 +413,18 @@ int scaling(const CliOptions &c) {
     }
     cmd.variantsChosen = !c.variants.empty();
     return run_scaling(cmd);
+}
+
+/* --silhouette and --backface: the options they take. */
+SeedCommand seed_command(const CliOptions &c) {
+    SeedCommand cmd;
+    cmd.quick = c.quick;
+    cmd.json = c.json;
+    cmd.timer = timer_of(c);
+    cmd.maxTriangles = c.maxTriangles;
+    cmd.seed = c.seed;
+    cmd.sharedModels = SV_SHARED_MODELS_DIR;
+    return cmd;
 }
 
 int runs_for(int runs, int triangles) {
@@ -486,6 +518,27 @@ void bench_usage(FILE *out) {
         "  --routine, --variant, --isa, --timer, --batch, --seed, --facing-ratio and\n"
         "  --silhouette-ratio apply as above; --model, --light and --regime do not.\n"
         "\n"
+        "Seed 003: shadowvol bench --silhouette [--quick] [--json FILE] [--max-triangles N]\n"
+        "Routine find_silhouette: the classic candidate list, the hash table (8 to 64\n"
+        "columns, 16- and 32-bit cells, scalar and SSE2) and the connectivity table\n"
+        "(four kernels) beside the paper's SilEdges (siledge_<variant>), on the generated\n"
+        "character at 1344, 33600 and 65856 triangles (the seed's Dino and Dragon sizes)\n"
+        "and spot and koala from the real characters' folder, the light above the mesh\n"
+        "and beside it (16 jittered lights each, one per call); temporary and permanent\n"
+        "memory, the connectivity table's precomputation (ours O(n), the seed's O(n^2)),\n"
+        "every call checked against the SilEdges, and the seed's own table beside ours.\n"
+        "JSON schema shadowvol-silhouette/1. A hash table too narrow for a mesh reports\n"
+        "overflow (not a failure). --quick: the two smaller generated meshes, short rows.\n"
+        "\n"
+        "Seed 001: shadowvol bench --backface [--quick] [--json FILE] [--max-triangles N]\n"
+        "Routine backface_cull (the camera's back faces: the front-facing count and the\n"
+        "vertex bit array): noncompact (32-byte triangles, float), compact (16 bytes,\n"
+        "16-bit normal), compact_sse2 (four per step), compact_sse2_prefetch,\n"
+        "compact_avx2, compact_avx512, in ticks per triangle from 1344 to 7 million\n"
+        "triangles (L1 to beyond L3), each call checked; the 16-bit decisions compared\n"
+        "with the float ones and judged by the exact predicate. JSON schema\n"
+        "shadowvol-backface/1. --quick: three sizes up to 108,864 triangles.\n"
+        "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
         "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
@@ -507,6 +560,12 @@ int bench_main(int argc, char **argv) {
         }
         if (c.scaling) {
             return scaling(c);
+        }
+        if (c.silhouette) {
+            return run_silhouette_bench(seed_command(c));
+        }
+        if (c.backface) {
+            return run_backface_bench(seed_command(c));
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {

@@ -34,6 +34,8 @@ void release_arrays(Workload &w) {
     }
 }
 
+} // namespace
+
 Workload generated_surface(const MeshSpec &s) {
     try {
         const svgen::TriMesh mesh = svgen::build_character(s.subdivision);
@@ -51,8 +53,6 @@ Workload generated_surface(const MeshSpec &s) {
         throw WorkloadError(s.name + ": out of memory");
     }
 }
-
-} // namespace
 
 const std::vector<Routine> &default_scaling_routines() {
     static const std::vector<Routine> r = {

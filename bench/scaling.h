@@ -86,6 +86,10 @@ struct MeshSpec {
     std::string path;     /* a real model's file */
 };
 
+/* The generated character of S (S.subdivision), prepared, as a workload
+ * without lights (also the seed benchmarks' meshes). Throws WorkloadError. */
+Workload generated_surface(const MeshSpec &s);
+
 /* One measured mesh: its workload (arrays freed once measured, counts and
  * lights' ratios kept) and its table. */
 struct ScalingMesh {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "shadowvol_accuracy.h"
+#include "shadowvol_backface.h"
 
 namespace sv {
 namespace acc {
@@ -30,6 +31,10 @@ struct SurfaceData {
     const PreparedSurface *surface = nullptr;
     AlignedVector<PlaneD> planes_d;
     AlignedVector<sv_plane16_block> planes16;
+    /* seed 001's view culling layouts (shadowvol_backface.h), vertex
+     * numbers dropped: the study measures the front-facing decision. */
+    AlignedVector<sv_cull_triangle16> cull16;
+    AlignedVector<sv_cull_block4> cull_blocks;
     /* eps_bias: the band's distance (model units) and the center it is
      * measured from; the model's, for a model of several surfaces. */
     float eps_distance = 0, eps_angle = kEpsBiasAngle;
