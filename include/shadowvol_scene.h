@@ -149,8 +149,10 @@ SceneLight auto_light(const Scene &scene, LightKind kind);
  * extrusion direction is 0), NaN or infinite numbers, a zero light
  * direction, cone angles outside 0 <= inner <= outer < 90, a camera whose
  * eye equals its target or whose up is parallel to the view direction.
- * Appends notes (not errors) for: a light inside a closed surface, a light
- * on a triangle's plane, the eye inside a closed surface. */
+ * Also refused: a light coordinate beyond float's range, a point or spot
+ * light exactly on a triangle's plane (that triangle's flat prism makes
+ * the stencil count anything). Appends notes (not errors) for: a light
+ * inside a closed surface, the eye inside a closed surface. */
 void validate_scene(Scene &scene);
 
 } // namespace sv

@@ -53,6 +53,8 @@ expect 2 --size 8192x8193
 expect 2 --mode sideways
 expect 2 --light point:nan,1,1
 expect 2 --light point:1,inf,1
+expect 2 --light point:1e39,5,0
+expect 2 --light point:0,0.001,0.5
 expect 2 --light spot:0,3,0,0,-1,0,50,40
 expect 2 --light dir:0,0,0
 expect 2 --light torch:1,2,3

@@ -278,7 +278,13 @@ int render_main(int argc, char **argv) {
     opt.mode = args.mode;
     opt.kernels = kernels;
     opt.variant = variant;
-    const sv::render::Frame frame = sv::render::render_frame(scene, opt);
+    sv::render::Frame frame;
+    try {
+        frame = sv::render::render_frame(scene, opt);
+    } catch (const std::bad_alloc &) {
+        std::fprintf(stderr, "shadowvol render: out of memory for a %dx%d frame\n", args.width, args.height);
+        return kExitUsage;
+    }
     const double hz = svbench::estimate_tsc_hz(0.05);
     const int threads = args.threads ? args.threads : (int)std::max(1u, std::thread::hardware_concurrency());
 
@@ -297,7 +303,13 @@ int render_main(int argc, char **argv) {
     std::string gl_renderer, gl_note;
     if (args.gl) {
         std::fprintf(stderr, "shadowvol render: drawing the same volumes with Mesa...\n");
-        gls = sv::render::compare_with_mesa(scene, frame, &gl_renderer, &gl_note);
+        try {
+            gls = sv::render::compare_with_mesa(scene, frame, &gl_renderer, &gl_note);
+        } catch (const std::exception &e) {
+            /* A job the judge refuses or a GL error: say so, and fail. */
+            std::fprintf(stderr, "shadowvol render: the Mesa judge failed: %s\n", e.what());
+            return kExitMismatch;
+        }
         if (!gl_note.empty()) std::fprintf(stderr, "NOTE: %s\n", gl_note.c_str());
     }
 

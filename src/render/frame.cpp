@@ -106,9 +106,13 @@ const char *mode_name(ModeChoice m) {
 }
 
 uint64_t frame_bytes(int width, int height, int lights) {
-    const uint64_t px = (uint64_t)width * (uint64_t)height;
-    return raster::Target::bytes_for(width, height) + px * (uint64_t)std::max(lights, 1) * 2 +
-           px * 3;
+    const uint64_t px = (uint64_t)width * (uint64_t)height, l = (uint64_t)std::max(lights, 1);
+    /* The target (depth, ids, stencil: 9), per light its stencil (1) and
+     * truth classes (1), the Mesa judge's read-back and classes (6 per
+     * light, one light at a time: 6), the shaded image and the PNG panels
+     * (3 each: the shaded copy, and per light its stencil, truth and
+     * difference panels plus the side-by-side copies of each: 3 + 18 l). */
+    return px * (9 + 2 * l + 6 + 3 + 3 + 18 * l);
 }
 
 void Frame::decode_id(int32_t id, int &surface, int &triangle) const {

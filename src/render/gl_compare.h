@@ -3,8 +3,8 @@
  * receivers, the same index lists over the same double-length vertex
  * buffers, the same matrix, drawn by llvmpipe (src/gljudge); every pixel
  * whose stencil differs is classified:
- *   depth tie    a drawn volume triangle covers it within 1e-5 of the
- *                stored depth (the two depth interpolations may order the
+ *   depth tie    a drawn volume triangle covers it within 64 float ulps
+ *                of the stored depth (the two depth interpolations may order the
  *                volume and the receiver differently there: a near cap
  *                lies exactly on its receiver);
  *   on an edge   else, its centre lies within 1/16 pixel of an edge of a

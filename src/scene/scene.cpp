@@ -328,6 +328,12 @@ void validate_scene(Scene &scene) {
             !std::isfinite(l.intensity)) {
             throw SceneError(who + ": a number is not finite");
         }
+        /* The routines take the light in float: a coordinate beyond
+         * float's range would become infinite there. */
+        const Vec4 Lf = l.shadow_light();
+        if (!std::isfinite(Lf.x) || !std::isfinite(Lf.y) || !std::isfinite(Lf.z)) {
+            throw SceneError(who + ": a coordinate is beyond float's range (3.4e38)");
+        }
         if (l.range < 0) throw SceneError(who + ": the range must be 0 (unlimited) or above");
         if (l.kind != LightKind::point) {
             if (length(l.direction) == 0) throw SceneError(who + ": the direction is zero");
@@ -354,9 +360,13 @@ void validate_scene(Scene &scene) {
                 if (d == 0.0f && (pl.a != 0 || pl.b != 0 || pl.c != 0)) on_plane++;
             }
             if (on_plane) {
-                scene.notes.push_back(who + " lies on the plane of " + std::to_string(on_plane) +
-                                      " triangle(s) of " + s.name +
-                                      ": they count as not facing it, and cast");
+                /* Such a triangle counts as not facing (the facing test is
+                 * strict) and casts a flat prism in its own plane; from a
+                 * light inside the triangle that prism is the whole plane,
+                 * and its coincident faces make the stencil count anything:
+                 * refused rather than drawn wrong. */
+                throw SceneError(who + " lies exactly on the plane of " + std::to_string(on_plane) +
+                                 " triangle(s) of " + s.name + ": move it off that plane");
             }
             if (inside_closed_surface(s, l.position)) {
                 scene.notes.push_back(who + " is inside the closed surface " + s.name +
