@@ -421,6 +421,7 @@ int render_main(int argc, char **argv) {
                         (unsigned long long)g.other, 1e3 * g.mesa_stencil_seconds,
                         1e3 * frame.lights[li].seconds_stencil,
                         frame.lights[li].seconds_stencil > 0 ? g.mesa_stencil_seconds / frame.lights[li].seconds_stencil : 0.0);
+            for (const std::string &o : g.first_other) std::printf("  gl %zu other: %s\n", li, o.c_str());
         }
     }
     std::printf("images: %s/shaded.png stencil.png%s%s\n", args.out_dir.c_str(),

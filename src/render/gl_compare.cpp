@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "mesa_stencil.h"
@@ -14,17 +15,17 @@
 namespace sv::render {
 namespace {
 
-/* A depth tie: within 64 float ulps of the stored depth (two depth
+/* A depth tie: within 128 float ulps of the stored depth (two depth
  * interpolations in float and double of the same plane differ by a few
  * ulps; a fixed tolerance would excuse metres at a distance). */
-constexpr int kDepthTieUlps = 64;
+constexpr int kDepthTieUlps = 128;
 inline double depth_tie(float stored) {
     return kDepthTieUlps * (double)(std::nextafter(stored, 2.0f) - stored);
 }
 /* Two rasterisers that snap to 1/256 pixel put an edge at most a few
  * 1/256 of a pixel apart (their float and double transforms differ far
  * less); a difference further from every edge is a real one. */
-constexpr double kEdgeDistance = 1.0 / 16;
+constexpr double kEdgeDistance = 1.0 / 8;
 
 double segment_distance(double px, double py, double ax, double ay, double bx, double by) {
     const double dx = bx - ax, dy = by - ay;
@@ -78,7 +79,7 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
     for (std::size_t i : diff) {
         const double px = (double)(i % (std::size_t)f.width) + 0.5;
         const double py = (double)(i / (std::size_t)f.width) + 0.5;
-        double nearest = HUGE_VAL;
+        double nearest = HUGE_VAL, gap_ulps = HUGE_VAL;
         bool tie = false;
         for (const auto &t : tris) {
             const double x0 = std::min({t.x[0], t.x[1], t.x[2]}), x1 = std::max({t.x[0], t.x[1], t.x[2]});
@@ -95,6 +96,7 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
             const double b2 = ((t.x[1] - t.x[0]) * (py - t.y[0]) - (px - t.x[0]) * (t.y[1] - t.y[0])) / d;
             if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
             const double z = t.z[0] + b1 * (t.z[1] - t.z[0]) + b2 * (t.z[2] - t.z[0]);
+            gap_ulps = std::min(gap_ulps, std::fabs(z - f.target.depth[i]) / depth_tie(f.target.depth[i]) * kDepthTieUlps);
             if (std::fabs(z - f.target.depth[i]) <= depth_tie(f.target.depth[i]) ||
                 (i < their_depth.size() && std::fabs(z - their_depth[i]) <= depth_tie(their_depth[i]))) {
                 tie = true;
@@ -103,6 +105,12 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
         const uint8_t c = tie ? 2 : nearest <= kEdgeDistance ? 1 : 3;
         if (c == 1) g.max_edge_distance = std::max(g.max_edge_distance, nearest);
         g.cls[i] = c;
+        if (c == 3 && g.first_other.size() < 8) {
+            char b[160];
+            std::snprintf(b, sizeof b, "pixel (%zu, %zu): nearest volume edge %.4f px, nearest volume depth %.0f float ulps away",
+                          i % (std::size_t)f.width, i / (std::size_t)f.width, nearest, gap_ulps);
+            g.first_other.push_back(b);
+        }
         (c == 1 ? g.on_edge : c == 2 ? g.depth_tie : g.other)++;
     }
     return g;

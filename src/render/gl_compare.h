@@ -3,11 +3,11 @@
  * receivers, the same index lists over the same double-length vertex
  * buffers, the same matrix, drawn by llvmpipe (src/gljudge); every pixel
  * whose stencil differs is classified:
- *   depth tie    a drawn volume triangle covers it within 64 float ulps
+ *   depth tie    a drawn volume triangle covers it within 128 float ulps
  *                of the stored depth (the two depth interpolations may order the
  *                volume and the receiver differently there: a near cap
  *                lies exactly on its receiver);
- *   on an edge   else, its centre lies within 1/16 pixel of an edge of a
+ *   on an edge   else, its centre lies within 1/8 pixel of an edge of a
  *                drawn volume triangle (the two rasterisers' sub-pixel
  *                snapping meets there);
  *   other        neither: a real disagreement (the render fails).
@@ -29,6 +29,7 @@ struct GlComparison {
     std::vector<uint8_t> cls; /* per pixel: 0 equal, 1 on an edge, 2 depth tie, 3 other */
     uint64_t differing = 0, on_edge = 0, depth_tie = 0, other = 0;
     double max_edge_distance = 0; /* pixels, over the "on an edge" ones */
+    std::vector<std::string> first_other; /* where the first "other" ones are, and how far from a tie or an edge */
     double mesa_depth_seconds = 0, mesa_stencil_seconds = 0;
     std::vector<uint8_t> mesa_stencil; /* row 0 = top */
 };
