@@ -132,6 +132,12 @@ void add_ground(Scene &scene);
  * above, with room for the shadows around them. */
 Camera frame_camera(const Scene &scene, double aspect);
 
+/* A near distance for CAMERA that keeps float depth fine at the scene:
+ * half the distance from the eye to the bounds of every surface (with
+ * the ground), at least 1/1000 of the distance to their centre; 1/100 of
+ * their radius when the eye is inside them. */
+double fitting_near_distance(const Scene &scene, const Camera &camera);
+
 /* One point light (above, left and behind) and one directional light
  * (from above right), placed so that the surfaces' shadows fall on the
  * ground in front of the camera. */

@@ -319,6 +319,7 @@ TEST(Scene, BadInputIsRefusedClearly) {
     EXPECT_EQ(c.target.y, 0.5);
     EXPECT_EQ(c.fov_y_degrees, 30);
     EXPECT_EQ(c.near_distance, 0.2);
+    EXPECT_EQ(parse_camera("eye=0,1,2,target=0,0,0").near_distance, 0) << "not given: to be fitted";
     const ModelPlacement m = parse_model_placement("dir@x/a.glb@1,2,3,90,2");
     EXPECT_EQ(m.path, "dir@x/a.glb");
     EXPECT_EQ(m.placement.yaw_degrees, 90);

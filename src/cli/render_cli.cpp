@@ -164,7 +164,8 @@ void render_usage(FILE *out) {
         "  --light dir:x,y,z             a directional light travelling along (x,y,z)\n"
         "  --light point:auto | spot:auto | dir:auto   placed around the models\n"
         "  --camera eye=x,y,z,target=x,y,z[,fov=deg][,near=d][,up=x,y,z]\n"
-        "                                default: framed from the front and above\n"
+        "                                default: framed from the front and above;\n"
+        "                                without near=, one fitted to the scene's distance\n"
         "  (no light: a point light and a directional light whose shadows fall on the\n"
         "  ground in view; a light's intensity makes it give irradiance 1 at the\n"
         "  scene's centre)\n"
@@ -250,6 +251,7 @@ int render_main(int argc, char **argv) {
     if (args.ground) sv::add_ground(scene);
     const double aspect = (double)args.width / args.height;
     scene.camera = args.has_camera ? args.camera : sv::frame_camera(scene, aspect);
+    if (scene.camera.near_distance == 0) scene.camera.near_distance = sv::fitting_near_distance(scene, scene.camera);
     scene.lights = args.lights.empty() ? sv::default_lights(scene) : args.lights;
     for (sv::SceneLight &l : scene.lights) {
         if (l.placed_automatically) l = sv::auto_light(scene, l.kind);

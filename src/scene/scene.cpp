@@ -255,6 +255,20 @@ Camera frame_camera(const Scene &scene, double aspect) {
     return cam;
 }
 
+double fitting_near_distance(const Scene &scene, const Camera &camera) {
+    Vec3d lo, hi;
+    scene.bounds(lo, hi, true);
+    const Vec3d e = camera.eye;
+    const Vec3d c{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
+    const double dx = std::max({lo.x - e.x, 0.0, e.x - hi.x});
+    const double dy = std::max({lo.y - e.y, 0.0, e.y - hi.y});
+    const double dz = std::max({lo.z - e.z, 0.0, e.z - hi.z});
+    const double outside = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double radius = std::max(length(sub(hi, c)), 1e-30);
+    if (outside == 0) return 0.01 * radius;
+    return std::max(0.5 * outside, 1e-3 * length(sub(c, e)));
+}
+
 std::vector<SceneLight> default_lights(const Scene &scene) {
     Vec3d lo, hi;
     scene.bounds(lo, hi, false);

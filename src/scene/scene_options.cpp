@@ -105,6 +105,7 @@ SceneLight parse_light(const std::string &text) {
 
 Camera parse_camera(const std::string &text) {
     Camera c;
+    c.near_distance = 0; /* not given: the caller fits one to the scene */
     bool eye = false, target = false;
     std::size_t pos = 0;
     /* eye=x,y,z,target=x,y,z,fov=deg,near=d: a key starts after a comma
@@ -141,7 +142,7 @@ Camera parse_camera(const std::string &text) {
     }
     if (!eye || !target) throw SceneError("--camera " + text + ": needs eye=x,y,z and target=x,y,z");
     if (!(c.fov_y_degrees > 0 && c.fov_y_degrees < 180)) throw SceneError("--camera: fov must be above 0 and below 180");
-    if (!(c.near_distance > 0)) throw SceneError("--camera: near must be above 0");
+    if (!(c.near_distance >= 0)) throw SceneError("--camera: near must be above 0");
     return c;
 }
 

@@ -30,6 +30,7 @@ struct ModelPlacement {
 ModelPlacement parse_model_placement(const std::string &text);
 /* Intensity is left at 0 (meaning: choose), see default_intensity. */
 SceneLight parse_light(const std::string &text);
+/* near_distance is 0 when near= is not given (fitting_near_distance). */
 Camera parse_camera(const std::string &text);
 /* Comma-separated finite numbers. */
 std::vector<double> parse_numbers(const std::string &text, const std::string &what);
