@@ -341,7 +341,9 @@ TEST(Raster, DepthDoesNotDependOnCornerOrder) {
                     ASSERT_EQ(first_plane.ok, pl.ok);
                     const double a[5] = {first_plane.x0, first_plane.y0, first_plane.z0, first_plane.a, first_plane.b};
                     const double b[5] = {pl.x0, pl.y0, pl.z0, pl.a, pl.b};
-                    if (pl.ok) ASSERT_EQ(0, std::memcmp(a, b, sizeof a)) << "trial " << trial;
+                    if (pl.ok) {
+                        ASSERT_EQ(0, std::memcmp(a, b, sizeof a)) << "trial " << trial;
+                    }
                 }
             }
         }

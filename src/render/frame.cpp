@@ -171,10 +171,21 @@ bool near_plane_may_be_shadowed(const Camera &camera, double aspect, const Scene
     return true;
 }
 
+raster::ClipVertex shadow_vertex_to_clip(const Mat4d &vp, const PreparedSurface &p, int sv_index,
+                                         const Vec4 &L) {
+    const Vec3d q = vertex(p, sv_index >> 1);
+    return (sv_index & 1) ? to_clip(vp, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0)
+                          : to_clip(vp, q.x, q.y, q.z, 1.0);
+}
+
+Vec3d camera_ray(const Frame &f, double x, double y) {
+    const double nx = (x / f.width) * 2 - 1, ny = 1 - (y / f.height) * 2;
+    return add(f.ray_forward, add(mul(f.ray_right, nx), mul(f.ray_up, ny)));
+}
+
 Vec3d visible_point(const Frame &f, const Scene &scene, int surface, int triangle, int px,
                     int py) {
-    const double nx = ((px + 0.5) / f.width) * 2 - 1, ny = 1 - ((py + 0.5) / f.height) * 2;
-    const Vec3d dir = add(f.ray_forward, add(mul(f.ray_right, nx), mul(f.ray_up, ny)));
+    const Vec3d dir = camera_ray(f, px + 0.5, py + 0.5);
     const PreparedSurface &p = scene.surfaces[surface].prepared;
     const int *tri = &p.indices[3 * triangle];
     const Vec3d a = vertex(p, tri[0]);
@@ -284,14 +295,12 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         std::vector<raster::ClipVertex> sv_clip;
         for (const Volume &vol : lf.volumes) {
             const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-            /* The double-length buffer through the paper's vertex program:
-             * even 2v = (x, y, z, 1), odd 2v + 1 = (x L.w - L.x, ..., 0). */
+            /* The double-length buffer through the paper's vertex program
+             * (the even vertices are the receivers' own, already done). */
             sv_clip.resize(2 * (std::size_t)p.num_vertices());
             for (int v = 0; v < p.num_vertices(); v++) {
-                const Vec3d q = vertex(p, v);
                 sv_clip[2 * (std::size_t)v] = clip[(std::size_t)vol.surface][(std::size_t)v];
-                sv_clip[2 * (std::size_t)v + 1] =
-                    to_clip(f.view_proj, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0);
+                sv_clip[2 * (std::size_t)v + 1] = shadow_vertex_to_clip(f.view_proj, p, 2 * v + 1, L);
             }
             const raster::StencilMode mode =
                 vol.zfail ? raster::StencilMode::zfail : raster::StencilMode::zpass;

@@ -91,6 +91,18 @@ Frame render_frame(const Scene &scene, const RenderOptions &options);
  * input for every vertex, receivers and volumes alike). */
 raster::ClipVertex to_clip(const Mat4d &view_proj, double x, double y, double z, double w);
 
+/* Element SV_INDEX of the double-length shadow vertex buffer of P, through
+ * the paper's section 3 vertex program, in clip space: even 2v = (x, y, z,
+ * 1); odd 2v + 1 = (x L.w - L.x, y L.w - L.y, z L.w - L.z, 0), the point
+ * moved to infinity away from the light. The one place the extrusion is
+ * computed (its GLSL twin is in src/gljudge). */
+raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p,
+                                         int sv_index, const Vec4 &L);
+
+/* The camera ray through window point (x, y) (pixels, y down; a pixel's
+ * centre is at + 0.5): unit length along the view axis. */
+Vec3d camera_ray(const Frame &f, double x, double y);
+
 /* Would z-pass be wrong for this surface and light: can a point of the
  * camera's near-plane rectangle lie in the surface's shadow volume? A
  * conservative test: the surface's box against the convex hull of the

@@ -45,12 +45,7 @@ std::vector<raster::Rasterizer::WindowTriangle> drawn_triangles(const Scene &sce
     const Vec4 L = lf.shadow_light;
     for (const Volume &vol : lf.volumes) {
         const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-        auto clip_of = [&](int sv_index) {
-            const int v = sv_index >> 1;
-            const double x = p.positions[3 * v], y = p.positions[3 * v + 1], z = p.positions[3 * v + 2];
-            return (sv_index & 1) ? to_clip(f.view_proj, x * L.w - L.x, y * L.w - L.y, z * L.w - L.z, 0.0)
-                                  : to_clip(f.view_proj, x, y, z, 1.0);
-        };
+        auto clip_of = [&](int sv_index) { return shadow_vertex_to_clip(f.view_proj, p, sv_index, L); };
         for (int i = 0; i + 2 < vol.drawn_indices(); i += 3) {
             const raster::ClipVertex v[3] = {clip_of(vol.indices[(std::size_t)i]),
                                              clip_of(vol.indices[(std::size_t)i + 1]),

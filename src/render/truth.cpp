@@ -31,29 +31,31 @@ inline Point3 cross3(const Point3 &a, const Point3 &b) {
 }
 inline double dot3(const Point3 &a, const Point3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
+/* Moller-Trumbore: the s where P + s R meets triangle T of RT, or NaN. */
+inline double ray_hit(const RayTriangles &rt, uint32_t t, const Point3 &p, const Point3 &r) {
+    const Point3 &e1 = rt.e1[t], &e2 = rt.e2[t];
+    const Point3 pv = cross3(r, e2);
+    const double det = dot3(e1, pv);
+    if (det == 0) return NAN;
+    const double inv = 1.0 / det;
+    const Point3 tv{p.x - rt.a[t].x, p.y - rt.a[t].y, p.z - rt.a[t].z};
+    const double u = dot3(tv, pv) * inv;
+    if (u < 0 || u > 1) return NAN;
+    const Point3 qv = cross3(tv, e1);
+    const double v = dot3(r, qv) * inv;
+    if (v < 0 || u + v > 1) return NAN;
+    return dot3(e2, qv) * inv;
+}
+
 /* Does P + s R, s in (s_min, s_max), cross a triangle other than SKIP? */
 bool blocked(const RayTriangles &rt, const Point3 &p, const Point3 &r, double s_min,
              double s_max, uint32_t skip) {
     bool hit = false;
     rt.for_each_candidate(p, r, s_max, [&](uint32_t t) {
         if (t == skip) return true;
-        const Point3 &e1 = rt.e1[t], &e2 = rt.e2[t];
-        const Point3 pv = cross3(r, e2);
-        const double det = dot3(e1, pv);
-        if (det == 0) return true;
-        const double inv = 1.0 / det;
-        const Point3 tv{p.x - rt.a[t].x, p.y - rt.a[t].y, p.z - rt.a[t].z};
-        const double u = dot3(tv, pv) * inv;
-        if (u < 0 || u > 1) return true;
-        const Point3 qv = cross3(tv, e1);
-        const double v = dot3(r, qv) * inv;
-        if (v < 0 || u + v > 1) return true;
-        const double s = dot3(e2, qv) * inv;
-        if (s > s_min && s < s_max) {
-            hit = true;
-            return false;
-        }
-        return true;
+        const double s = ray_hit(rt, t, p, r);
+        hit = s > s_min && s < s_max; /* false for NaN */
+        return !hit;
     });
     return hit;
 }
@@ -114,28 +116,14 @@ uint8_t TruthCaster::classify_point(const Frame &f, int light, double x, double 
 
 uint8_t TruthCaster::classify_point(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
                                     const Vec4 &L, double x, double y) const {
-    const double nx = (x / f.width) * 2 - 1, ny = 1 - (y / f.height) * 2;
-    const Vec3d d{f.ray_forward.x + nx * f.ray_right.x + ny * f.ray_up.x,
-                  f.ray_forward.y + nx * f.ray_right.y + ny * f.ray_up.y,
-                  f.ray_forward.z + nx * f.ray_right.z + ny * f.ray_up.z};
+    const Vec3d d = camera_ray(f, x, y);
     const Point3 o{f.camera.eye.x, f.camera.eye.y, f.camera.eye.z}, r{d.x, d.y, d.z};
     /* The nearest triangle the camera ray meets beyond the near plane
      * (d has unit length along the view axis, so s is the view depth). */
     double best = HUGE_VAL;
     int32_t best_id = -1;
-    const RayTriangles &rt = rays_->tris;
-    rt.for_each_candidate(o, r, HUGE_VAL, [&](uint32_t t) {
-        const Point3 pv = cross3(r, rt.e2[t]);
-        const double det = dot3(rt.e1[t], pv);
-        if (det == 0) return true;
-        const double inv = 1.0 / det;
-        const Point3 tv{o.x - rt.a[t].x, o.y - rt.a[t].y, o.z - rt.a[t].z};
-        const double u = dot3(tv, pv) * inv;
-        if (u < 0 || u > 1) return true;
-        const Point3 qv = cross3(tv, rt.e1[t]);
-        const double v = dot3(r, qv) * inv;
-        if (v < 0 || u + v > 1) return true;
-        const double s = dot3(rt.e2[t], qv) * inv;
+    rays_->tris.for_each_candidate(o, r, HUGE_VAL, [&](uint32_t t) {
+        const double s = ray_hit(rays_->tris, t, o, r);
         if (s >= f.camera.near_distance && s < best) best = s, best_id = (int32_t)t;
         return true;
     });
@@ -160,10 +148,8 @@ uint8_t TruthCaster::classify_stored_depth(const Frame &f,
     const double den = 1.0 - kInfiniteFarEpsilon - z_ndc;
     if (!(den > 0)) return kTruthNone;
     const double dist = (2.0 - kInfiniteFarEpsilon) * f.camera.near_distance / den;
-    const double nx = ((x + 0.5) / f.width) * 2 - 1, ny = 1 - ((y + 0.5) / f.height) * 2;
-    const Vec3d P{f.camera.eye.x + dist * (f.ray_forward.x + nx * f.ray_right.x + ny * f.ray_up.x),
-                  f.camera.eye.y + dist * (f.ray_forward.y + nx * f.ray_right.y + ny * f.ray_up.y),
-                  f.camera.eye.z + dist * (f.ray_forward.z + nx * f.ray_right.z + ny * f.ray_up.z)};
+    const Vec3d d = camera_ray(f, x + 0.5, y + 0.5);
+    const Vec3d P{f.camera.eye.x + dist * d.x, f.camera.eye.y + dist * d.y, f.camera.eye.z + dist * d.z};
     int si, t;
     f.decode_id(id, si, t);
     uint64_t rays = 0;
@@ -184,9 +170,9 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
                                      * receiver seen edge-on, the depth of
                                      * its snapped triangle can lie well off
                                      * the exact one. */
-                                    const std::size_t i = (std::size_t)y * f.width + x;
+                                    const std::size_t px = (std::size_t)y * f.width + x;
                                     const uint8_t at_depth = classify_stored_depth(f, facing, L, x, y);
-                                    if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[i] == kTruthLit)) {
+                                    if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[px] == kTruthLit)) {
                                         return true;
                                     }
                                     bool lit = false, shadow = false;
