@@ -54,6 +54,10 @@ struct SceneSurface {
     std::array<float, 3> albedo{0.8f, 0.8f, 0.8f};
     /* World-space box of the welded vertices. */
     Vec3d lo, hi;
+    /* Changes whenever the positions (so the planes and the box) change:
+     * a frame reuses a volume built earlier only while it is the same
+     * (render::VolumeCache). */
+    uint64_t revision = 0;
 };
 
 enum class LightKind { point, spot, directional };

@@ -154,11 +154,12 @@ DepthPlane canonical_plane(const Snapped *v, int n) {
  * a new cache line of depth (and of stencil) per row, with a stride the
  * hardware prefetchers follow poorly: ask for the line a few rows ahead. */
 constexpr int kPrefetchRows = 6;
-inline void prefetch_ahead(const Target &t, int y, int x, bool stencil) {
-    if (y + kPrefetchRows >= t.height) return;
-    const std::size_t i = (std::size_t)(y + kPrefetchRows) * (std::size_t)t.width + (std::size_t)(x & ~15);
-    __builtin_prefetch(t.depth.data() + i);
-    if (stencil) __builtin_prefetch(t.stencil.data() + i, 1);
+inline void prefetch_ahead(const float *depth, uint8_t *stencil, int width, int height, int y,
+                           int x) {
+    if (y + kPrefetchRows >= height) return;
+    const std::size_t i = (std::size_t)(y + kPrefetchRows) * (std::size_t)width + (std::size_t)(x & ~15);
+    __builtin_prefetch(depth + i);
+    if (stencil) __builtin_prefetch(stencil + i, 1);
 }
 
 } // namespace
@@ -211,10 +212,8 @@ void Target::clear_stencil() { std::fill(stencil.begin(), stencil.end(), 0); }
 
 Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
 
-/* Clips, snaps and walks the rows of V; EMIT(span, y, front) per row. */
-template <class Emit>
-void Rasterizer::rasterize(const ClipVertex v[3], int width, int height, PassCounters &c,
-                           Emit &&emit) const {
+void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
+                       PassCounters &c, std::vector<SetupTriangle> &out) const {
     c.triangles++;
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
     int n = 3;
@@ -255,109 +254,118 @@ void Rasterizer::rasterize(const ClipVertex v[3], int width, int height, PassCou
         const bool front = a2 < 0;
         if (front) std::swap(t[1], t[2]);
         drew = true;
-        int64_t ex[3], ey[3], e_origin[3], step_x[3], step_y[3];
+        SetupTriangle st;
         for (int e = 0; e < 3; e++) {
             const Snapped &a = t[e], &b = t[(e + 1) % 3];
-            ex[e] = b.X - a.X;
-            ey[e] = b.Y - a.Y;
+            const int64_t ex = b.X - a.X, ey = b.Y - a.Y;
             /* E(P) = ex * (Py - a.Y) - ey * (Px - a.X), at the centre of
              * pixel (0, 0): P = (128, 128). */
             const int64_t half = (int64_t)kSubPixel / 2;
-            e_origin[e] = ex[e] * (half - a.Y) - ey[e] * (half - a.X) + fill_rule_bias(ex[e], ey[e]);
-            step_x[e] = -ey[e] * (int64_t)kSubPixel;
-            step_y[e] = ex[e] * (int64_t)kSubPixel;
+            st.e_origin[e] = ex * (half - a.Y) - ey * (half - a.X) + fill_rule_bias(ex, ey);
+            st.step_x[e] = -ey * (int64_t)kSubPixel;
+            st.step_y[e] = ex * (int64_t)kSubPixel;
         }
         const int64_t min_x = std::min({t[0].X, t[1].X, t[2].X}), max_x = std::max({t[0].X, t[1].X, t[2].X});
         const int64_t min_y = std::min({t[0].Y, t[1].Y, t[2].Y}), max_y = std::max({t[0].Y, t[1].Y, t[2].Y});
         const int64_t sub = (int64_t)kSubPixel, half = sub / 2;
-        const int x_first = (int)std::max<int64_t>(0, floor_div(min_x - half + sub - 1, sub));
-        const int x_last = (int)std::min<int64_t>(width - 1, floor_div(max_x - half, sub));
-        const int y_first = (int)std::max<int64_t>(0, floor_div(min_y - half + sub - 1, sub));
-        const int y_last = (int)std::min<int64_t>(height - 1, floor_div(max_y - half, sub));
-        if (x_first > x_last || y_first > y_last) continue;
-        /* Each edge's x bound on a row, -E_row / step_x, stepped by its
-         * slope from row to row (one add): a conservative span padded by a
-         * pixel; the kernel's integer test is the exact one. The padding
-         * holds: after clipping |X|, |Y| < 2^21, so |E| < 2^43, |step_x| >=
-         * 256 (when not 0) and |bound| < 2^35, whose ulp is 2^-17 pixel;
-         * 8192 rows of additions stay below 0.07 pixel. */
-        double bound[3], slope[3];
-        int64_t e_row[3];
-        for (int e = 0; e < 3; e++) {
-            e_row[e] = e_origin[e] + step_y[e] * y_first;
-            if (step_x[e] != 0) {
-                bound[e] = -(double)e_row[e] / (double)step_x[e];
-                slope[e] = -(double)step_y[e] / (double)step_x[e];
-            } else {
-                bound[e] = slope[e] = 0;
-            }
-        }
-        for (int y = y_first; y <= y_last; y++) {
-            int lo = x_first, hi = x_last;
-            bool empty = false;
-            for (int e = 0; e < 3; e++) {
-                if (step_x[e] == 0) {
-                    empty |= e_row[e] < 0;
-                    continue;
-                }
-                double b = bound[e];
-                b = b < -1e9 ? -1e9 : b > 1e9 ? 1e9 : b;
-                const int64_t ib = floor_to_int(b);
-                if (step_x[e] > 0) {
-                    lo = ib - 1 > lo ? (int)(ib - 1) : lo;
-                } else {
-                    hi = ib + 1 < hi ? (int)(ib + 1) : hi;
-                }
-                bound[e] += slope[e];
-            }
-            if (empty || lo > hi) {
-                for (int e = 0; e < 3; e++) e_row[e] += step_y[e];
-                continue;
-            }
-            RowSpan span;
-            for (int e = 0; e < 3; e++) {
-                span.e[e] = e_row[e] + step_x[e] * lo;
-                span.step[e] = step_x[e];
-            }
-            span.zrow = dp.z0 + dp.b * (((double)y + 0.5) - dp.y0);
-            span.dzdx = dp.a;
-            span.x0 = dp.x0;
-            span.x_begin = lo;
-            span.x_end = hi + 1;
-            emit(span, y, front);
-            for (int e = 0; e < 3; e++) e_row[e] += step_y[e];
-        }
+        st.x_first = (int)std::max<int64_t>(0, floor_div(min_x - half + sub - 1, sub));
+        st.x_last = (int)std::min<int64_t>(width - 1, floor_div(max_x - half, sub));
+        st.y_first = (int)std::max<int64_t>(0, floor_div(min_y - half + sub - 1, sub));
+        st.y_last = (int)std::min<int64_t>(height - 1, floor_div(max_y - half, sub));
+        if (st.x_first > st.x_last || st.y_first > st.y_last) continue;
+        st.x0 = dp.x0, st.y0 = dp.y0, st.z0 = dp.z0, st.a = dp.a, st.b = dp.b;
+        st.id = id;
+        st.front = front;
+        out.push_back(st);
     }
     if (!drew) c.triangles_degenerate++;
 }
 
-void Rasterizer::draw_depth(Target &t, const ClipVertex v[3], int32_t id, PassCounters &c) const {
-    RowCounts r;
-    rasterize(v, t.width, t.height, c, [&](const RowSpan &span, int y, bool) {
-        const std::size_t row = (std::size_t)y * (std::size_t)t.width;
-        prefetch_ahead(t, y, span.x_begin, false);
-        const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
-        if (span.x_end - span.x_begin <= kShortSpan) {
-            c_rows::depth_c(span, b, id, r);
+/* EMIT(span, y) for each row of TRI inside BAND. */
+template <class Emit>
+void Rasterizer::walk_rows(const SetupTriangle &tri, int width, RowBand band, Emit &&emit) {
+    (void)width;
+    const int y_first = std::max(tri.y_first, band.row_begin);
+    const int y_last = std::min(tri.y_last, band.row_end - 1);
+    if (y_first > y_last) return;
+    /* Each edge's x bound on a row, -E_row / step_x, stepped by its slope
+     * from row to row (one add): a conservative span padded by a pixel;
+     * the kernel's integer test is the exact one, so where the walk starts
+     * (the band's first row or the triangle's) changes no pixel. The
+     * padding holds: after clipping |X|, |Y| < 2^21, so |E| < 2^43,
+     * |step_x| >= 256 (when not 0) and |bound| < 2^35, whose ulp is 2^-17
+     * pixel; 8192 rows of additions stay below 0.07 pixel. */
+    double bound[3], slope[3];
+    int64_t e_row[3];
+    for (int e = 0; e < 3; e++) {
+        e_row[e] = tri.e_origin[e] + tri.step_y[e] * y_first;
+        if (tri.step_x[e] != 0) {
+            bound[e] = -(double)e_row[e] / (double)tri.step_x[e];
+            slope[e] = -(double)tri.step_y[e] / (double)tri.step_x[e];
         } else {
-            kernels_->depth(span, b, id, r);
+            bound[e] = slope[e] = 0;
         }
-    });
-    c.pixels_tested += r.tested;
-    c.pixels_written += r.written;
-    c.depth_bytes_read += 4 * r.tested;
-    c.depth_bytes_written += 4 * r.written;
+    }
+    for (int y = y_first; y <= y_last; y++) {
+        int lo = tri.x_first, hi = tri.x_last;
+        bool empty = false;
+        for (int e = 0; e < 3; e++) {
+            if (tri.step_x[e] == 0) {
+                empty |= e_row[e] < 0;
+                continue;
+            }
+            double b = bound[e];
+            b = b < -1e9 ? -1e9 : b > 1e9 ? 1e9 : b;
+            const int64_t ib = floor_to_int(b);
+            if (tri.step_x[e] > 0) {
+                lo = ib - 1 > lo ? (int)(ib - 1) : lo;
+            } else {
+                hi = ib + 1 < hi ? (int)(ib + 1) : hi;
+            }
+            bound[e] += slope[e];
+        }
+        if (empty || lo > hi) {
+            for (int e = 0; e < 3; e++) e_row[e] += tri.step_y[e];
+            continue;
+        }
+        RowSpan span;
+        for (int e = 0; e < 3; e++) {
+            span.e[e] = e_row[e] + tri.step_x[e] * lo;
+            span.step[e] = tri.step_x[e];
+        }
+        span.zrow = tri.z0 + tri.b * (((double)y + 0.5) - tri.y0);
+        span.dzdx = tri.a;
+        span.x0 = tri.x0;
+        span.x_begin = lo;
+        span.x_end = hi + 1;
+        emit(span, y);
+        for (int e = 0; e < 3; e++) e_row[e] += tri.step_y[e];
+    }
 }
 
-void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
-                              PassCounters &c) const {
-    RowCounts r;
-    rasterize(v, t.width, t.height, c, [&](const RowSpan &span, int y, bool front) {
+void Rasterizer::walk_depth(const SetupTriangle &tri, Target &t, RowBand band,
+                            RowCounts &r) const {
+    walk_rows(tri, t.width, band, [&](const RowSpan &span, int y) {
         const std::size_t row = (std::size_t)y * (std::size_t)t.width;
-        prefetch_ahead(t, y, span.x_begin, true);
-        const RowBuffers b{t.depth.data() + row, nullptr, t.stencil.data() + row};
-        /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
-        const uint8_t delta = ((mode == StencilMode::zpass) == front) ? 1 : 255;
+        prefetch_ahead(t.depth.data(), nullptr, t.width, t.height, y, span.x_begin);
+        const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
+        if (span.x_end - span.x_begin <= kShortSpan) {
+            c_rows::depth_c(span, b, tri.id, r);
+        } else {
+            kernels_->depth(span, b, tri.id, r);
+        }
+    });
+}
+
+void Rasterizer::walk_stencil(const SetupTriangle &tri, const float *depth, uint8_t *stencil,
+                              int width, int height, RowBand band, StencilMode mode,
+                              RowCounts &r) const {
+    /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
+    const uint8_t delta = ((mode == StencilMode::zpass) == tri.front) ? 1 : 255;
+    walk_rows(tri, width, band, [&](const RowSpan &span, int y) {
+        const std::size_t row = (std::size_t)y * (std::size_t)width;
+        prefetch_ahead(depth, stencil, width, height, y, span.x_begin);
+        const RowBuffers b{const_cast<float *>(depth) + row, nullptr, stencil + row};
         if (span.x_end - span.x_begin <= kShortSpan) {
             /* The C rows, inline: the same bits as every kernel's. */
             if (mode == StencilMode::zpass) {
@@ -369,11 +377,40 @@ void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode
             (mode == StencilMode::zpass ? kernels_->zpass : kernels_->zfail)(span, b, delta, r);
         }
     });
+}
+
+void Rasterizer::add_depth_counts(const RowCounts &r, PassCounters &c) {
+    c.pixels_tested += r.tested;
+    c.pixels_written += r.written;
+    c.depth_bytes_read += 4 * r.tested;
+    c.depth_bytes_written += 4 * r.written;
+}
+
+void Rasterizer::add_stencil_counts(const RowCounts &r, PassCounters &c) {
     c.pixels_tested += r.tested;
     c.pixels_written += r.written;
     c.depth_bytes_read += 4 * r.tested;
     c.stencil_bytes_read += r.written;
     c.stencil_bytes_written += r.written;
+}
+
+void Rasterizer::draw_depth(Target &t, const ClipVertex v[3], int32_t id, PassCounters &c) const {
+    std::vector<SetupTriangle> pieces;
+    setup(v, t.width, t.height, id, c, pieces);
+    RowCounts r;
+    for (const SetupTriangle &p : pieces) walk_depth(p, t, {0, t.height}, r);
+    add_depth_counts(r, c);
+}
+
+void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
+                              PassCounters &c) const {
+    std::vector<SetupTriangle> pieces;
+    setup(v, t.width, t.height, 0, c, pieces);
+    RowCounts r;
+    for (const SetupTriangle &p : pieces) {
+        walk_stencil(p, t.depth.data(), t.stencil.data(), t.width, t.height, {0, t.height}, mode, r);
+    }
+    add_stencil_counts(r, c);
 }
 
 Rasterizer::PlaneCoefficients Rasterizer::depth_plane(const ClipVertex v[3], int width,

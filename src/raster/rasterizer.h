@@ -106,6 +106,24 @@ struct Target {
 
 enum class StencilMode { zpass, zfail };
 
+/* One triangle (a piece of a clipped polygon's fan) after set-up: what the
+ * row walk needs, so that set-up runs once per triangle while the rows are
+ * walked band by band (screen bands in parallel, each band in submission
+ * order: the same buffers at every band count). */
+struct SetupTriangle {
+    int64_t e_origin[3]; /* edge functions at pixel (0, 0)'s centre, biased */
+    int64_t step_x[3], step_y[3];
+    double x0, y0, z0, a, b; /* depth plane (pixels) */
+    int x_first, x_last, y_first, y_last; /* pixel bounds, inclusive */
+    int32_t id;  /* depth pass: the id to write */
+    bool front;
+};
+
+/* A band of rows [row_begin, row_end) of a target. */
+struct RowBand {
+    int row_begin, row_end;
+};
+
 class Rasterizer {
 public:
     /* KERNELS: the row kernels to use (row_kernels_by_name / best). */
@@ -121,6 +139,23 @@ public:
      * faces -1 where it fails. */
     void draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
                       PassCounters &c) const;
+
+    /* Set-up of one input triangle: clipping, snapping, edge functions and
+     * the depth plane; appends 0 to 6 pieces to OUT (none when it is
+     * outside, degenerate or covers no pixel centre's box). Counts the
+     * triangle in C (triangles, clipped, outside, degenerate). */
+    void setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
+               std::vector<SetupTriangle> &out) const;
+    /* The rows of T inside BAND: depth pass into T's depth and ids. */
+    void walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &n) const;
+    /* The rows of TRI inside BAND: stencil pass against DEPTH into
+     * STENCIL (both WIDTH pixels per row, with kFrameSlack after them). */
+    void walk_stencil(const SetupTriangle &tri, const float *depth, uint8_t *stencil, int width,
+                      int height, RowBand band, StencilMode mode, RowCounts &n) const;
+    /* Adds a pass's pixel counts to C (bytes as the draw_* functions count
+     * them). */
+    static void add_depth_counts(const RowCounts &n, PassCounters &c);
+    static void add_stencil_counts(const RowCounts &n, PassCounters &c);
 
     /* For tests and the GL comparison: the triangle's pieces after
      * clipping, as window-space triangles in pixels (x, y down, depth),
@@ -147,8 +182,7 @@ public:
 private:
     const RowKernels *kernels_;
     template <class Emit>
-    void rasterize(const ClipVertex v[3], int width, int height, PassCounters &c,
-                   Emit &&emit) const;
+    static void walk_rows(const SetupTriangle &tri, int width, RowBand band, Emit &&emit);
 };
 
 } // namespace sv::raster

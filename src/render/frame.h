@@ -25,9 +25,103 @@ namespace sv::render {
 enum class ModeChoice { zpass, zfail, automatic };
 const char *mode_name(ModeChoice m);
 
+/* Only what the scene requires (DESIGN.md section 9; issue 13): each
+ * shortcut is a conservative test made per frame, light and surface,
+ * counted in the frame's decisions, and switchable off. With all of them
+ * off (Shortcuts::none(), the CLI's --full) every surface gets the whole
+ * volume (no culling, both caps) drawn in z-fail. */
+struct Shortcuts {
+    /* 1. No volume when the surface's box is outside a point or spot
+     *    light's range, or outside a spot light's cone. */
+    bool light_reach = true;
+    /* 2. No volume when the box extruded from the light (its shadow's
+     *    hull, to infinity) lies wholly outside one plane of the view
+     *    frustum: it has no fragment in view. */
+    bool view_reach = true;
+    /* 3. Appendix B's cull bits only when the box straddles the light
+     *    volume (the range's cube, a spot's pyramid); never for a box
+     *    wholly inside. Off: no culling at all. */
+    bool cull_straddling = true;
+    /* 4. Caps only when z-fail is needed (near_plane_may_be_shadowed, in
+     *    the automatic mode); otherwise the silhouette quads in z-pass,
+     *    and the caps are not even built. Off: z-fail with both caps. */
+    bool zpass_when_safe = true;
+    /* 5. No dark cap for a directional light: its far vertices are all
+     *    the one point at infinity (the light's direction, w = 0), so
+     *    every dark-cap triangle has zero area and draws nothing. */
+    bool no_directional_dark_cap = true;
+    /* 6. A static surface under a static light: the volume (facing, cull
+     *    bits, silhouette and caps) built once and reused until either
+     *    moves (VolumeCache). */
+    bool reuse_static = true;
+    static Shortcuts none() { return {false, false, false, false, false, false}; }
+    bool any() const {
+        return light_reach || view_reach || cull_straddling || zpass_when_safe ||
+               no_directional_dark_cap || reuse_static;
+    }
+};
+
+/* Deliberately wrong versions of the shortcuts' tests, for the tests that
+ * show the proof (shortcuts against --full, pixel for pixel) catches a
+ * test that is too tight. Never set outside tests. */
+struct ShortcutFaults {
+    double light_reach_scale = 1;  /* < 1: ranges and cones shrunk in test 1 */
+    bool view_reach_no_extrusion = false; /* test 2 with the box alone, not its shadow */
+    bool cull_inside_planes = false; /* test 3's light volume shrunk to half */
+    bool zpass_always = false;     /* test 4 always says z-pass */
+    bool drop_dark_cap_always = false; /* test 5 for point lights too */
+    bool reuse_ignores_motion = false; /* test 6 reuses after a surface moved */
+};
+
+enum class VolumeFate : uint8_t {
+    built,          /* built this frame */
+    reused,         /* taken from the cache: surface and light unchanged */
+    out_of_reach,   /* shortcut 1 */
+    out_of_view,    /* shortcut 2 */
+    no_shadow,      /* built, but no triangle casts */
+};
+const char *fate_name(VolumeFate f);
+
+/* What the frame decided for one light and surface. */
+struct VolumeDecision {
+    int surface = 0;
+    VolumeFate fate = VolumeFate::built;
+    bool straddles = false;     /* the box straddles the light volume */
+    bool cull_bits = false;     /* the culling routine ran (or its result was reused) */
+    bool zfail = false;         /* drawn in z-fail with caps */
+    bool dark_cap_dropped = false;
+    int64_t indices_built = 0;  /* written by the routines this frame (0 when reused) */
+    int64_t indices_drawn = 0;
+};
+
+/* Volumes kept from frame to frame (shortcut 6), per light and surface:
+ * valid while the surface's revision and the light's parameters are the
+ * same. Keep one per scene sequence; a scene whose surfaces or lights
+ * change in number must not reuse a cache (it is cleared when they do). */
+class VolumeCache {
+public:
+    void clear();
+    struct Entry;
+    ~VolumeCache();
+    VolumeCache();
+    VolumeCache(const VolumeCache &) = delete;
+    VolumeCache &operator=(const VolumeCache &) = delete;
+    std::vector<Entry> &entries() { return *entries_; }
+    int lights = 0, surfaces = 0;
+
+private:
+    std::vector<Entry> *entries_;
+};
+
 struct RenderOptions {
     int width = 1280, height = 1024;
     ModeChoice mode = ModeChoice::automatic;
+    Shortcuts shortcuts;
+    ShortcutFaults faults;
+    /* Worker threads (oneTBB): 0 = every core; 1 = none. The pictures and
+     * counts are the same at every count. */
+    int threads = 1;
+    VolumeCache *cache = nullptr; /* shortcut 6 needs one */
     const raster::RowKernels *kernels = nullptr; /* nullptr: the best this CPU runs */
     const sv_variant *variant = nullptr;         /* nullptr: sv_best_variant() */
     const sv_facing_variant *facing = nullptr;   /* nullptr: sv_best_facing_variant() */
@@ -54,10 +148,15 @@ struct LightFrame {
     SceneLight light;
     Vec4 shadow_light{};
     std::vector<Volume> volumes;  /* surfaces that cast (a volume with indices) */
+    std::vector<VolumeDecision> decisions; /* one per surface */
     int zfail_volumes = 0;
+    int built = 0, reused = 0, out_of_reach = 0, out_of_view = 0, culled = 0;
     int64_t indices = 0;          /* in all volumes */
     int64_t drawn_indices = 0;
-    uint64_t ticks_facing = 0, ticks_volume = 0, ticks_stencil = 0;
+    int64_t built_indices = 0;    /* written by the routines this frame */
+    /* Work (summed over threads) in the facing, culling and volume
+     * routines; wall ticks of the stencil pass. */
+    uint64_t ticks_facing = 0, ticks_culling = 0, ticks_volume = 0, ticks_stencil = 0;
     double seconds_stencil = 0;
     raster::PassCounters stencil_counters;
     std::vector<uint8_t> stencil; /* the stencil after this light's pass */
@@ -74,6 +173,9 @@ struct Frame {
     uint64_t ticks_depth = 0;
     double seconds_depth = 0;
     uint64_t ticks_shading = 0; /* the lighting pass, all lights */
+    uint64_t ticks_jobs = 0;    /* wall ticks of the (light, surface) jobs */
+    uint64_t ticks_total = 0;   /* wall ticks of render_frame */
+    int threads = 1;            /* worker threads used */
     std::vector<LightFrame> lights;
     std::vector<uint8_t> rgb;     /* shaded image, 3 bytes per pixel, row 0 = top */
     /* The camera ray through pixel centre (px, py):
@@ -83,6 +185,34 @@ struct Frame {
     std::vector<int32_t> surface_first_id;
     void decode_id(int32_t id, int &surface, int &triangle) const;
 };
+
+/* Would the lighting pass light SURFACE at all: its box meets the light's
+ * range and (spot) its cone. Where it does not, the light adds nothing to
+ * it (with or without shortcuts: the test is part of the lighting model,
+ * as Doom 3's light-surface interactions are), and shortcut 1 builds no
+ * volume for it: its shadow lies wholly beyond the range or the cone. */
+bool light_reaches_box(const SceneLight &light, const Vec3d &lo, const Vec3d &hi,
+                       double scale = 1);
+
+/* Can the shadow volume of a surface in box [lo, hi] have a fragment in
+ * view (shortcut 2)? False when the box's eight corners and their eight
+ * extrusions from L (the double-length buffer's odd vertices, w = 0) all
+ * lie outside one of the five clip planes the rasteriser clips against:
+ * every vertex of the volume is a non-negative combination of them, so
+ * every triangle of it is then dropped whole. */
+bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d &hi,
+                           const Vec4 &L, bool with_extrusion = true);
+
+/* The light volume of appendix B as six planes pointing into it: a point
+ * light's range as a cube, a spot light's cone as a square pyramid (its
+ * apex plane and, with a range, a far plane). False for lights without
+ * one (directional, or a point light without a range). SHRINK < 1 is for
+ * the fault tests only. */
+bool light_volume_planes(const SceneLight &light, Plane planes[SV_NUM_LIGHT_PLANES],
+                         double shrink = 1);
+/* Where box [lo, hi] lies against those planes. */
+enum class BoxSide { inside, straddles, outside };
+BoxSide classify_box(const Plane planes[SV_NUM_LIGHT_PLANES], const Vec3d &lo, const Vec3d &hi);
 
 /* Renders SCENE (validated: see validate_scene). */
 Frame render_frame(const Scene &scene, const RenderOptions &options);
