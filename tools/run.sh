@@ -21,10 +21,11 @@ esac
 # libstb-dev, named by its Debian notes); assimp-testmodels gives the loader
 # tests third-party malformed glTF files; qemu-user runs the test suite as
 # CPUs without AVX-512 and without AVX; libosmesa6-dev gives the Mesa judge
-# (src/gljudge) its off-screen llvmpipe GL context.
+# (src/gljudge) its off-screen llvmpipe GL context; libtbb-dev (oneTBB) runs a
+# frame's jobs and screen bands in parallel.
 packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
           libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user
-          libosmesa6-dev)
+          libosmesa6-dev libtbb-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -9,6 +9,7 @@
 #include <x86intrin.h>
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
@@ -400,6 +401,10 @@ std::vector<Vec4> positions_vec4(const PreparedSurface &p) {
 Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     const uint64_t k_start = ticks();
     const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
+    /* More threads than cores only when asked (the tests of identical
+     * bytes at every count): oneTBB caps its workers at the cores. */
+    tbb::global_control allow(tbb::global_control::max_allowed_parallelism,
+                              (std::size_t)std::max(threads, tbb::info::default_concurrency()));
     tbb::task_arena arena(threads);
     Frame f;
     f.threads = threads;
