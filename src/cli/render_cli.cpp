@@ -56,7 +56,9 @@ struct RenderArgs {
     int threads = 0;
 };
 
-void parse_size(const std::string &s, int &w, int &h) {
+} // namespace
+
+void parse_frame_size(const std::string &s, int &w, int &h) {
     const std::size_t x = s.find('x');
     auto num = [&](const std::string &t) -> long long {
         if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
@@ -71,6 +73,8 @@ void parse_size(const std::string &s, int &w, int &h) {
     }
     w = (int)a, h = (int)b;
 }
+
+namespace {
 
 RenderArgs parse(int argc, char **argv, bool &help) {
     RenderArgs r;
@@ -89,7 +93,7 @@ RenderArgs parse(int argc, char **argv, bool &help) {
             r.camera = sv::parse_camera(a.value());
             r.has_camera = true;
         } else if (a.is("--size")) {
-            parse_size(a.value(), r.width, r.height);
+            parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--mode")) {
             const std::string m = a.value();
             if (m == "zpass") r.mode = sv::render::ModeChoice::zpass;
@@ -119,6 +123,8 @@ RenderArgs parse(int argc, char **argv, bool &help) {
 
 double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz : 0; }
 
+} // namespace
+
 bool make_dir(const std::string &d) {
     if (mkdir(d.c_str(), 0777) == 0 || errno == EEXIST) {
         struct stat st;
@@ -142,7 +148,6 @@ void counters_json(svbench::JsonWriter &j, const sv::raster::PassCounters &c) {
     j.end_object();
 }
 
-} // namespace
 
 void render_usage(FILE *out) {
     std::fprintf(

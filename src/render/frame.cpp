@@ -320,6 +320,52 @@ BoxSide classify_box(const Plane planes[SV_NUM_LIGHT_PLANES], const Vec3d &lo, c
     return inside ? BoxSide::inside : BoxSide::straddles;
 }
 
+bool pixel_in_light_reach(const Frame &f, const Scene &scene, int li, std::size_t i) {
+    const int32_t id = f.target.ids[i];
+    if (id < 0) return false;
+    int si, t;
+    f.decode_id(id, si, t);
+    const SceneSurface &s = scene.surfaces[(std::size_t)si];
+    const SceneLight &l = scene.lights[(std::size_t)li];
+    if (!light_reaches_box(l, s.lo, s.hi)) return false;
+    if (l.kind == LightKind::directional) return true;
+    const Vec3d P = visible_point(f, scene, si, t, (int)(i % (std::size_t)f.width),
+                                  (int)(i / (std::size_t)f.width));
+    const Vec3d d = sub(P, l.position);
+    const double dist = std::sqrt(dot(d, d));
+    if (l.range > 0 && dist >= l.range) return false;
+    if (l.kind == LightKind::spot &&
+        dot(d, l.direction) <= dist * std::cos(l.outer_degrees * kPi / 180.0)) {
+        return false;
+    }
+    return true;
+}
+
+FrameDifference compare_frames(const Scene &scene, const Frame &a, const Frame &b) {
+    FrameDifference d;
+    if (a.rgb.size() != b.rgb.size() || a.lights.size() != b.lights.size()) {
+        d.rgb_bytes = std::max(a.rgb.size(), b.rgb.size());
+        d.first_rgb = 0;
+        return d;
+    }
+    for (std::size_t i = 0; i < a.rgb.size(); i++) {
+        if (a.rgb[i] == b.rgb[i]) continue;
+        if (d.rgb_bytes++ == 0) d.first_rgb = i / 3;
+    }
+    for (std::size_t li = 0; li < a.lights.size(); li++) {
+        const auto &sa = a.lights[li].stencil, &sb = b.lights[li].stencil;
+        for (std::size_t i = 0; i < sa.size(); i++) {
+            if ((sa[i] == 0) == (sb[i] == 0)) continue;
+            if (pixel_in_light_reach(a, scene, (int)li, i)) {
+                if (d.mask_in_reach++ == 0) d.first_mask = i;
+            } else {
+                d.mask_elsewhere++;
+            }
+        }
+    }
+    return d;
+}
+
 /* What a (light, surface) pair keeps from frame to frame. */
 struct VolumeCache::Entry {
     bool valid = false;

@@ -214,6 +214,23 @@ bool light_volume_planes(const SceneLight &light, Plane planes[SV_NUM_LIGHT_PLAN
 enum class BoxSide { inside, straddles, outside };
 BoxSide classify_box(const Plane planes[SV_NUM_LIGHT_PLANES], const Vec3d &lo, const Vec3d &hi);
 
+/* Is the visible point of pixel PIXEL in light LIGHT's reach at all (its
+ * surface reached, and the point inside the range and the cone), shadows
+ * aside? Outside it, a culled or skipped volume may leave another stencil
+ * (culled triangles cast nothing there), and nothing is lit either way. */
+bool pixel_in_light_reach(const Frame &f, const Scene &scene, int light, std::size_t pixel);
+
+/* Two frames of the same scene, pixel for pixel: the proof that the
+ * shortcuts change nothing (issue 13). */
+struct FrameDifference {
+    uint64_t rgb_bytes = 0;      /* shaded bytes that differ */
+    uint64_t mask_in_reach = 0;  /* shadow-mask pixels (stencil == 0 or not) that differ in reach */
+    uint64_t mask_elsewhere = 0; /* ... out of every light's reach: allowed */
+    uint64_t first_rgb = UINT64_MAX, first_mask = UINT64_MAX; /* pixel numbers */
+    bool identical() const { return rgb_bytes == 0 && mask_in_reach == 0; }
+};
+FrameDifference compare_frames(const Scene &scene, const Frame &a, const Frame &b);
+
 /* Renders SCENE (validated: see validate_scene). */
 Frame render_frame(const Scene &scene, const RenderOptions &options);
 
