@@ -16,6 +16,7 @@
 #include "accuracy_cli.h"
 #include "model_cli.h"
 #include "render_cli.h"
+#include "scene_cli.h"
 
 #ifndef SV_PROJECT_VERSION
 #define SV_PROJECT_VERSION "unknown"
@@ -41,6 +42,8 @@ const Command kCommands[] = {
      svcli::accuracy_main, svcli::accuracy_usage},
     {"render", "render a scene's shadows in the project's stencil, checked by rays and by Mesa",
      svcli::render_main, svcli::render_usage},
+    {"scene", "play a glTF scene in time, building only what each frame requires, proved pixel for pixel",
+     svcli::scene_main, svcli::scene_usage},
 };
 
 const Command *find_command(const char *name) {
