@@ -1,0 +1,250 @@
+/*
+ * shadowvol: scenes in time from glTF (issue 13): the node hierarchy and
+ * its animations (LINEAR, STEP and CUBICSPLINE samplers over translation,
+ * rotation and scale), skins and CPU skinning of positions (a C reference
+ * and SIMD kernels, bit-identical to it), KHR_lights_punctual lights and
+ * perspective cameras on nodes. docs/ANIMATION.md has the whole story.
+ *
+ * The asset is loaded once; each frame asks for a Pose (one world matrix
+ * per node) at a time, and then for the world positions of each surface,
+ * the lights and the cameras at that pose. A surface's topology (welding,
+ * triangles, SilEdges) is fixed for every frame; only positions (and so
+ * planes) change.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SHADOWVOL_ANIM_H
+#define SHADOWVOL_ANIM_H
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shadowvol.h"
+#include "shadowvol_gltf.h"  /* GltfError */
+#include "shadowvol_mesh.h"  /* PreparedSurface */
+#include "shadowvol_scene.h" /* Mat4d, Vec3d, SceneLight, Camera */
+
+namespace sv {
+
+struct AnimNode {
+    std::string name;
+    int parent = -1;
+    std::vector<int> children;
+    int mesh = -1, skin = -1, camera = -1, light = -1; /* glTF indices; -1: none */
+    /* The file's local transform: a matrix (has_matrix; such a node cannot
+     * be animated, glTF 2.0 section 3.5.2) or T * R * S. rotation is the
+     * unit quaternion x y z w (the file's, normalized). */
+    bool has_matrix = false;
+    Mat4d matrix;
+    double translation[3] = {0, 0, 0};
+    double rotation[4] = {0, 0, 0, 1};
+    double scale[3] = {1, 1, 1};
+    /* The local matrix of the file's pose (matrix, or T * R * S), exactly
+     * as load_gltf computes it. */
+    Mat4d rest_local;
+};
+
+struct AnimSkin {
+    std::string name;
+    std::vector<int> joints;         /* node per joint */
+    std::vector<Mat4d> inverse_bind; /* one per joint (identity when absent) */
+    int skeleton = -1;
+};
+
+struct AnimChannel {
+    int node = -1;
+    enum class Path { translation, rotation, scale, weights } path = Path::translation;
+    int sampler = -1;
+};
+
+struct AnimSampler {
+    std::vector<float> input;  /* key times in seconds, strictly increasing */
+    /* components per key value (3: translation, scale; 4: rotation x y z w);
+     * CUBICSPLINE: 3 values per key (in-tangent, value, out-tangent). */
+    std::vector<float> output;
+    enum class Interp { linear, step, cubicspline } interp = Interp::linear;
+    int components = 0;
+};
+
+struct Animation {
+    std::string name; /* the file's, or "animation#i" */
+    /* Channels that drive a pose: "weights" channels (morph targets) are
+     * not listed (a note says so). */
+    std::vector<AnimChannel> channels;
+    std::vector<AnimSampler> samplers;
+    /* The earliest and the latest key time of its samplers. */
+    double start = 0, end = 0;
+};
+
+/* One mesh instance of the scene, as load_gltf places it, in time. */
+struct AnimatedSurface {
+    std::string name; /* as GltfSurface::name */
+    int mesh_index = -1, node_index = -1, skin = -1;
+    /* Topology fixed for every frame: prepare_surface() run once on the
+     * MESH-SPACE positions (so welding follows the loader's rule: vertices
+     * whose mesh-space positions are bitwise equal weld), with the
+     * triangles' winding flipped where the file's pose mirrors them (see
+     * mirrored). Then positions and planes replaced by those of the file's
+     * pose (pose_at(-1), identity root): `prepared` is the surface at rest,
+     * ready for the routines. For another pose, replace its positions by
+     * pose_surface()'s and re-derive its planes (prepared_at() does both). */
+    PreparedSurface prepared;
+    /* 3 per welded vertex, mesh space: the position of the welded vertex's
+     * first input vertex (-0.0 stored as +0.0, as prepare_surface does). */
+    std::vector<float> rest_positions;
+    /* 0 (rigid), 4 (JOINTS_0/WEIGHTS_0) or 8 (also JOINTS_1/WEIGHTS_1). */
+    int influences = 0;
+    /* influences per welded vertex, the welded vertex's first input vertex's
+     * (the loader's weld rule: the first vertex at a position decides).
+     * joints index the skin's joint list (each < its size). weights are the
+     * file's divided by their sum (in double, then rounded to float; a sum
+     * of exactly 1 changes nothing), so the blend is affine; sums off by
+     * more than 0.01 get a note. Unused slots have weight 0 and joint 0. */
+    std::vector<uint16_t> joints;
+    std::vector<float> weights;
+    /* Winding flipped (a negative determinant at the file's pose), fixed for
+     * every frame: rigid, det(world) < 0 flips every triangle; skinned, the
+     * blended matrix of each triangle's first corner decides for that
+     * triangle (load_gltf's rule). mirrored == (flipped_triangles > 0). */
+    bool mirrored = false;
+    std::size_t flipped_triangles = 0;
+
+    int num_vertices() const { return (int)(rest_positions.size() / 3); }
+};
+
+/* A KHR_lights_punctual light on a node of the scene. `light` is in the
+ * node's local frame: position (0, 0, 0), direction (0, 0, -1); range,
+ * cone half-angles (degrees), colour and intensity (candela for point and
+ * spot, lux for directional: glTF's units, as the file gives them). */
+struct AnimLight {
+    int node = -1;
+    int index = -1; /* into the file's KHR_lights_punctual.lights */
+    std::string name;
+    SceneLight light;
+};
+
+/* A perspective camera on a node of the scene (orthographic cameras are
+ * left out with a note). glTF cameras look down their node's -z, +y up. */
+struct AnimCamera {
+    int node = -1;
+    int index = -1; /* into the file's cameras */
+    std::string name;
+    double yfov_radians = 0, znear = 0;
+    double zfar = 0;   /* 0: infinite */
+    double aspect = 0; /* 0: unset */
+};
+
+struct AnimatedAsset {
+    std::string path;
+    std::vector<AnimNode> nodes;
+    std::vector<int> scene_roots;
+    /* Every node, parents before children (depth-first pre-order from each
+     * root in node order): the order pose_at() composes in. */
+    std::vector<int> node_order;
+    std::vector<AnimSkin> skins;
+    std::vector<Animation> animations;
+    /* In load_gltf's order (depth-first pre-order of the scene); instances
+     * without triangles are left out with a note. May be empty. */
+    std::vector<AnimatedSurface> surfaces;
+    std::vector<AnimLight> lights;   /* scene order */
+    std::vector<AnimCamera> cameras; /* scene order */
+    std::vector<std::string> notes;
+};
+
+/* Loads a .gltf or .glb with every check load_gltf makes, plus those of
+ * animations, skins, lights and cameras (docs/ANIMATION.md lists them).
+ * Throws GltfError "<path>: <problem>". */
+AnimatedAsset load_animated_gltf(const std::string &path);
+
+/* The animation called NAME_OR_INDEX (a name first; else a decimal index).
+ * Throws GltfError "<path>: no animation ...; the animations are: 0 'Walk',
+ * 1 'Run'" (or "the file has no animations"). */
+int find_animation(const AnimatedAsset &asset, const std::string &name_or_index);
+
+/* One world matrix per node. */
+struct Pose {
+    std::vector<Mat4d> world;
+};
+
+/* The pose of ANIMATION (-1: the file's node transforms, equal bit for bit
+ * to load_gltf's world matrices) at TIME_SECONDS. The time is clamped to
+ * [start, end] of the animation, and each sampler holds its first value
+ * before its first key and its last value after its last key (glTF 2.0
+ * section 3.11). Throws GltfError for an animation index out of range. */
+Pose pose_at(const AnimatedAsset &asset, int animation, double time_seconds);
+
+/* The value of one sampler at time T (components floats into OUT): exposed
+ * for tests. Rotations (components == 4) come out as unit quaternions:
+ * LINEAR by slerp on the shorter arc, CUBICSPLINE by the spec's Hermite
+ * spline then normalized, STEP as stored then normalized. */
+void sample(const AnimSampler &sampler, double t, double *out);
+
+/* ---- Skinning ----------------------------------------------------------- */
+
+/* out[v] = B_v * (rest[v], 1), B_v = sum over k < influences of
+ * weights[v*influences+k] * M[joints[v*influences+k]], where M holds 16
+ * floats per joint, column-major (column c at M + 16 j + 4 c; row 3 is
+ * ignored: the SIMD kernels load it, so all 16 must be there). The exact order of operations, which every kernel keeps:
+ *   B = w_0 * M_0;  B = B + w_k * M_k  for k = 1, 2, ...   (each element)
+ *   out.r = ((B[0][r]*x + B[1][r]*y) + B[2][r]*z) + B[3][r]
+ * in float, each operation rounded (no FMA): so every kernel gives the C
+ * reference's bits. influences: 1..8 (the loader gives 4 or 8). out: 3
+ * floats per vertex, nothing written past. No alignment required. */
+typedef void (*SkinningFn)(const float *joint_matrices, const float *rest,
+                           const uint16_t *joints, const float *weights, int influences,
+                           std::size_t num_vertices, float *out);
+
+struct SkinningKernel {
+    const char *name; /* "c_ref", "sse2", "avx2", "avx512" */
+    unsigned isa;     /* SV_ISA_* bits the CPU must have */
+    SkinningFn fn;
+};
+
+/* Every kernel, from the C reference to the widest; check isa against
+ * sv_cpu_isa() before calling. */
+const SkinningKernel *skinning_kernels(int *count);
+/* The last kernel sv_cpu_isa() allows (never NULL). */
+const SkinningKernel *best_skinning_kernel();
+/* The kernel called NAME, or NULL. */
+const SkinningKernel *skinning_kernel_by_name(const char *name);
+
+/* The 16-float joint matrices of SKIN at POSE with ROOT applied:
+ * float(root * world(joint_j) * inverse_bind_j), products in double,
+ * rounded once. 16 * joints floats into OUT. */
+void joint_matrices(const AnimatedAsset &asset, int skin, const Pose &pose, const Mat4d &root,
+                    float *out);
+
+/* World positions of SURFACE at POSE, ROOT applied last (the scene's
+ * placement), 3 floats per welded vertex into OUT.
+ * Skinned: joint_matrices() then kernel K (NULL: best_skinning_kernel());
+ * the node's own transform is ignored (glTF). Rigid: (root * world(node))
+ * * p in double, rounded to float once (load_gltf's arithmetic; K unused). */
+void pose_surface(const AnimatedAsset &asset, const AnimatedSurface &surface, const Pose &pose,
+                  const Mat4d &root, float *out, const SkinningKernel *k = nullptr);
+
+/* surface.prepared with its positions replaced by POSITIONS (3 per welded
+ * vertex, e.g. from pose_surface) and every plane re-derived by
+ * triangle_plane(): the surface at that pose. */
+PreparedSurface prepared_at(const AnimatedSurface &surface, const float *positions);
+
+/* ---- Lights and cameras ------------------------------------------------- */
+
+/* Light LIGHT (an index into asset.lights) at POSE: position = M (0,0,0),
+ * direction = M (0,0,-1) normalized, M = root * world(node). Range, cone
+ * and intensity are not scaled (KHR_lights_punctual: a node's scale does
+ * not change them). */
+SceneLight light_at(const AnimatedAsset &asset, int light, const Pose &pose, const Mat4d &root);
+
+/* Camera CAMERA (an index into asset.cameras) at POSE: eye = M (0,0,0),
+ * target = eye + M (0,0,-1) normalized, up = M (0,1,0) normalized,
+ * fov_y_degrees from yfov, near_distance = znear (zfar is not used: the
+ * scene's projection is infinite). *aspect_out (when not NULL) gets the
+ * file's aspect ratio, 0 when unset. */
+Camera camera_at(const AnimatedAsset &asset, int camera, const Pose &pose, const Mat4d &root,
+                 double *aspect_out);
+
+} // namespace sv
+
+#endif /* SHADOWVOL_ANIM_H */
