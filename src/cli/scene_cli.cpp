@@ -14,6 +14,7 @@
 #include "scene_cli.h"
 
 #include <tbb/info.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -354,8 +355,10 @@ int scene_main(int argc, char **argv) {
     std::vector<sv::render::Image> tiles;
     const int factor = std::max(1, (args.width + 319) / 320);
     bool failed = false;
+    /* Progress on stderr when it is a terminal (a log gets the table only). */
+    const bool progress = isatty(2);
     for (std::size_t k = 0; k < times.size(); k++) {
-        std::fprintf(stderr, "\rshadowvol scene: frame %zu of %zu", k + 1, times.size());
+        if (progress) std::fprintf(stderr, "\rshadowvol scene: frame %zu of %zu", k + 1, times.size());
         FrameRow r;
         r.index = (int)k;
         r.time = times[k];
@@ -407,7 +410,8 @@ int scene_main(int argc, char **argv) {
             return kExitUsage;
         }
         tiles.push_back(shrink(f.rgb, args.width, args.height, factor));
-        std::printf("\r%5zu %7.3f %5d | %5d %5d %5d %5d %4d %5d | %9lld %9lld %9s | %7.1f %7.1f %7.1f %7.1f %7.1f %7.1f %8.1f %8.1f %8.1f | %9llu | %5s %6s\n",
+        if (progress) std::fprintf(stderr, "\r");
+        std::printf("%5zu %7.3f %5d | %5d %5d %5d %5d %4d %5d | %9lld %9lld %9s | %7.1f %7.1f %7.1f %7.1f %7.1f %7.1f %8.1f %8.1f %8.1f | %9llu | %5s %6s\n",
                     k, r.time, r.pose.surfaces_moved, r.volumes_built, r.reused, r.out_of_reach,
                     r.out_of_view, r.culled, r.zfail, (long long)r.indices_built, (long long)r.indices_drawn,
                     r.compared ? std::to_string(r.full_indices).c_str() : "-", kt(r.pose.ticks_skinning),
@@ -419,7 +423,7 @@ int scene_main(int argc, char **argv) {
         std::fflush(stdout);
         rows.push_back(r);
     }
-    std::fprintf(stderr, "\n");
+    if (progress) std::fprintf(stderr, "\n");
     try {
         sv::render::write_png(args.out_dir + "/contact.png", contact_sheet(tiles));
     } catch (const std::exception &e) {

@@ -156,9 +156,12 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
             extra.push_back(l);
         }
     }
+    const bool three_auto = o.lights.empty() && scene_.lights.empty();
     for (SceneLight l : extra) {
         if (l.placed_automatically) l = auto_light(scene_, l.kind);
         default_intensity(scene_, l);
+        /* Three lights of irradiance 1 each wash the picture out. */
+        if (three_auto) l.intensity *= 0.5;
         scene_.lights.push_back(l);
         light_model_.push_back(-1);
         light_index_.push_back(-1);
