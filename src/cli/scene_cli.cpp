@@ -352,6 +352,7 @@ int scene_main(int argc, char **argv) {
     full.cache = nullptr;
 
     std::vector<FrameRow> rows;
+    std::vector<std::string> truth_notes;
     std::vector<sv::render::Image> tiles;
     const int factor = std::max(1, (args.width + 319) / 320);
     bool failed = false;
@@ -396,6 +397,25 @@ int scene_main(int argc, char **argv) {
                 r.truth_mismatches += c.mismatches;
                 r.truth_off_boundary += c.off_boundary_mismatches;
                 r.truth_compared += c.compared;
+                if (c.off_boundary_mismatches) {
+                    const int p = c.first_off_boundary.empty() ? -1 : c.first_off_boundary[0];
+                    char line[200];
+                    std::snprintf(line, sizeof line,
+                                  "frame %zu, light %zu: %llu stencil pixels disagree with the truth off a "
+                                  "shadow boundary, the first at (%d, %d)",
+                                  k, li, (unsigned long long)c.off_boundary_mismatches,
+                                  p < 0 ? -1 : p % args.width, p < 0 ? -1 : p / args.width);
+                    truth_notes.push_back(line);
+                    /* The picture of the disagreement, to look at. */
+                    char tname[64];
+                    std::snprintf(tname, sizeof tname, "/truth_%03zu_light%zu.png", k, li);
+                    try {
+                        sv::render::write_png(args.out_dir + tname, sv::render::truth_image(t, f.lights[li].stencil,
+                                                                                             f.width, f.height));
+                        truth_notes.back() += std::string(" (") + args.out_dir + tname + ")";
+                    } catch (const std::exception &) {
+                    }
+                }
             }
             if (r.truth_off_boundary) failed = true;
         }
@@ -483,6 +503,7 @@ int scene_main(int argc, char **argv) {
     if (args.truth) {
         std::printf("truth: %llu mismatches, all on shadow boundaries: %s\n",
                     (unsigned long long)t.truth_mismatches, t.truth_off_boundary ? "NO" : "yes");
+        for (const std::string &n : truth_notes) std::printf("  %s\n", n.c_str());
     }
     std::printf("images: %s/frame_000.png .. frame_%03zu.png, contact.png\n", args.out_dir.c_str(), rows.size() - 1);
 

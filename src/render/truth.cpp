@@ -4,6 +4,7 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include "truth.h"
+#include "volume_faces.h"
 
 #include <chrono>
 #include <cmath>
@@ -160,7 +161,10 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
     const Vec4 L = f.lights[(std::size_t)light].shadow_light;
     const std::vector<std::vector<uint8_t>> facing = facing_bytes(L);
     int looked_at = 0;
-    return compare_with_stencil(truth, f.lights[(std::size_t)light].stencil, f.width, f.height,
+    uint64_t ties = 0;
+    std::vector<raster::Rasterizer::WindowTriangle> faces;
+    bool faces_ready = false;
+    Comparison result = compare_with_stencil(truth, f.lights[(std::size_t)light].stencil, f.width, f.height,
                                 [&](int x, int y) {
                                     /* A frame with this many unexplained
                                      * mismatches fails anyway. */
@@ -186,8 +190,19 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
                                             if (lit && shadow) return true;
                                         }
                                     }
+                                    /* A volume face through the receiver. */
+                                    if (!faces_ready) {
+                                        faces = drawn_volume_triangles(scene_, f, light);
+                                        faces_ready = true;
+                                    }
+                                    if (face_proximity(faces, f, px, f.target.depth[px]).gap_ulps <= kDepthTieUlps) {
+                                        ties++;
+                                        return true;
+                                    }
                                     return false;
                                 });
+    result.depth_tie_mismatches = ties;
+    return result;
 }
 
 Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
