@@ -20,6 +20,7 @@
 #include "model_list.h"
 #include "model_workload.h"
 #include "output_file.h"
+#include "planes_bench.h"
 #include "routines.h"
 #include "scaling_cli.h"
 #include "seed_bench.h"
@@ -177,6 +178,7 @@ struct CliOptions {
     bool limits = false;            /* --limits: machine_limits.h after each table */
     bool silhouette = false;        /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
     bool backface = false;          /* --backface: seed 001's culling (backface_bench.cpp) */
+    bool planes = false;            /* --planes: per-frame planes (planes_bench.cpp) */
     std::string plot;               /* --plot FILE (with --scaling) */
     long maxTriangles = 0;          /* --max-triangles N (with --scaling) */
     bool regimeGiven = false;       /* options the scaling run has no use for */
@@ -294,6 +296,8 @@ CliOptions parse(int argc, char **argv) {
             c.silhouette = true;
         } else if (opt == "--backface" && !hasValue) {
             c.backface = true;
+        } else if (opt == "--planes" && !hasValue) {
+            c.planes = true;
         } else if (opt == "--limits" && !hasValue) {
             c.limits = true;
         } else if (opt == "--plot") {
@@ -304,7 +308,8 @@ CliOptions parse(int argc, char **argv) {
         } else if (opt == "--max-triangles") {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
-                                 opt == "--silhouette" || opt == "--backface")) {
+                                 opt == "--silhouette" || opt == "--backface" ||
+                                 opt == "--planes")) {
             bad(opt + " takes no value");
         } else if (arg.rfind("-", 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -312,11 +317,11 @@ CliOptions parse(int argc, char **argv) {
             bad("unexpected argument '" + arg + "'");
         }
     }
-    if (c.silhouette || c.backface) {
+    if (c.silhouette || c.backface || c.planes) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
-         * backface_bench.cpp). */
-        const std::string mode = c.silhouette ? "--silhouette" : "--backface";
-        if ((c.silhouette && c.backface) || c.scaling || c.limits || !c.plot.empty() ||
+         * backface_bench.cpp, planes_bench.cpp). */
+        const std::string mode = c.silhouette ? "--silhouette" : c.backface ? "--backface" : "--planes";
+        if ((c.silhouette + c.backface + c.planes > 1) || c.scaling || c.limits || !c.plot.empty() ||
             !c.models.empty() || c.lightGiven || c.regimeGiven || !c.table.routines.empty() ||
             !c.variants.empty() || c.runs || c.table.batch || c.targets.facing != LightTargets{}.facing ||
             c.targets.silhouette != LightTargets{}.silhouette) {
@@ -539,6 +544,12 @@ void bench_usage(FILE *out) {
         "with the float ones and judged by the exact predicate. JSON schema\n"
         "shadowvol-backface/1. --quick: three sizes up to 108,864 triangles.\n"
         "\n"
+        "Per-frame planes: shadowvol bench --planes [--quick] [--json FILE] [--max-triangles N]\n"
+        "sv_derive_planes (every variant) against facing straight from the positions\n"
+        "(BFG), 1 and 4 moving lights a frame, on the bundled and real characters and a\n"
+        "100,352-triangle grid; every call bit-identical to the C references (docs/PLANES.md).\n"
+        "JSON schema shadowvol-planes/1. --quick: the character and a small grid.\n"
+        "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
         "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
@@ -566,6 +577,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.backface) {
             return run_backface_bench(seed_command(c));
+        }
+        if (c.planes) {
+            return run_planes_bench(seed_command(c));
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {

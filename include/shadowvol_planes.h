@@ -75,7 +75,9 @@ void sv_derive_planes_c_ref(const float *positions, const int *indices, int numT
 /* SSE2: 4 triangles a step, corners loaded as 8 + 4 bytes, 4x4 transposes. */
 void sv_derive_planes_sse2(const float *positions, const int *indices, int numTriangles,
                            Plane *planes);
-/* AVX2 with vgatherdps: 9 gathers per 8 triangles (x, y, z of 3 corners). */
+/* AVX2 with vgatherdps: 9 gathers per 8 triangles (x, y, z of 3 corners).
+ * Its gathers take 32-bit signed float offsets 3 * index: vertex numbers
+ * must be below 2^31 / 3 = 715,827,882 (8.6 GB of positions). */
 void sv_derive_planes_avx2_gather(const float *positions, const int *indices, int numTriangles,
                                   Plane *planes);
 /* AVX2 without gathers: every corner one masked 16-byte load (vmaskmovps,

@@ -11,11 +11,18 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <xmmintrin.h>
 
 #include "shadowvol_planes.h"
 
 static inline const float *sv_planes_corner(const float *positions, int index) {
     return positions + 3 * (ptrdiff_t)index;
+}
+
+/* sqrtf without errno handling (and without libm): the correctly rounded
+ * square root, sqrtss, as sqrtps computes it lane by lane. */
+static inline float sv_planes_sqrt(float x) {
+    return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)));
 }
 
 static inline Plane sv_plane_one(const float *positions, const int *tri) {
@@ -30,7 +37,7 @@ static inline Plane sv_plane_one(const float *positions, const int *tri) {
     const float len2 = (nx * nx + ny * ny) + nz * nz;
     Plane p = {0.0f, 0.0f, 0.0f, 0.0f};
     if (!(len2 > 0.0f && len2 < INFINITY)) return p;
-    const float len = sqrtf(len2);
+    const float len = sv_planes_sqrt(len2);
     const float inv = 1.0f / len;
     p.a = nx * inv;
     p.b = ny * inv;

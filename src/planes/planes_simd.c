@@ -43,10 +43,11 @@
 
 /* The address of vertex I minus SHIFT floats (shift 1 for the odd rows),
  * through uintptr_t: for vertex 0 it points before the array, where the
- * masked load reads nothing. */
+ * masked load reads nothing. The index is taken as unsigned (a valid one
+ * is >= 0), so the address is one lea and the load's own addressing. */
 static inline const float *corner_shifted(const float *positions, int index, int shift) {
-    return (const float *)((uintptr_t)positions + (uintptr_t)(12 * (ptrdiff_t)index) -
-                           (uintptr_t)(4 * shift));
+    return (const float *)((uintptr_t)positions - (uintptr_t)(4 * shift) +
+                           12 * (uintptr_t)(uint32_t)index);
 }
 
 /* ---- SSE2 ------------------------------------------------------------------ */

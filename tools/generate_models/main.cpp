@@ -1,7 +1,8 @@
-// shadowvol_generate_models --out DIR [--scaling]
+// shadowvol_generate_models --out DIR [--scaling | --demo-scene]
 //   DIR/character_1344.glb: the project's 1344-triangle, 2016-edge character.
 //   --scaling: instead, the same character with each quad subdivided n x n
 //   (n = 3, 9, 27: 12096, 108864 and 979776 triangles), for scaling runs.
+//   --demo-scene: instead, DIR/demo_scene.glb (models/README.md).
 
 #include <cstdio>
 #include <cstring>
@@ -15,10 +16,12 @@ namespace {
 
 int usage(int status) {
   std::fprintf(status ? stderr : stdout,
-               "usage: shadowvol_generate_models --out DIR [--scaling]\n"
+               "usage: shadowvol_generate_models --out DIR [--scaling | --demo-scene]\n"
                "  writes DIR/character_1344.glb (closed, 2-manifold, 1344 triangles, 2016 edges);\n"
                "  with --scaling, writes DIR/character_12096.glb, character_108864.glb and\n"
-               "  character_979776.glb (the same character, each quad subdivided 3x3, 9x9, 27x27).\n");
+               "  character_979776.glb (the same character, each quad subdivided 3x3, 9x9, 27x27);\n"
+               "  with --demo-scene, writes DIR/demo_scene.glb (terrain, pillars, the skinned\n"
+               "  walking character, lights, camera).\n");
   return status;
 }
 
@@ -26,10 +29,11 @@ int usage(int status) {
 
 int main(int argc, char** argv) {
   std::string out;
-  bool scaling = false;
+  bool scaling = false, demo = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
     else if (!std::strcmp(argv[i], "--scaling")) scaling = true;
+    else if (!std::strcmp(argv[i], "--demo-scene")) demo = true;
     else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(0);
     else {
       std::fprintf(stderr, "shadowvol_generate_models: unknown argument '%s'\n", argv[i]);
@@ -40,8 +44,25 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "shadowvol_generate_models: --out DIR is required\n");
     return usage(2);
   }
+  if (scaling && demo) {
+    std::fprintf(stderr, "shadowvol_generate_models: --scaling and --demo-scene exclude each other\n");
+    return usage(2);
+  }
   try {
     std::filesystem::create_directories(out);
+    if (demo) {
+      const std::vector<std::uint8_t> glb = svgen::write_demo_scene_glb();
+      const std::filesystem::path path = std::filesystem::path(out) / "demo_scene.glb";
+      std::ofstream f(path, std::ios::binary);
+      f.write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+      f.close();
+      if (!f) {
+        std::fprintf(stderr, "shadowvol_generate_models: cannot write %s\n", path.string().c_str());
+        return 1;
+      }
+      std::printf("%s: %zu bytes\n", path.string().c_str(), glb.size());
+      return 0;
+    }
     const svgen::QuadMesh quads = svgen::build_character_quads();
     const int levels_default[] = {1};
     const int levels_scaling[] = {3, 9, 27};

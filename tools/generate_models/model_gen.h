@@ -58,4 +58,16 @@ std::string model_file_name(const TriMesh& mesh);
 // unsigned int), one TRIANGLES primitive, one node, one scene.
 std::vector<std::uint8_t> write_glb(const TriMesh& mesh, const std::string& name);
 
+// The demo scene (scene_gen.cpp; models/README.md): ground, terrain patch,
+// pillars, wall, the skinned character with its walk, lights and camera.
+struct DemoSceneInfo {
+  int terrain_quads = 0;        // per side
+  int terrain_triangles = 0;
+  int character_triangles = 0;
+  int joints = 0;
+  double walk_seconds = 0;
+};
+DemoSceneInfo demo_scene_info();
+std::vector<std::uint8_t> write_demo_scene_glb();
+
 }  // namespace svgen
