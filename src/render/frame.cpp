@@ -57,9 +57,20 @@ Vec3d vertex(const PreparedSurface &p, int v) {
     return {p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]};
 }
 
-/* Radiance factor of LIGHT at P with unit normal N (Lambert, attenuation,
- * cone), without the colour. */
-double irradiance(const SceneLight &l, const Vec3d &p, const Vec3d &n) {
+/* A light's constants for the lighting pass, worked out once a frame. */
+struct LightTerms {
+    const SceneLight *l;
+    double cos_outer, cos_inner, inv_range2;
+    explicit LightTerms(const SceneLight &light)
+        : l(&light), cos_outer(std::cos(light.outer_degrees * kPi / 180.0)),
+          cos_inner(std::cos(light.inner_degrees * kPi / 180.0)),
+          inv_range2(light.range > 0 ? 1.0 / (light.range * light.range) : 0) {}
+};
+
+/* Radiance factor of light T at P with unit normal N (Lambert,
+ * attenuation, cone), without the colour. */
+double irradiance(const LightTerms &t, const Vec3d &p, const Vec3d &n) {
+    const SceneLight &l = *t.l;
     if (l.kind == LightKind::directional) {
         return l.intensity * std::max(0.0, -dot(n, l.direction));
     }
@@ -69,18 +80,16 @@ double irradiance(const SceneLight &l, const Vec3d &p, const Vec3d &n) {
     double a = l.intensity * std::max(0.0, dot(n, dir)) / dist2;
     if (l.range > 0) {
         /* KHR_lights_punctual's recommended window. */
-        const double q = dist2 / (l.range * l.range);
+        const double q = dist2 * t.inv_range2;
         const double w = std::clamp(1.0 - q * q, 0.0, 1.0);
         a *= w * w;
     }
     if (l.kind == LightKind::spot) {
-        const double cos_outer = std::cos(l.outer_degrees * kPi / 180.0);
-        const double cos_inner = std::cos(l.inner_degrees * kPi / 180.0);
         const double c = -dot(dir, l.direction);
-        const double t = cos_inner > cos_outer
-                             ? std::clamp((c - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0)
-                             : (c >= cos_outer ? 1.0 : 0.0);
-        a *= t * t;
+        const double s = t.cos_inner > t.cos_outer
+                             ? std::clamp((c - t.cos_outer) / (t.cos_inner - t.cos_outer), 0.0, 1.0)
+                             : (c >= t.cos_outer ? 1.0 : 0.0);
+        a *= s * s;
     }
     return a;
 }
@@ -328,9 +337,12 @@ bool pixel_in_light_reach(const Frame &f, const Scene &scene, int li, std::size_
     const SceneSurface &s = scene.surfaces[(std::size_t)si];
     const SceneLight &l = scene.lights[(std::size_t)li];
     if (!light_reaches_box(l, s.lo, s.hi)) return false;
+    return point_in_light_reach(
+        l, visible_point(f, scene, si, t, (int)(i % (std::size_t)f.width), (int)(i / (std::size_t)f.width)));
+}
+
+bool point_in_light_reach(const SceneLight &l, const Vec3d &P) {
     if (l.kind == LightKind::directional) return true;
-    const Vec3d P = visible_point(f, scene, si, t, (int)(i % (std::size_t)f.width),
-                                  (int)(i / (std::size_t)f.width));
     const Vec3d d = sub(P, l.position);
     const double dist = std::sqrt(dot(d, d));
     if (l.range > 0 && dist >= l.range) return false;
@@ -786,6 +798,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         const uint64_t k0 = ticks();
         f.rgb.assign((std::size_t)opt.width * opt.height * 3, 0);
         std::vector<std::vector<char>> reaches((std::size_t)num_lights);
+        std::vector<LightTerms> terms;
+        for (int li = 0; li < num_lights; li++) terms.emplace_back(f.lights[(std::size_t)li].light);
         for (int li = 0; li < num_lights; li++) {
             for (int si = 0; si < num_surfaces; si++) {
                 const SceneSurface &s = scene.surfaces[(std::size_t)si];
@@ -830,7 +844,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                                 !e.facing[(std::size_t)t]) {
                                 continue;
                             }
-                            const double en = irradiance(lf.light, P, n);
+                            const double en = irradiance(terms[(std::size_t)li], P, n);
                             for (int c = 0; c < 3; c++) rgb[c] += en * lf.light.color[(std::size_t)c];
                         }
                     }

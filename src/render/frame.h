@@ -214,6 +214,11 @@ bool light_volume_planes(const SceneLight &light, Plane planes[SV_NUM_LIGHT_PLAN
 enum class BoxSide { inside, straddles, outside };
 BoxSide classify_box(const Plane planes[SV_NUM_LIGHT_PLANES], const Vec3d &lo, const Vec3d &hi);
 
+/* Is world point P inside LIGHT's range (when it has one) and cone (a
+ * spot)? Where it is not, the lighting adds nothing (the KHR window and
+ * the cone's smoothstep are 0 there). */
+bool point_in_light_reach(const SceneLight &light, const Vec3d &P);
+
 /* Is the visible point of pixel PIXEL in light LIGHT's reach at all (its
  * surface reached, and the point inside the range and the cone), shadows
  * aside? Outside it, a culled or skipped volume may leave another stencil

@@ -81,10 +81,15 @@ TruthCaster::TruthCaster(const Scene &scene) : scene_(scene), rays_(new SceneRay
 TruthCaster::~TruthCaster() = default;
 
 uint8_t TruthCaster::light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                                 const Vec4 &L, int si, int t, const Vec3d &P, uint64_t *rays) const {
+                                 const LightFrame &lf, int si, int t, const Vec3d &P, uint64_t *rays) const {
+    const Vec4 &L = lf.shadow_light;
     const Plane &pl = scene_.surfaces[(std::size_t)si].prepared.planes[(std::size_t)t];
     const Vec3d nrm{pl.a, pl.b, pl.c};
     if (!facing[(std::size_t)si][(std::size_t)t] || dot(nrm, sub(f.camera.eye, P)) <= 0) return kTruthDark;
+    /* Beyond the range or outside the cone the light gives nothing: dark,
+     * whatever lies between (and the frame's shortcuts may leave another
+     * stencil there: frame.h). */
+    if (!point_in_light_reach(lf.light, P)) return kTruthDark;
     const Point3 p{P.x, P.y, P.z};
     Point3 r;
     double s_max;
@@ -111,12 +116,12 @@ std::vector<std::vector<uint8_t>> TruthCaster::facing_bytes(const Vec4 &L) const
 }
 
 uint8_t TruthCaster::classify_point(const Frame &f, int light, double x, double y) const {
-    const Vec4 L = f.lights[(std::size_t)light].shadow_light;
-    return classify_point(f, facing_bytes(L), L, x, y);
+    const LightFrame &lf = f.lights[(std::size_t)light];
+    return classify_point(f, facing_bytes(lf.shadow_light), lf, x, y);
 }
 
 uint8_t TruthCaster::classify_point(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                                    const Vec4 &L, double x, double y) const {
+                                    const LightFrame &lf, double x, double y) const {
     const Vec3d d = camera_ray(f, x, y);
     const Point3 o{f.camera.eye.x, f.camera.eye.y, f.camera.eye.z}, r{d.x, d.y, d.z};
     /* The nearest triangle the camera ray meets beyond the near plane
@@ -133,12 +138,12 @@ uint8_t TruthCaster::classify_point(const Frame &f, const std::vector<std::vecto
     f.decode_id(best_id, si, t);
     const Vec3d P{o.x + best * r.x, o.y + best * r.y, o.z + best * r.z};
     uint64_t rays = 0;
-    return light_class(f, facing, L, si, t, P, &rays);
+    return light_class(f, facing, lf, si, t, P, &rays);
 }
 
 uint8_t TruthCaster::classify_stored_depth(const Frame &f,
                                            const std::vector<std::vector<uint8_t>> &facing,
-                                           const Vec4 &L, int x, int y) const {
+                                           const LightFrame &lf, int x, int y) const {
     const std::size_t i = (std::size_t)y * f.width + x;
     const int32_t id = f.target.ids[i];
     if (id < 0) return kTruthNone;
@@ -154,12 +159,12 @@ uint8_t TruthCaster::classify_stored_depth(const Frame &f,
     int si, t;
     f.decode_id(id, si, t);
     uint64_t rays = 0;
-    return light_class(f, facing, L, si, t, P, &rays);
+    return light_class(f, facing, lf, si, t, P, &rays);
 }
 
 Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) const {
-    const Vec4 L = f.lights[(std::size_t)light].shadow_light;
-    const std::vector<std::vector<uint8_t>> facing = facing_bytes(L);
+    const LightFrame &lf = f.lights[(std::size_t)light];
+    const std::vector<std::vector<uint8_t>> facing = facing_bytes(lf.shadow_light);
     int looked_at = 0;
     uint64_t ties = 0;
     std::vector<raster::Rasterizer::WindowTriangle> faces;
@@ -175,7 +180,7 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
                                      * its snapped triangle can lie well off
                                      * the exact one. */
                                     const std::size_t px = (std::size_t)y * f.width + x;
-                                    const uint8_t at_depth = classify_stored_depth(f, facing, L, x, y);
+                                    const uint8_t at_depth = classify_stored_depth(f, facing, lf, x, y);
                                     if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[px] == kTruthLit)) {
                                         return true;
                                     }
@@ -183,7 +188,7 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
                                     for (int j = 0; j < 7; j++) {
                                         for (int i = 0; i < 7; i++) {
                                             const uint8_t c = classify_point(
-                                                f, facing, L, x - 1 + (i + 0.5) * 3 / 7.0,
+                                                f, facing, lf, x - 1 + (i + 0.5) * 3 / 7.0,
                                                 y - 1 + (j + 0.5) * 3 / 7.0);
                                             if (c == kTruthNone) continue;
                                             (c == kTruthLit ? lit : shadow) = true;
@@ -225,7 +230,7 @@ Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
                 int si, t;
                 f.decode_id(id, si, t);
                 const Vec3d P = visible_point(f, scene_, si, t, px, py);
-                out.cls[i] = light_class(f, facing, L, si, t, P, &rays[(std::size_t)k]);
+                out.cls[i] = light_class(f, facing, lf, si, t, P, &rays[(std::size_t)k]);
             }
         }
     };

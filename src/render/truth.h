@@ -60,7 +60,8 @@ enum TruthClass : uint8_t {
     kTruthNone = 0,     /* background */
     kTruthLit = 1,      /* faces the light, segment free */
     kTruthShadowed = 2, /* faces the light, segment blocked */
-    kTruthDark = 3      /* faces away from the light, or its back side is seen */
+    kTruthDark = 3      /* faces away from the light, or its back side is seen, or the
+                           point is beyond the light's range or outside its cone */
 };
 
 struct Truth {
@@ -102,13 +103,13 @@ private:
     const Scene &scene_;
     std::unique_ptr<SceneRays> rays_;
     uint8_t light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                        const Vec4 &L, int surface, int triangle, const Vec3d &P,
+                        const LightFrame &light, int surface, int triangle, const Vec3d &P,
                         uint64_t *rays) const;
     std::vector<std::vector<uint8_t>> facing_bytes(const Vec4 &L) const;
     uint8_t classify_point(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                           const Vec4 &L, double x, double y) const;
+                           const LightFrame &light, double x, double y) const;
     uint8_t classify_stored_depth(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                                  const Vec4 &L, int x, int y) const;
+                                  const LightFrame &light, int x, int y) const;
 };
 
 /* Truth against a stencil (0 = lit), by the nine centres only; REFINE,
