@@ -8,6 +8,7 @@
 // a Taylor series here, not the libm's), the library is compiled with
 // -ffp-contract=off, and every number is written with %.9g from a float.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -177,7 +178,10 @@ TriMesh terrain(int n, double cell, double x0, double z0) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double x = x0 + cell * i, z = z0 + cell * j;
-      const double h = 0.6 * dsin(0.15 * x) * dcos(0.12 * z) + 0.25 * dsin(0.4 * x + 0.3 * z) + 0.2;
+      // Hills of up to about 2 m, rising from the ground's level over the
+      // first 5 m so that the patch meets the ground at its edge.
+      const double rise = std::min(1.0, (x - x0) / 5.0);
+      const double h = rise * rise * (1.2 * dsin(0.15 * x) * dcos(0.12 * z) + 0.45 * dsin(0.4 * x + 0.3 * z) + 0.9);
       m.positions.push_back(static_cast<float>(x));
       m.positions.push_back(static_cast<float>(h));
       m.positions.push_back(static_cast<float>(z));
@@ -310,7 +314,7 @@ std::vector<std::uint8_t> write_demo_scene_glb() {
   };
   const int ground = add_mesh("ground", box(-12, 11, -0.2, 0, -12, 11));
   const DemoSceneInfo info = demo_scene_info();
-  const int terr = add_mesh("terrain", terrain(info.terrain_quads, 0.2, 12, -23));
+  const int terr = add_mesh("terrain", terrain(info.terrain_quads, 0.2, 11, -23));
   const int pillar = add_mesh("pillar", box(-0.3, 0.3, 0, 3, -0.3, 0.3));
   const int wall = add_mesh("wall", box(-4, 4, 0, 2.5, -0.15, 0.15));
   roots.push_back(add_node("{\"name\":\"ground\",\"mesh\":" + std::to_string(ground) + "}"));
@@ -424,13 +428,13 @@ std::vector<std::uint8_t> write_demo_scene_glb() {
 
   // Lights (KHR_lights_punctual: they shine along their node's -Z).
   const std::string lights =
-      "[{\"name\":\"lamp\",\"type\":\"point\",\"color\":[1,0.949999988,0.850000024],\"intensity\":80,"
+      "[{\"name\":\"lamp\",\"type\":\"point\",\"color\":[1,0.949999988,0.850000024],\"intensity\":22,"
       "\"range\":15},"
-      "{\"name\":\"headlight_left\",\"type\":\"spot\",\"color\":[1,1,0.899999976],\"intensity\":200,"
+      "{\"name\":\"headlight_left\",\"type\":\"spot\",\"color\":[1,1,0.899999976],\"intensity\":70,"
       "\"range\":20,\"spot\":{\"innerConeAngle\":0.150000006,\"outerConeAngle\":0.300000012}},"
-      "{\"name\":\"headlight_right\",\"type\":\"spot\",\"color\":[1,1,0.899999976],\"intensity\":200,"
+      "{\"name\":\"headlight_right\",\"type\":\"spot\",\"color\":[1,1,0.899999976],\"intensity\":70,"
       "\"range\":20,\"spot\":{\"innerConeAngle\":0.150000006,\"outerConeAngle\":0.300000012}},"
-      "{\"name\":\"sun\",\"type\":\"directional\",\"color\":[1,1,0.949999988],\"intensity\":2}]";
+      "{\"name\":\"sun\",\"type\":\"directional\",\"color\":[1,1,0.949999988],\"intensity\":0.7}]";
   auto light_node = [&](const char* name, int light, const double eye[3], const double target[3]) {
     return add_node(std::string("{\"name\":\"") + name + "\"," + translation_json(eye) + ",\"rotation\":" +
                     quat_json(look_at(eye, target)) + ",\"extensions\":{\"KHR_lights_punctual\":{\"light\":" +
@@ -446,7 +450,7 @@ std::vector<std::uint8_t> write_demo_scene_glb() {
   roots.push_back(light_node("headlight_right", 2, hr, hrt));
   const double sun[3] = {-20, 40, -15}, sunt[3] = {0, 0, 0};
   roots.push_back(light_node("sun", 3, sun, sunt));
-  const double eye[3] = {-9, 8, 16}, target[3] = {14, 0, 0};
+  const double eye[3] = {-7, 6.5, 13}, target[3] = {10, 0, -1};
   roots.push_back(add_node("{\"name\":\"camera\"," + translation_json(eye) + ",\"rotation\":" +
                            quat_json(look_at(eye, target)) + ",\"camera\":0}"));
   const std::string cameras =
