@@ -21,6 +21,7 @@
 #include "model_workload.h"
 #include "output_file.h"
 #include "planes_bench.h"
+#include "scene_bench.h"
 #include "routines.h"
 #include "scaling_cli.h"
 #include "seed_bench.h"
@@ -179,6 +180,7 @@ struct CliOptions {
     bool silhouette = false;        /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
     bool backface = false;          /* --backface: seed 001's culling (backface_bench.cpp) */
     bool planes = false;            /* --planes: per-frame planes (planes_bench.cpp) */
+    bool scene = false;             /* --scene: the demo scene per frame (scene_bench.cpp) */
     std::string plot;               /* --plot FILE (with --scaling) */
     long maxTriangles = 0;          /* --max-triangles N (with --scaling) */
     bool regimeGiven = false;       /* options the scaling run has no use for */
@@ -298,6 +300,8 @@ CliOptions parse(int argc, char **argv) {
             c.backface = true;
         } else if (opt == "--planes" && !hasValue) {
             c.planes = true;
+        } else if (opt == "--scene" && !hasValue) {
+            c.scene = true;
         } else if (opt == "--limits" && !hasValue) {
             c.limits = true;
         } else if (opt == "--plot") {
@@ -309,7 +313,7 @@ CliOptions parse(int argc, char **argv) {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
                                  opt == "--silhouette" || opt == "--backface" ||
-                                 opt == "--planes")) {
+                                 opt == "--planes" || opt == "--scene")) {
             bad(opt + " takes no value");
         } else if (arg.rfind("-", 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -317,11 +321,14 @@ CliOptions parse(int argc, char **argv) {
             bad("unexpected argument '" + arg + "'");
         }
     }
-    if (c.silhouette || c.backface || c.planes) {
+    if (c.silhouette || c.backface || c.planes || c.scene) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
          * backface_bench.cpp, planes_bench.cpp). */
-        const std::string mode = c.silhouette ? "--silhouette" : c.backface ? "--backface" : "--planes";
-        if ((c.silhouette + c.backface + c.planes > 1) || c.scaling || c.limits || !c.plot.empty() ||
+        const std::string mode = c.silhouette ? "--silhouette"
+                                 : c.backface ? "--backface"
+                                 : c.planes   ? "--planes"
+                                              : "--scene";
+        if ((c.silhouette + c.backface + c.planes + c.scene > 1) || c.scaling || c.limits || !c.plot.empty() ||
             !c.models.empty() || c.lightGiven || c.regimeGiven || !c.table.routines.empty() ||
             !c.variants.empty() || c.runs || c.table.batch || c.targets.facing != LightTargets{}.facing ||
             c.targets.silhouette != LightTargets{}.silhouette) {
@@ -550,6 +557,14 @@ void bench_usage(FILE *out) {
         "100,352-triangle grid; every call bit-identical to the C references (docs/PLANES.md).\n"
         "JSON schema shadowvol-planes/1. --quick: the character and a small grid.\n"
         "\n"
+        "Per frame: shadowvol bench --scene [--quick] [--json FILE]\n"
+        "The demo scene's frames (8 at 640x512; --quick 4 at 320x256) with only what each\n"
+        "requires and with everything, on 1 thread and every core, as ratios of one run;\n"
+        "each shortcut alone switched off; the culling decision timed on both sides for\n"
+        "the terrain under a headlight and the character inside the lamp. Every frame\n"
+        "checked against its full frame and across thread counts (docs/SCENES.md).\n"
+        "JSON schema shadowvol-scene-bench/1.\n"
+        "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
         "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
@@ -580,6 +595,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.planes) {
             return run_planes_bench(seed_command(c));
+        }
+        if (c.scene) {
+            return run_scene_bench(seed_command(c));
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {

@@ -53,6 +53,17 @@ for m in Fox CesiumMan RobotExpressive RiggedFigure; do
 done
 [ $played -gt 0 ] || echo "NOTE: $shared has none of the animated characters: only the demo scene played"
 
+# The benchmark's per-frame rows: every figure with its check.
+"$sv" bench --scene --quick --json "$tmp/bench.json" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+cat "$tmp/out"
+[ $rc -eq 0 ] || err "bench --scene exited $rc: $(cat "$tmp/err")"
+grep -q 'check: 4 of 4 frames equal their full frame, 4 of 4 the same bytes' "$tmp/out" \
+  || err "bench --scene did not print its check"
+grep -q '^terrain under a headlight .* straddles | cull ' "$tmp/out" || err "the terrain was not culled"
+grep -q '^character inside the lamp .* inside | no cull ' "$tmp/out" || err "the character was culled"
+grep -q '"schema": "shadowvol-scene-bench/1"' "$tmp/bench.json" || err "bench JSON without its schema"
+
 # expect STATUS ARGS...: exits STATUS with a message on stderr.
 expect() {
   local want=$1; shift

@@ -594,12 +594,12 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                 return; /* the entry stays for a later frame */
             }
             Plane planes[SV_NUM_LIGHT_PLANES];
-            const bool has_planes = sc.cull_straddling &&
+            const bool has_planes = (sc.cull_straddling || sc.cull_always) &&
                                     light_volume_planes(light, planes, fault.cull_inside_planes ? 0.5 : 1.0);
             const bool dark_drop = (sc.no_directional_dark_cap && light.kind == LightKind::directional) ||
                                    fault.drop_dark_cap_always;
             const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
-                                    (fault.cull_inside_planes ? 4u : 0u);
+                                    (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u);
             const bool same_light = e.valid && std::memcmp(&e.light, &L, sizeof L) == 0 &&
                                     e.has_planes == has_planes &&
                                     (!has_planes || std::memcmp(e.planes, planes, sizeof planes) == 0);
@@ -626,7 +626,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                 if (has_planes) {
                     const BoxSide side = classify_box(planes, s.lo, s.hi);
                     e.straddles = side != BoxSide::inside;
-                    if (e.straddles) {
+                    if (e.straddles || sc.cull_always) {
                         /* 3: the culling routine, only here. */
                         const std::vector<Vec4> pos = positions_vec4(p);
                         const Vec3d c = mul(add(s.lo, s.hi), 0.5), x = mul(sub(s.hi, s.lo), 0.5);
@@ -636,7 +636,9 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                         AlignedVector<uint8_t> bits((std::size_t)p.num_vertices() + 1, 0);
                         const int inside = facing_v->calculate_cull_bits(pos.data(), p.num_vertices(), &bounds,
                                                                          planes, bits.data());
-                        if (!inside) {
+                        if (!inside || sc.cull_always) {
+                            /* (cull_always: bits all 0 where the routine
+                             * found the box inside, as it leaves them.) */
                             e.cull_bits = true;
                             e.casting = n - variant->count_facing_cull(e.volume_facing.data(), n,
                                                                        p.indices.data(), bits.data());

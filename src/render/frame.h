@@ -54,7 +54,11 @@ struct Shortcuts {
      *    bits, silhouette and caps) built once and reused until either
      *    moves (VolumeCache). */
     bool reuse_static = true;
-    static Shortcuts none() { return {false, false, false, false, false, false}; }
+    /* For the benchmark of test 3 only: the culling routine wherever the
+     * light has a volume, even for a box wholly inside it (where it culls
+     * nothing: the same pixels, at the routine's cost). */
+    bool cull_always = false;
+    static Shortcuts none() { return {false, false, false, false, false, false, false}; }
     bool any() const {
         return light_reach || view_reach || cull_straddling || zpass_when_safe ||
                no_directional_dark_cap || reuse_static;
