@@ -184,7 +184,8 @@ void render_usage(FILE *out) {
         "  --variant NAME    the library's volume kernels (default: best)\n"
         "  --no-truth        skip the ray-cast truth\n"
         "  --no-gl           skip the Mesa comparison\n"
-        "  --threads N       threads for the truth's rays (default: the CPU's)\n"
+        "  --threads N       threads for the frame's passes and the truth's rays\n"
+        "                    (default: every core; the pictures are the same at any N)\n"
         "  --out DIR         where the PNGs go (default shadowvol-render)\n"
         "  --json FILE       the report as JSON (schema shadowvol-render/1; - for stdout)\n"
         "\n"
@@ -285,6 +286,7 @@ int render_main(int argc, char **argv) {
     opt.mode = args.mode;
     opt.kernels = kernels;
     opt.variant = variant;
+    opt.threads = args.threads; /* 0: every core; the same bytes at any count */
     sv::render::Frame frame;
     try {
         frame = sv::render::render_frame(scene, opt);
