@@ -799,13 +799,23 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
          * the surface at all. */
         const uint64_t k0 = ticks();
         f.rgb.assign((std::size_t)opt.width * opt.height * 3, 0);
-        std::vector<std::vector<char>> reaches((std::size_t)num_lights);
         std::vector<LightTerms> terms;
         for (int li = 0; li < num_lights; li++) terms.emplace_back(f.lights[(std::size_t)li].light);
+        /* Per (light, surface): the facing bytes its volume was built from
+         * this frame (or reused: the same surface revision and light), or
+         * nothing where the light does not reach the surface. A surface
+         * whose volume was skipped out of view has no pixel (and would be
+         * left unlit if it had one: the proof would see it). */
+        std::vector<const uint8_t *> lit_facing((std::size_t)num_lights * num_surfaces, nullptr);
         for (int li = 0; li < num_lights; li++) {
+            const Vec4 L = f.lights[(std::size_t)li].shadow_light;
             for (int si = 0; si < num_surfaces; si++) {
                 const SceneSurface &s = scene.surfaces[(std::size_t)si];
-                reaches[(std::size_t)li].push_back(light_reaches_box(scene.lights[(std::size_t)li], s.lo, s.hi));
+                const VolumeCache::Entry &e = cache.entries()[(std::size_t)li * num_surfaces + si];
+                if (light_reaches_box(scene.lights[(std::size_t)li], s.lo, s.hi) && e.valid &&
+                    e.revision == s.revision && std::memcmp(&e.light, &L, sizeof L) == 0 && !e.facing.empty()) {
+                    lit_facing[(std::size_t)li * num_surfaces + si] = e.facing.data();
+                }
             }
         }
         parallel(num_bands, [&](int b) {
@@ -836,16 +846,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                     if (front_seen) {
                         for (int li = 0; li < num_lights; li++) {
                             const LightFrame &lf = f.lights[(std::size_t)li];
-                            if (lf.stencil[i] != 0 || !reaches[(std::size_t)li][(std::size_t)si]) continue;
-                            /* The facing bytes the volume was built from; a
-                             * surface whose volume was skipped out of view
-                             * has no pixel (and is left unlit if it had). */
-                            const VolumeCache::Entry &e =
-                                cache.entries()[(std::size_t)li * num_surfaces + si];
-                            if (!e.valid || e.revision != s.revision || e.facing.empty() ||
-                                !e.facing[(std::size_t)t]) {
-                                continue;
-                            }
+                            const uint8_t *facing = lit_facing[(std::size_t)li * num_surfaces + si];
+                            if (lf.stencil[i] != 0 || !facing || !facing[(std::size_t)t]) continue;
                             const double en = irradiance(terms[(std::size_t)li], P, n);
                             for (int c = 0; c < 3; c++) rgb[c] += en * lf.light.color[(std::size_t)c];
                         }
