@@ -335,9 +335,11 @@ CliOptions parse(int argc, char **argv) {
     }
     if (c.scaling) {
         /* The scaling run has its own meshes and the moving light only. */
-        if (!c.models.empty()) {
-            bad("--model does not apply to --scaling (it runs the generated character at "
-                "growing sizes and the real characters of " SV_SHARED_MODELS_DIR ")");
+        for (const std::string &m : c.models) {
+            if (m == "synthetic" || m == "all") {
+                bad("--scaling --model takes glTF files and folders (the generated character "
+                    "and the real characters of " SV_SHARED_MODELS_DIR " always run), not " + m);
+            }
         }
         if (c.regimeGiven) {
             bad("--scaling measures the moving light only: --regime fixed or both does not "
@@ -403,6 +405,7 @@ int scaling(const CliOptions &c) {
     o.batch = c.table.batch;
     o.routines = c.table.routines.empty() ? default_scaling_routines() : c.table.routines;
     o.sharedModels = SV_SHARED_MODELS_DIR;
+    o.models = c.models;
     choose_variants(c, o.variants, cmd.skipped);
     cmd.json = c.json;
     cmd.plot = c.plot;
@@ -515,8 +518,10 @@ void bench_usage(FILE *out) {
         "  --runs N         with --scaling: per row on a mesh of 1344 triangles or fewer\n"
         "                   (default %d; --quick %d), in proportion fewer above (at\n"
         "                   least %d; --quick %d)\n"
+        "  --model M        also measure your own mesh: a glTF FILE or a DIR of them\n"
+        "                   (repeatable; every surface merged into one)\n"
         "  --routine, --variant, --isa, --timer, --batch, --seed, --facing-ratio and\n"
-        "  --silhouette-ratio apply as above; --model, --light and --regime do not.\n"
+        "  --silhouette-ratio apply as above; --light and --regime do not.\n"
         "\n"
         "Seed 003: shadowvol bench --silhouette [--quick] [--json FILE] [--max-triangles N]\n"
         "Routine find_silhouette: the classic candidate list, the hash table (8 to 64\n"
