@@ -34,6 +34,10 @@ struct GltfLoadOptions {
     std::size_t max_triangles = kDefaultMaxTriangles;
     std::size_t max_vertices = kDefaultMaxVertices;
     std::size_t max_nodes = kDefaultMaxNodes;
+    /* false: buffers and images named by a file uri are refused (only data:
+     * URIs and the GLB's BIN chunk are read): for input that must not make
+     * the loader open other files (the fuzz targets). */
+    bool external_files = true;
 
     static constexpr std::size_t kDefaultMaxTriangles = std::size_t(1) << 24;
     static constexpr std::size_t kDefaultMaxVertices = std::size_t(1) << 25;
@@ -119,6 +123,11 @@ public:
  * Throws GltfError; see the implementation's header comment for the list of
  * checks. Never reads outside a buffer. */
 GltfModel load_gltf(const std::string &path, const GltfLoadOptions &options = {});
+
+/* The same from bytes in memory; NAME stands for the path in messages, and
+ * file uris are relative to its folder (when options.external_files). */
+GltfModel load_gltf_memory(const unsigned char *bytes, std::size_t size, const std::string &name,
+                           const GltfLoadOptions &options = {});
 
 } // namespace sv
 

@@ -619,10 +619,24 @@ std::string trimmed(std::string s) {
     return s;
 }
 
+/* For options.external_files = false: no file exists. */
+bool no_file_exists(const std::string &, void *) { return false; }
+bool no_file_read(std::vector<unsigned char> *, std::string *err, const std::string &name,
+                  void *) {
+    if (err) *err += "external file " + name + " refused (external files are off)\n";
+    return false;
+}
+
 /* Parses the file with tinygltf: GLB or JSON by the magic, external
  * buffers relative to the file's folder. */
-tinygltf::Model parse_gltf(const std::string &path, std::vector<std::string> &notes) {
-    const std::vector<unsigned char> bytes = read_file(path);
+tinygltf::Model parse_gltf(const std::string &path, const std::vector<unsigned char> &bytes,
+                           bool external_files, std::vector<std::string> &notes) {
+    if (bytes.empty()) {
+        fail_file(path, "empty file (not a glTF file)");
+    }
+    if (bytes.size() > UINT_MAX) {
+        fail_file(path, "file is 4 GiB or larger (tinygltf reads at most 2^32 - 1 bytes)");
+    }
     std::string base_dir = std::filesystem::path(path).parent_path().string();
     if (base_dir.empty()) {
         base_dir = ".";
@@ -630,6 +644,10 @@ tinygltf::Model parse_gltf(const std::string &path, std::vector<std::string> &no
 
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&ignore_image, nullptr);
+    if (!external_files) {
+        parser.SetFsCallbacks({&no_file_exists, &tinygltf::ExpandFilePath, &no_file_read,
+                               &tinygltf::WriteWholeFile, nullptr});
+    }
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
@@ -1735,8 +1753,20 @@ std::string printable_text(const std::string &s, std::size_t max_bytes) {
 GltfModel load_gltf(const std::string &path, const GltfLoadOptions &options) {
     GltfModel out;
     out.path = path;
-    const tinygltf::Model gltf = parse_gltf(path, out.notes);
+    const tinygltf::Model gltf = parse_gltf(path, read_file(path), options.external_files,
+                                            out.notes);
     Loader(path, gltf, options, out).run();
+    return out;
+}
+
+GltfModel load_gltf_memory(const unsigned char *bytes, std::size_t size, const std::string &name,
+                           const GltfLoadOptions &options) {
+    GltfModel out;
+    out.path = name;
+    const tinygltf::Model gltf =
+        parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size), options.external_files,
+                   out.notes);
+    Loader(name, gltf, options, out).run();
     return out;
 }
 
