@@ -21,6 +21,7 @@
 #include "model_workload.h"
 #include "output_file.h"
 #include "routines.h"
+#include "compare.h"
 #include "scaling_cli.h"
 #include "seed_bench.h"
 #include "synthetic_workload.h"
@@ -498,6 +499,13 @@ void bench_usage(FILE *out) {
         "                   variant and the goals (bench/machine_limits.h)\n"
         "  -h, --help       this text\n"
         "\n"
+        "Results read back: shadowvol bench --compare A.json B.json\n"
+        "                   shadowvol bench --report FILE.json [--regime fixed]\n"
+        "--compare: two --json results (shadowvol-bench/1, or two shadowvol-scaling/1),\n"
+        "per routine, variant, regime and model: the medians per element in ticks and\n"
+        "in ns (ticks / each run's TSC rate) and their ratio B/A, then the geometric\n"
+        "mean per variant. --report: a result's tables as Markdown (docs/results/).\n"
+        "\n"
         "Scaling: shadowvol bench --scaling [--quick] [--plot FILE.svg] [--json FILE]\n"
         "The cost per element as the mesh grows, moving light, every variant this CPU\n"
         "runs: the generated character with each quad subdivided n x n (1344 n^2\n"
@@ -555,6 +563,9 @@ void bench_usage(FILE *out) {
 }
 
 int bench_main(int argc, char **argv) {
+    if (is_compare_or_report(argc, argv)) { /* bench/compare.h */
+        return compare_main(argc, argv);
+    }
     CliOptions c;
     ModelList models;
     try {
