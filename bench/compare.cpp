@@ -40,6 +40,8 @@ struct Doc {
     std::vector<std::string> variants; /* in the document's order */
 };
 
+void order_variants(std::vector<std::string> &v);
+
 Doc read_doc(const std::string &path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) throw DocError(path + ": cannot open");
