@@ -23,6 +23,7 @@
 #include "planes_bench.h"
 #include "scene_bench.h"
 #include "routines.h"
+#include "compare.h"
 #include "scaling_cli.h"
 #include "seed_bench.h"
 #include "synthetic_workload.h"
@@ -347,9 +348,11 @@ CliOptions parse(int argc, char **argv) {
     }
     if (c.scaling) {
         /* The scaling run has its own meshes and the moving light only. */
-        if (!c.models.empty()) {
-            bad("--model does not apply to --scaling (it runs the generated character at "
-                "growing sizes and the real characters of " SV_SHARED_MODELS_DIR ")");
+        for (const std::string &m : c.models) {
+            if (m == "synthetic" || m == "all") {
+                bad("--scaling --model takes glTF files and folders (the generated character "
+                    "and the real characters of " SV_SHARED_MODELS_DIR " always run), not " + m);
+            }
         }
         if (c.regimeGiven) {
             bad("--scaling measures the moving light only: --regime fixed or both does not "
@@ -415,6 +418,7 @@ int scaling(const CliOptions &c) {
     o.batch = c.table.batch;
     o.routines = c.table.routines.empty() ? default_scaling_routines() : c.table.routines;
     o.sharedModels = SV_SHARED_MODELS_DIR;
+    o.models = c.models;
     choose_variants(c, o.variants, cmd.skipped);
     cmd.json = c.json;
     cmd.plot = c.plot;
@@ -507,6 +511,13 @@ void bench_usage(FILE *out) {
         "                   variant and the goals (bench/machine_limits.h)\n"
         "  -h, --help       this text\n"
         "\n"
+        "Results read back: shadowvol bench --compare A.json B.json\n"
+        "                   shadowvol bench --report FILE.json [--regime fixed]\n"
+        "--compare: two --json results (shadowvol-bench/1, or two shadowvol-scaling/1),\n"
+        "per routine, variant, regime and model: the medians per element in ticks and\n"
+        "in ns (ticks / each run's TSC rate) and their ratio B/A, then the geometric\n"
+        "mean per variant. --report: a result's tables as Markdown (docs/results/).\n"
+        "\n"
         "Scaling: shadowvol bench --scaling [--quick] [--plot FILE.svg] [--json FILE]\n"
         "The cost per element as the mesh grows, moving light, every variant this CPU\n"
         "runs: the generated character with each quad subdivided n x n (1344 n^2\n"
@@ -527,8 +538,10 @@ void bench_usage(FILE *out) {
         "  --runs N         with --scaling: per row on a mesh of 1344 triangles or fewer\n"
         "                   (default %d; --quick %d), in proportion fewer above (at\n"
         "                   least %d; --quick %d)\n"
+        "  --model M        also measure your own mesh: a glTF FILE or a DIR of them\n"
+        "                   (repeatable; every surface merged into one)\n"
         "  --routine, --variant, --isa, --timer, --batch, --seed, --facing-ratio and\n"
-        "  --silhouette-ratio apply as above; --model, --light and --regime do not.\n"
+        "  --silhouette-ratio apply as above; --light and --regime do not.\n"
         "\n"
         "Seed 003: shadowvol bench --silhouette [--quick] [--json FILE] [--max-triangles N]\n"
         "Routine find_silhouette: the classic candidate list, the hash table (8 to 64\n"
@@ -576,6 +589,9 @@ void bench_usage(FILE *out) {
 }
 
 int bench_main(int argc, char **argv) {
+    if (is_compare_or_report(argc, argv)) { /* bench/compare.h */
+        return compare_main(argc, argv);
+    }
     CliOptions c;
     ModelList models;
     try {

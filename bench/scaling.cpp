@@ -99,17 +99,35 @@ std::vector<MeshSpec> scaling_meshes(const ScalingOptions &o, std::string *note)
         specs.push_back(s);
     }
 
+    /* The user's --model files and folders (issue 17), after the generated
+     * meshes; the run orders every mesh by its triangles. */
+    std::vector<std::string> own;
+    if (!o.models.empty()) {
+        for (const ModelSpec &m : resolve_models(o.models, std::string(), std::string()).models) {
+            MeshSpec s;
+            s.path = m.path;
+            s.name = fs::path(m.path).filename().string();
+            own.push_back(m.path);
+            specs.push_back(s);
+        }
+    }
+    const std::string own_note =
+        own.empty() ? std::string()
+                    : "; --model: " + std::to_string(own.size()) + " file" +
+                          (own.size() == 1 ? "" : "s");
+
     std::error_code ec;
     const std::string &dir = o.sharedModels;
     if (dir.empty() || !fs::is_directory(dir, ec)) {
         *note = "real characters: none (" + (dir.empty() ? std::string("no folder given") : dir) +
-                " does not exist; it holds the third-party glTF characters)";
+                " does not exist; it holds the third-party glTF characters)" + own_note;
         return specs;
     }
     /* resolve_models lists a folder's glTF files, by name, and throws
      * ModelListError when it has none. */
     const ModelList real = resolve_models({dir}, std::string(), std::string());
     for (const ModelSpec &m : real.models) {
+        if (std::find(own.begin(), own.end(), m.path) != own.end()) continue;
         MeshSpec s;
         s.path = m.path;
         s.name = fs::path(m.path).filename().string();
@@ -117,7 +135,7 @@ std::vector<MeshSpec> scaling_meshes(const ScalingOptions &o, std::string *note)
     }
     const fs::path canon = fs::weakly_canonical(dir, ec);
     *note = "real characters: the " + std::to_string(real.models.size()) + " glTF files in " +
-            (ec ? dir : canon.string());
+            (ec ? dir : canon.string()) + own_note;
     return specs;
 }
 

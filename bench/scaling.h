@@ -76,6 +76,10 @@ struct ScalingOptions {
     std::vector<const BenchVariant *> variants; /* in table order */
     bool progress = true;
     std::string sharedModels; /* the real characters' folder */
+    /* --model FILE or DIR (repeatable): the user's own meshes, measured
+     * beside the generated ones and the real characters (each loaded with
+     * every surface merged into one, as the real characters are). */
+    std::vector<std::string> models;
 };
 
 /* One mesh to measure. */

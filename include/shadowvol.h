@@ -341,7 +341,10 @@ enum sv_status {
     SV_E_ODD_VERTEX = -6,      /* a SilEdge vertex number is odd */
     SV_E_CAPACITY = -7,        /* output room below the documented bound */
     SV_E_OVERFLOW = -8,        /* an index count (input 3 * numTriangles, or the output) does not fit in an int */
-    SV_E_CPU = -9              /* the CPU lacks the variant's instruction set */
+    SV_E_CPU = -9,             /* the CPU lacks the variant's instruction set */
+    SV_E_FACING_SENTINEL = -10,/* facing[numTriangles] is 0 (it must be 1) */
+    SV_E_CULL_BITS = -11       /* sse2_paper: a cull byte with bit 7 set (its
+                                  documented limit is bits 0..6, erratum D-5) */
 };
 const char *sv_status_string(int status);
 
@@ -355,7 +358,11 @@ int sv_create_cap_triangles_checked(const sv_variant *v, int *shadowIndices, siz
                                     const uint8_t *facing, const int *indices, int numIndices,
                                     int numVerts);
 /* numVerts: vertices of the mesh (indices < numVerts, SilEdge v < 2 *
- * numVerts); facing: numIndices / 3 + 1 bytes. */
+ * numVerts); facing: numIndices / 3 + 1 bytes, the last exactly 1
+ * (SV_E_FACING_SENTINEL otherwise; sv_create_sil_triangles_checked checks
+ * facing[numTriangles] the same way); cullBits, when not NULL: numVerts
+ * bytes (for sse2_paper each without bit 7, SV_E_CULL_BITS, as for
+ * sv_count_facing_cull_checked). */
 int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
                                     const int *indices, int numIndices, int numVerts,
                                     const SilEdge *silEdges, int numSilEdges,

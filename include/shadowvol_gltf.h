@@ -22,7 +22,43 @@ struct GltfLoadOptions {
      * that mesh it is loaded once with the identity transform. An unknown
      * name is an error that lists the mesh names. */
     std::string mesh_name;
+
+    /* Hostile sizes (issue 17): a small file can ask for any amount of work
+     * (10^4 instances of a character are 13M triangles from 176 KB). Before
+     * any surface is built, the loader estimates from the accessor counts
+     * the triangles and vertices of every selected instance, and refuses
+     * the file (GltfError naming the counts, the estimated memory and time,
+     * and the limit) when either exceeds its limit. Defaults: 2^24
+     * triangles and 2^25 vertices (about 2.5 GB and 10 s to load and
+     * prepare on one core), 2^20 nodes. 0 = no limit. */
+    std::size_t max_triangles = kDefaultMaxTriangles;
+    std::size_t max_vertices = kDefaultMaxVertices;
+    std::size_t max_nodes = kDefaultMaxNodes;
+    /* false: buffers and images named by a file uri are refused (only data:
+     * URIs and the GLB's BIN chunk are read): for input that must not make
+     * the loader open other files (the fuzz targets). */
+    bool external_files = true;
+
+    static constexpr std::size_t kDefaultMaxTriangles = std::size_t(1) << 24;
+    static constexpr std::size_t kDefaultMaxVertices = std::size_t(1) << 25;
+    static constexpr std::size_t kDefaultMaxNodes = std::size_t(1) << 20;
 };
+
+/* JSON nested deeper than this (arrays and objects, in a .gltf or in a
+ * GLB's JSON chunk) is refused before tinygltf parses it: tinygltf parses
+ * values recursively, and 17,500 levels of [[[...]]] (40 KB) overflowed
+ * its stack. glTF itself needs about 8 levels. */
+constexpr int kGltfMaxJsonDepth = 128;
+
+/* What one message quotes of the file's text (tinygltf's errors, names):
+ * at most this many bytes, with every byte that is not part of valid
+ * UTF-8, and every control character, written as \xNN. */
+constexpr std::size_t kGltfMaxQuotedBytes = 300;
+
+/* S made safe to print: valid UTF-8, no control characters (\xNN instead),
+ * cut after MAX_BYTES input bytes with "... (N more bytes)". Idempotent on
+ * its own output. */
+std::string printable_text(const std::string &s, std::size_t max_bytes = kGltfMaxQuotedBytes);
 
 /* One mesh instance (a node with a mesh, or a mesh loaded on its own):
  * all its triangle primitives merged into one surface. */
@@ -39,7 +75,11 @@ struct GltfSurface {
                               blended matrix of a triangle's first corner
                               decides, triangle by triangle. */
     std::size_t flipped_triangles = 0;
-    bool skinned = false;  /* placed by its skin's joints (bind pose); the
+    bool skinned = false;  /* placed by its skin's joints, in the pose the
+                              file's joint NODES have (their stored
+                              transforms): the bind pose only when the file
+                              was saved in it; a character saved mid-
+                              animation loads in that pose. The skinned
                               node's own transform is ignored (glTF) */
     /* World-space positions, x y z per vertex, computed in double and
      * rounded to float once. Vertices whose mesh-space positions are
@@ -83,6 +123,11 @@ public:
  * Throws GltfError; see the implementation's header comment for the list of
  * checks. Never reads outside a buffer. */
 GltfModel load_gltf(const std::string &path, const GltfLoadOptions &options = {});
+
+/* The same from bytes in memory; NAME stands for the path in messages, and
+ * file uris are relative to its folder (when options.external_files). */
+GltfModel load_gltf_memory(const unsigned char *bytes, std::size_t size, const std::string &name,
+                           const GltfLoadOptions &options = {});
 
 } // namespace sv
 

@@ -100,9 +100,28 @@ struct InSpaceCounts {
     void add(const InSpaceCounts &o);
 };
 
+/* The sizes verify can decide (issue 17): a surface whose bounds' half
+ * diagonal (its radius) lies in [kVerifyMinRadius, kVerifyMaxRadius]. The
+ * lights are verify's own, 0.3 to 4 radii from the center (directional
+ * ones at infinity), so their distances scale with it. Outside the range,
+ * or where more than max_skipped_fraction of the points lie too close to a
+ * boundary to decide (degenerate or collinear triangles, three vertices at
+ * one position, features below about 1e-7 of the radius), the result is
+ * "cannot decide" (LightResult::undecided, with the reason): neither a
+ * pass nor a failure. Measured (tests/test_verify.cpp): tetrahedra of
+ * radius 1.7e-38 to 8.7e35 decide and pass; scaled 1e-40 they pass too, but
+ * at 1e-45 (coordinates on float's denormal grid, where the lights' float
+ * positions fall onto the mesh's own grid) too many points are undecidable:
+ * below FLT_MIN the range stops. */
+constexpr double kVerifyMinRadius = 1.1754943508222875e-38; /* FLT_MIN */
+constexpr double kVerifyMaxRadius = 1e36;
+
 struct LightResult {
     bool ok = true;
     std::string failure;  /* names the variant, the light and the point */
+    /* ok, but the check could not decide (see kVerifyMinRadius): why. */
+    bool undecided = false;
+    std::string undecided_reason;
     int variants_checked = 0;
     int distinct_volumes = 0; /* index lists differing between variants */
     int64_t volume_triangles = 0;

@@ -21,6 +21,8 @@ const char *sv_status_string(int status) {
     case SV_E_CAPACITY: return "the output buffer is smaller than the documented bound";
     case SV_E_OVERFLOW: return "more than INT_MAX indices (in the input, 3 * numTriangles, or in the output)";
     case SV_E_CPU: return "this CPU lacks the variant's instruction set";
+    case SV_E_FACING_SENTINEL: return "facing[numTriangles] (the dangling edges' byte) is not 1";
+    case SV_E_CULL_BITS: return "a cull byte has bit 7 set, which sse2_paper's CountFacingCull does not honour (erratum D-5)";
     default: return status >= 0 ? "ok" : "unknown error";
     }
 }
@@ -44,6 +46,33 @@ static int check_facing_bytes(const uint8_t *facing, int n) {
     for (i = 0; i < n; i++) {
         if (facing[i] > 1) {
             return SV_E_FACING_NOT_BOOL;
+        }
+    }
+    return SV_OK;
+}
+
+/* facing[numTriangles] is the byte every dangling SilEdge (p2 =
+ * numTriangles) points at: it must be 1, or the volume is open there. Read
+ * on its own so that numTriangles = INT_MAX needs no numTriangles + 1. */
+static int check_facing_sentinel(const uint8_t *facing, int numTriangles) {
+    if (facing[numTriangles] > 1) {
+        return SV_E_FACING_NOT_BOOL;
+    }
+    return facing[numTriangles] == 1 ? SV_OK : SV_E_FACING_SENTINEL;
+}
+
+/* sse2_paper's CountFacingCull compares the AND of a triangle's cull bytes
+ * SIGNED (pcmpgtb, erratum D-5): an AND with bit 7 set reads as negative and
+ * the triangle is not culled. Its contract is bits 0..6; a cull byte with
+ * bit 7 is refused for it (the other variants honour all 8 bits). */
+static int check_cull_bits(const sv_variant *v, const uint8_t *cullBits, int numVerts) {
+    int i;
+    if (v->count_facing_cull != sv_count_facing_cull_sse2_paper) {
+        return SV_OK;
+    }
+    for (i = 0; i < numVerts; i++) {
+        if (cullBits[i] & 0x80u) {
+            return SV_E_CULL_BITS;
         }
     }
     return SV_OK;
@@ -100,6 +129,7 @@ int sv_count_facing_cull_checked(const sv_variant *v, uint8_t *facing, int numTr
     if (numTriangles > 0 && (!facing || !indices || !cullBits)) return SV_E_NULL;
     if ((s = check_facing_bytes(facing, numTriangles))) return s;
     if ((s = check_vertex_indices(indices, 3 * numTriangles, numVerts))) return s;
+    if (numTriangles > 0 && (s = check_cull_bits(v, cullBits, numVerts))) return s;
     return v->count_facing_cull(facing, numTriangles, indices, cullBits);
 }
 
@@ -113,8 +143,10 @@ int sv_create_sil_triangles_checked(const sv_variant *v, int *shadowIndices, siz
     if (!facing || (numSilEdges > 0 && (!silEdges || !shadowIndices))) return SV_E_NULL;
     if (!aligned(shadowIndices, v->align_shadow_indices)) return SV_E_ALIGNMENT;
     if (capacity < 6u * (size_t)numSilEdges) return SV_E_CAPACITY;
-    /* facing holds numTriangles + 1 bytes: the last is the dangling edges' 1 */
-    if ((s = check_facing_bytes(facing, numTriangles + 1))) return s;
+    /* facing holds numTriangles + 1 bytes: the last is the dangling edges' 1
+     * (checked apart: numTriangles + 1 overflows at INT_MAX) */
+    if ((s = check_facing_bytes(facing, numTriangles))) return s;
+    if ((s = check_facing_sentinel(facing, numTriangles))) return s;
     if ((s = check_sil_edges(silEdges, numSilEdges, numTriangles, -1))) return s;
     return v->create_sil_triangles(shadowIndices, facing, silEdges, numSilEdges);
 }
@@ -161,9 +193,11 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
         !aligned(shadowIndices, v->align_shadow_indices)) {
         return SV_E_ALIGNMENT;
     }
-    if ((s = check_facing_bytes(facing, numTriangles + 1))) return s;
+    if ((s = check_facing_bytes(facing, numTriangles))) return s;
+    if ((s = check_facing_sentinel(facing, numTriangles))) return s;
     if ((s = check_vertex_indices(indices, numIndices, numVerts))) return s;
     if ((s = check_sil_edges(silEdges, numSilEdges, numTriangles, numVerts))) return s;
+    if (cullBits && numTriangles > 0 && (s = check_cull_bits(v, cullBits, numVerts))) return s;
     return sv_create_shadow_volume(v, shadowIndices, indices, numIndices, silEdges,
                                    numSilEdges, facing, cullBits);
 }

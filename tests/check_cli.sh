@@ -75,7 +75,8 @@ expect_status 2 "--plot without --scaling" bench --plot "$tmp/p.svg"
 expect_status 2 "--max-triangles without --scaling" bench --max-triangles 5000
 expect_status 2 "--scaling --max-triangles 0" bench --scaling --max-triangles 0
 expect_status 2 "--scaling --regime fixed" bench --scaling --regime fixed
-expect_status 2 "--scaling --model" bench --scaling --model "$tmp/x.glb"
+expect_status 3 "--scaling --model (a missing file)" bench --scaling --model "$tmp/x.glb"
+expect_status 2 "--scaling --model synthetic" bench --scaling --model synthetic
 expect_status 2 "--scaling --light" bench --scaling --light 0,10,0,0
 expect_status 2 "--scaling with a value" bench --scaling=yes
 expect_status 2 "--scaling --json - --plot -" bench --scaling --json - --plot -

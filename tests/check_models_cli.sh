@@ -75,5 +75,27 @@ expect_status 3 "inspect a text file" inspect "$tmp/text.gltf"
 grep -q "text.gltf" "$tmp/err" || err "bad-file message does not name the file"
 expect_status 3 "verify a missing file" verify "$tmp/no_such_model.glb"
 
+# Hostile sizes (issue 17): the scene's triangles are estimated before
+# loading and refused above --max-triangles; verify's memory estimate above
+# --max-memory; both exit 3 with the numbers.
+expect_status 3 "inspect above --max-triangles" inspect "$models/character_1344.glb" --max-triangles 1000
+grep -q "more than the limit of 1000 triangles" "$tmp/err" || err "--max-triangles message: $(cat "$tmp/err")"
+expect_status 0 "inspect at --max-triangles" inspect "$models/character_1344.glb" --max-triangles 1344
+expect_status 3 "verify above --max-memory" verify "$models/character_1344.glb" --max-memory 512K
+grep -q "1344 triangles in the largest surface need about 0.9 MB" "$tmp/err" || err "--max-memory message: $(cat "$tmp/err")"
+expect_status 0 "verify at --max-memory" verify "$models/character_1344.glb" --max-memory 1M --lights 1 --points 10
+expect_status 2 "verify --max-memory x" verify "$models/character_1344.glb" --max-memory x
+# verify's third result (issue 17): a tetrahedron of 1e-45 (float's denormal
+# grid) is outside the sizes verify decides: CANNOT DECIDE, exit 4, with the
+# reason; never PASSED, never FAILED.
+cat >"$tmp/tiny.gltf" <<'GLTF'
+{"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"}, {"bufferView": 1, "componentType": 5125, "count": 12, "type": "SCALAR"}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48}], "buffers": [{"byteLength": 96, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAQAAAAAAAAAAAAAAAAAAAAEAAAAAAAAAAAAAAAAAAAABAAAAAAAAAAIAAAABAAAAAAAAAAEAAAADAAAAAAAAAAMAAAACAAAAAQAAAAIAAAADAAAA"}]}
+GLTF
+expect_status 4 "verify a 1e-45 tetrahedron" verify "$tmp/tiny.gltf" --lights 2 --points 50
+grep -q "^CANNOT DECIDE: .*outside the range verify decides" "$tmp/out" || err "no CANNOT DECIDE line: $(cat "$tmp/out")"
+grep -q "cannot decide" "$tmp/err" || err "no cannot-decide message on stderr"
+"$sv" verify "$tmp/tiny.gltf" --lights 2 --points 50 --json - 2>/dev/null | grep -q '"verdict": "undecided"' \
+  || err "verify --json: no verdict undecided"
+
 [ $fail -eq 0 ] && echo "check_models_cli: all passed"
 exit $fail

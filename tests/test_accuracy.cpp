@@ -14,7 +14,14 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "accuracy_internal.h"
 #include "expansion.h"
@@ -1069,6 +1076,87 @@ TEST(Study, CharacterWithoutTiming) {
             EXPECT_NEAR(ls.mean_distance_radii, p.radii, 1e-3 * p.radii) << p.name;
         }
     }
+}
+
+namespace {
+std::string test_base64(const std::string &in) {
+    static const char kTable[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    std::size_t i = 0;
+    for (; i + 2 < in.size(); i += 3) {
+        const uint32_t v = uint32_t(uint8_t(in[i])) << 16 | uint32_t(uint8_t(in[i + 1])) << 8 |
+                           uint8_t(in[i + 2]);
+        for (int sh = 18; sh >= 0; sh -= 6) out += kTable[(v >> sh) & 63];
+    }
+    const std::size_t rest = in.size() - i;
+    if (rest) {
+        uint32_t v = uint32_t(uint8_t(in[i])) << 16;
+        if (rest == 2) v |= uint32_t(uint8_t(in[i + 1])) << 8;
+        out += kTable[v >> 18];
+        out += kTable[(v >> 12) & 63];
+        out += rest == 2 ? kTable[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+} // namespace
+
+// Issue 17: the lights were seeded from the model's FILE NAME, so the
+// .gltf and the .glb of one geometry (or one file under two names) gave
+// different tables at the same --seed. They come from the content now.
+TEST(Study, LightsAreSeededByContentNotFileName) {
+    namespace fs = std::filesystem;
+    const std::string glb_path = std::string(SV_MODELS_DIR) + "/character_1344.glb";
+    std::ifstream in(glb_path, std::ios::binary);
+    ASSERT_TRUE(in.good()) << glb_path;
+    const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    uint32_t json_len = 0, bin_len = 0;
+    std::memcpy(&json_len, glb.data() + 12, 4);
+    const std::string json_text = glb.substr(20, json_len);
+    std::memcpy(&bin_len, glb.data() + 20 + json_len, 4);
+    const std::string bin = glb.substr(28 + json_len, bin_len);
+    nlohmann::json doc = nlohmann::json::parse(json_text);
+    doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + test_base64(bin);
+    const fs::path dir = fs::path(testing::TempDir()) / ("sv_acc_seed_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "same_geometry.gltf") << doc.dump();
+    fs::copy_file(glb_path, dir / "another_name.glb", fs::copy_options::overwrite_existing);
+
+    const auto a = acc::load_study_model(glb_path);
+    const auto b = acc::load_study_model((dir / "same_geometry.gltf").string());
+    const auto c = acc::load_study_model((dir / "another_name.glb").string());
+    EXPECT_NE(a->name, b->name);
+    EXPECT_EQ(a->content_hash, b->content_hash);
+    EXPECT_EQ(a->content_hash, c->content_hash);
+    acc::StudyOptions o;
+    o.timing = false;
+    o.lights = 4;
+    o.seed = 7;
+    const acc::StudyResult ra = acc::run_study({a.get()}, o);
+    const acc::StudyResult rb = acc::run_study({b.get()}, o);
+    const acc::StudyResult rc = acc::run_study({c.get()}, o);
+    ASSERT_EQ(ra.rows.size(), rb.rows.size());
+    ASSERT_EQ(ra.rows.size(), rc.rows.size());
+    for (std::size_t i = 0; i < ra.rows.size(); i++) {
+        for (const acc::StudyResult *r : {&rb, &rc}) {
+            const acc::StudyRow &x = ra.rows[i], &y = r->rows[i];
+            EXPECT_EQ(x.misclassified, y.misclassified) << x.variant->name;
+            EXPECT_EQ(x.flicker, y.flicker) << x.variant->name;
+            EXPECT_EQ(x.uncertain, y.uncertain) << x.variant->name;
+            EXPECT_EQ(x.silhouette_changed, y.silhouette_changed) << x.variant->name;
+            EXPECT_EQ(x.mean_distance_radii, y.mean_distance_radii) << x.variant->name;
+            EXPECT_EQ(x.height_radii, y.height_radii) << x.variant->name;
+        }
+    }
+    for (const acc::Placement &p : acc::placements()) {
+        const acc::LightSet la = acc::make_lights(*a, p, 8, 3), lb = acc::make_lights(*b, p, 8, 3);
+        ASSERT_EQ(la.lights.size(), lb.lights.size());
+        for (std::size_t i = 0; i < la.lights.size(); i++) {
+            EXPECT_EQ(0, std::memcmp(&la.lights[i], &lb.lights[i], sizeof(Vec4))) << p.name;
+        }
+    }
+    fs::remove_all(dir);
 }
 
 TEST(Study, BadModelIsAnError) {

@@ -34,7 +34,7 @@ TEST(Contracts, VariantTableNamesAreUniqueAndComplete) {
 
 TEST(Contracts, StatusStringsAreDistinct) {
     std::set<std::string> seen;
-    for (int s = SV_OK; s >= SV_E_CPU; s--) {
+    for (int s = SV_OK; s >= SV_E_CULL_BITS; s--) {
         EXPECT_TRUE(seen.insert(sv_status_string(s)).second) << s;
     }
 }
@@ -161,4 +161,72 @@ TEST(Contracts, ShadowVolumeCapacityAndOverflow) {
     EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out12, 12, indices, 3, 3, &beyond, 1, facing,
                                               nullptr),
               SV_E_INDEX_RANGE);
+}
+
+// Issue 17: numTriangles = INT_MAX made sv_create_sil_triangles_checked
+// compute numTriangles + 1 (signed overflow; UBSan aborts, and in Release
+// the wrapped count checked no facing byte at all). The bytes are now
+// checked up to numTriangles and facing[numTriangles] apart: the bad byte
+// at 1 is found long before the end of the (nominal) array.
+TEST(Contracts, SilTrianglesAtIntMaxTrianglesDoesNotOverflow) {
+    const svtest::IsaLimitLifted lifted;
+    uint8_t facing[4] = {0, 2, 1, 1};
+    alignas(16) int out[6];
+    for (const sv_variant *v : runnable_variants()) {
+        EXPECT_EQ(sv_create_sil_triangles_checked(v, out, 6, facing, INT_MAX, nullptr, 0),
+                  SV_E_FACING_NOT_BOOL)
+            << v->name;
+    }
+}
+
+// Issue 17: facing[numTriangles] must be 1 (dangling edges point at it).
+// One triangle with facing {0, 0} and its three dangling edges used to
+// return 6 indices with status ok: an open volume.
+TEST(Contracts, FacingSentinelMustBeOne) {
+    const svtest::IsaLimitLifted lifted;
+    alignas(16) int indices[4] = {0, 1, 2, 0};
+    const SilEdge edges[3] = {{0, 1, 0, 2}, {0, 1, 2, 4}, {0, 1, 4, 0}};
+    for (const sv_variant *v : runnable_variants()) {
+        alignas(16) uint8_t facing[16] = {0, 0};
+        alignas(16) int out[64];
+        EXPECT_EQ(sv_create_sil_triangles_checked(v, out, 64, facing, 1, edges, 3),
+                  SV_E_FACING_SENTINEL)
+            << v->name;
+        EXPECT_EQ(sv_create_shadow_volume_checked(v, out, 64, indices, 3, 3, edges, 3, facing,
+                                                  nullptr),
+                  SV_E_FACING_SENTINEL)
+            << v->name;
+        facing[1] = 1;
+        EXPECT_EQ(sv_create_sil_triangles_checked(v, out, 64, facing, 1, edges, 3), 18) << v->name;
+        EXPECT_EQ(sv_create_shadow_volume_checked(v, out, 64, indices, 3, 3, edges, 3, facing,
+                                                  nullptr),
+                  24)
+            << v->name;
+    }
+}
+
+// Issue 17 (erratum D-5): sse2_paper's CountFacingCull honours cull bits
+// 0..6 only. Four triangles whose vertices all have cull byte 0x80: c_ref
+// culls all four (count 4), sse2_paper none (0). Its checked entry points
+// now refuse such cull bytes; the other variants take all 8 bits.
+TEST(Contracts, Sse2PaperRefusesCullBitSeven) {
+    const svtest::IsaLimitLifted lifted;
+    alignas(16) int indices[12] = {0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2};
+    uint8_t cull[4] = {0x80, 0x80, 0x80, 0x80};
+    for (const sv_variant *v : runnable_variants()) {
+        alignas(16) uint8_t facing[16] = {0, 0, 0, 0, 1};
+        const bool paper_cull = v->count_facing_cull == sv_count_facing_cull_sse2_paper;
+        EXPECT_EQ(sv_count_facing_cull_checked(v, facing, 4, indices, cull, 4),
+                  paper_cull ? SV_E_CULL_BITS : 4)
+            << v->name;
+        uint8_t facing2[16] = {0, 0, 0, 0, 1};
+        alignas(16) int out[64];
+        const SilEdge edge = {0, 1, 0, 2};
+        const int r = sv_create_shadow_volume_checked(v, out, 64, indices, 12, 4, &edge, 1,
+                                                      facing2, cull);
+        EXPECT_EQ(r, paper_cull ? SV_E_CULL_BITS : 0) << v->name;
+        uint8_t low[4] = {0x40, 0x40, 0x40, 0x41}; // bits 0..6: every variant takes them
+        uint8_t facing3[16] = {0, 0, 0, 0, 1};
+        EXPECT_EQ(sv_count_facing_cull_checked(v, facing3, 4, indices, low, 4), 4) << v->name;
+    }
 }

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -83,6 +84,7 @@ struct Doc {
     Blob bin;
     std::vector<std::string> views, accessors, meshes, nodes, skins, scenes;
     std::string top;
+    std::string asset = "{\"version\":\"2.0\"}";
 
     int view(std::size_t offset, std::size_t length, std::size_t stride = 0) {
         std::string v = "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
@@ -145,7 +147,7 @@ struct Doc {
     // The JSON text; `buffer` is the one buffer object ("" when the
     // document has no binary data).
     std::string json(const std::string &buffer) const {
-        std::string j = "{\"asset\":{\"version\":\"2.0\"}," + top;
+        std::string j = "{\"asset\":" + asset + "," + top;
         auto array = [&j](const char *name, const std::vector<std::string> &items) {
             if (items.empty()) return;
             j += std::string("\"") + name + "\":[";
@@ -1139,6 +1141,201 @@ TEST_F(Gltf, DamagedFilesLoadOrFailCleanly) {
 }
 
 // ------------------------------------------------------------ real files --
+
+// ------------------------------------------------ hostile input (issue 17) --
+
+// Every byte sequence of S is well-formed UTF-8 (RFC 3629) and S has no
+// control character.
+bool printable_utf8(const std::string &s) {
+    const unsigned char *p = reinterpret_cast<const unsigned char *>(s.data());
+    const std::size_t n = s.size();
+    for (std::size_t i = 0; i < n;) {
+        const unsigned char c = p[i];
+        if (c < 0x20 || c == 0x7F) return false;
+        if (c < 0x80) {
+            i++;
+            continue;
+        }
+        std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3
+                          : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+        if (!len || i + len > n) return false;
+        for (std::size_t k = 1; k < len; k++) {
+            if ((p[i + k] & 0xC0) != 0x80) return false;
+        }
+        if ((c == 0xE0 && p[i + 1] < 0xA0) || (c == 0xED && p[i + 1] > 0x9F) ||
+            (c == 0xF0 && p[i + 1] < 0x90) || (c == 0xF4 && p[i + 1] > 0x8F)) {
+            return false;
+        }
+        i += len;
+    }
+    return true;
+}
+
+std::string gltf_error_of(const fs::path &path, const sv::GltfLoadOptions &options = {}) {
+    try {
+        sv::load_gltf(path.string(), options);
+    } catch (const sv::GltfError &e) {
+        return e.what();
+    } catch (const std::exception &e) {
+        return std::string("not a GltfError: ") + e.what();
+    }
+    return "";
+}
+
+// 17,500 levels of [[[...]]] in asset.extras overflowed tinygltf's
+// recursive parser (SIGSEGV; under ASan from 5,000). The nesting is now
+// measured on the bytes and refused above kGltfMaxJsonDepth, in .gltf and
+// .glb alike; at the bound the file loads.
+TEST_F(Gltf, JsonNestingDepthIsBoundedBeforeParsing) {
+    const int bound = sv::kGltfMaxJsonDepth;
+    EXPECT_EQ(bound, 128) << "the documented bound (docs/models.md)";
+    // root object 1, asset 2, extras' arrays from 3 on
+    for (int depth : {bound - 1, bound, bound + 1, 17500, 1000000}) {
+        Doc d = single_primitive(kCubePositions, kCubeIndices);
+        const int arrays = depth - 2;
+        d.asset = "{\"version\":\"2.0\",\"extras\":" + std::string(std::size_t(arrays), '[') +
+                  std::string(std::size_t(arrays), ']') + "}";
+        // a string with brackets and an escaped quote must not count
+        d.top = "\"extrasString\":\"[[[[\\\"{{{{\",";
+        for (const bool glb : {false, true}) {
+            const std::string name = "deep" + std::to_string(depth) + (glb ? ".glb" : ".gltf");
+            const fs::path path = glb ? write_glb(d, file(name)) : write_gltf(d, file(name));
+            if (depth <= bound) {
+                EXPECT_NO_THROW(sv::load_gltf(path.string())) << name;
+            } else {
+                expect_error(path, {"nests arrays and objects more than 128 deep",
+                                    "refused before parsing"});
+            }
+        }
+    }
+}
+
+// A 380-byte GLB whose VEC3 accessor claims 89,478,485 elements of a 36-byte
+// bufferView made the loader allocate 2 GB (count x 3 doubles) before the
+// range check refused it. Now the check comes first: under a 1 GB address
+// space limit the load ends with the range error, not bad_alloc. (Not under
+// ASan, whose shadow memory needs far more address space.)
+TEST_F(Gltf, AccessorRangeIsCheckedBeforeAllocating) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "RLIMIT_AS and AddressSanitizer do not mix";
+#else
+    Doc d = single_primitive({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2});
+    d.accessors[0] = "{\"bufferView\":0,\"componentType\":5126,\"count\":89478485,"
+                     "\"type\":\"VEC3\"}";
+    const fs::path path = write_glb(d, file("claims2gb.glb"));
+    EXPECT_LT(fs::file_size(path), 600u);
+    // The size limits off: they would refuse 89M vertices before decoding.
+    sv::GltfLoadOptions unlimited;
+    unlimited.max_triangles = unlimited.max_vertices = 0;
+    auto child = [&path, &unlimited]() {
+        rlimit limit{1ull << 30, 1ull << 30};
+        setrlimit(RLIMIT_AS, &limit);
+        int status = 3;
+        try {
+            sv::load_gltf(path.string(), unlimited);
+        } catch (const sv::GltfError &e) {
+            status = std::string(e.what()).find("run past the end") != std::string::npos ? 0 : 4;
+            std::fprintf(stderr, "%s\n", e.what());
+        } catch (const std::bad_alloc &) {
+            status = 5;
+        }
+        std::fflush(nullptr);
+        _exit(status);
+    };
+    EXPECT_EXIT(child(),
+        testing::ExitedWithCode(0), "");
+#endif
+}
+
+// tinygltf echoed a malformed data: URI whole (one line of 857,141 bytes)
+// and JSON parse errors echo raw bytes. Every message is now bounded and
+// printable UTF-8, and so are the surface names taken from the file.
+TEST_F(Gltf, MessagesAreBoundedAndValidUtf8) {
+    {   // a data: URI of a megabyte that is not base64
+        Doc d = single_primitive(kCubePositions, kCubeIndices);
+        std::string json = d.json("{\"byteLength\":99,\"uri\":\"data:application/octet-stream;"
+                                  "base64," + std::string(1 << 20, '!') + "\"}");
+        write_bytes(file("uri.gltf"), json);
+        const std::string m = gltf_error_of(file("uri.gltf"));
+        EXPECT_FALSE(m.empty());
+        EXPECT_LE(m.size(), 2000u) << m.substr(0, 400);
+        EXPECT_TRUE(printable_utf8(m)) << m.substr(0, 400);
+    }
+    {   // bytes that are not UTF-8 where the parser stops
+        const std::string json = "{\"asset\":{\"version\":\"2.0\"}, \xC3\x28\xFF\xFE\x01 }";
+        write_bytes(file("bytes.gltf"), json);
+        const std::string m = gltf_error_of(file("bytes.gltf"));
+        EXPECT_FALSE(m.empty());
+        EXPECT_TRUE(printable_utf8(m)) << m;
+        EXPECT_LE(m.size(), 2000u);
+    }
+    {   // names with control characters (JSON escapes) and of 10 KB
+        Doc d;
+        const int pos = d.positions(kCubePositions);
+        const int idx = d.indices(kCubeIndices);
+        d.mesh(prim(pos, idx), "bell\\u0007new\\nline " + std::string(10000, 'x'));
+        d.node("\"mesh\":0,\"name\":\"tab\\there \\u00e9\"");
+        const sv::GltfModel m = sv::load_gltf(write_gltf(d, file("names.gltf")).string());
+        ASSERT_EQ(m.surfaces.size(), 1u);
+        const std::string &name = m.surfaces[0].name;
+        EXPECT_TRUE(printable_utf8(name)) << name;
+        EXPECT_LE(name.size(), 800u);
+        EXPECT_NE(name.find("bell\\x07new\\x0Aline"), std::string::npos) << name;
+        EXPECT_NE(name.find("more bytes"), std::string::npos);
+        EXPECT_NE(name.find("tab\\x09here \xC3\xA9"), std::string::npos) << name;
+    }
+    // printable_text on its own: cut, escapes, idempotence
+    EXPECT_EQ(sv::printable_text("abc"), "abc");
+    EXPECT_EQ(sv::printable_text(std::string("a\xFF" "b")), "a\\xFFb");
+    EXPECT_EQ(sv::printable_text(std::string("\xE2\x82\xAC")), "\xE2\x82\xAC");
+    EXPECT_EQ(sv::printable_text(std::string("\xED\xA0\x80")), "\\xED\\xA0\\x80") << "surrogate";
+    EXPECT_EQ(sv::printable_text(std::string("\xC0\xAF")), "\\xC0\\xAF") << "overlong";
+    EXPECT_EQ(sv::printable_text(std::string(10, 'x'), 4), "xxxx... (6 more bytes)");
+    const std::string once = sv::printable_text(std::string("\x01\xFF\xE2\x82\xAC q"));
+    EXPECT_EQ(sv::printable_text(once), once);
+}
+
+// Hostile sizes: the node count, and the triangles and vertices summed
+// over the instances (estimated from accessor counts before any surface is
+// built), each against its limit, with the numbers and the estimate in the
+// message.
+TEST_F(Gltf, HostileSizesAreRefusedBeforeBuilding) {
+    EXPECT_EQ(sv::GltfLoadOptions{}.max_triangles, std::size_t(1) << 24);
+    EXPECT_EQ(sv::GltfLoadOptions{}.max_vertices, std::size_t(1) << 25);
+    EXPECT_EQ(sv::GltfLoadOptions{}.max_nodes, std::size_t(1) << 20);
+    Doc d;
+    const int pos = d.positions(kCubePositions);
+    const int idx = d.indices(kCubeIndices);
+    d.mesh(prim(pos, idx), "cube");
+    std::string roots;
+    for (int i = 0; i < 20; i++) {
+        d.node("\"mesh\":0,\"translation\":[" + std::to_string(3 * i) + ",0,0]");
+        roots += (i ? "," : "") + std::to_string(i);
+    }
+    d.scene(roots);
+    const fs::path path = write_gltf(d, file("cubes.gltf"));
+    sv::GltfLoadOptions o;
+    o.max_triangles = 240; // 20 instances x 12 triangles: at the limit
+    EXPECT_EQ(sv::load_gltf(path.string(), o).surfaces.size(), 20u);
+    o.max_triangles = 239;
+    expect_error(path, {"asks for 240 triangles and 160 vertices in 20 mesh instance",
+                        "GB", "limit of 239 triangles", "--max-triangles"},
+                 o);
+    o = {};
+    o.max_vertices = 159;
+    expect_error(path, {"160 vertices", "limit of 159 vertices"}, o);
+    o = {};
+    o.max_nodes = 19;
+    expect_error(path, {"20 nodes, more than the limit of 19"}, o);
+    o.max_nodes = 0; // no limit
+    EXPECT_NO_THROW(sv::load_gltf(path.string(), o));
+    // A sparse accessor without bufferView pays for nothing: 2^24 components
+    Doc sp = single_primitive(kCubePositions, kCubeIndices);
+    sp.accessors[0] = "{\"componentType\":5126,\"count\":5592406,\"type\":\"VEC3\","
+                      "\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,"
+                      "\"componentType\":5125},\"values\":{\"bufferView\":0}}}";
+    expect_error(write_gltf(sp, file("sparse.gltf")), {"without bufferView", "too large"});
+}
 
 TEST(GltfAssimpModels, EachLoadsOrFailsCleanly) {
     const fs::path root = SV_ASSIMP_GLTF2_DIR;

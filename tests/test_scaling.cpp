@@ -487,6 +487,36 @@ TEST_F(ScalingRun, SvgIsWellFormedWithAPolylinePerVariantAndTheCacheMarkers) {
 
 /* ---- The parts ---------------------------------------------------------- */
 
+// Issue 17: `bench --scaling --model FILE` measures the user's own mesh
+// beside the generated ones (it was refused: a user could not add a mesh).
+TEST(ScalingModel, UsersOwnMeshIsMeasured) {
+    char tmpl[] = "/tmp/sv_scaling_model_XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    const std::string dir = tmpl;
+    const std::string mine = dir + "/my_own_mesh.glb";
+    {
+        std::ifstream in(std::string(SV_MODELS_DIR) + "/character_1344.glb", std::ios::binary);
+        std::ofstream out(mine, std::ios::binary);
+        out << in.rdbuf();
+    }
+    const Result r = run_shadowvol("bench --scaling --quick --max-triangles 1344 --routine "
+                                   "count_facing --model '" + mine + "' --json '" + dir +
+                                       "/s.json'",
+                                   dir);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("my_own_mesh.glb"), std::string::npos) << r.out;
+    const json doc = json::parse(slurp(dir + "/s.json"));
+    bool found = false;
+    for (const json &m : doc.at("models")) found = found || m.at("model") == "my_own_mesh.glb";
+    EXPECT_TRUE(found) << doc.at("models").dump();
+    const Result bad = run_shadowvol("bench --scaling --quick --model synthetic", dir);
+    EXPECT_EQ(bad.status, 2) << bad.err;
+    for (const char *f : {"/my_own_mesh.glb", "/s.json", "/stdout", "/stderr"}) {
+        std::remove((dir + f).c_str());
+    }
+    rmdir(dir.c_str());
+}
+
 TEST(WorkingSet, VolumeAtThePapersRatios) {
     using svbench::Routine;
     const svbench::WorkingSet ws =

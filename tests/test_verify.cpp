@@ -307,3 +307,76 @@ TEST(RayTriangles, CandidatesContainEveryCrossing) {
 }
 
 } // namespace
+
+// Issue 17: verify's range of scales, and "cannot decide" as a result of its
+// own. A tetrahedron scaled 1e-45 used to FAIL with a winding-number
+// "mismatch" while its volume was closed and right: the verifier clamped the
+// surface's radius at 1e-30, so its lights and sample points sat 10^15 mesh
+// sizes away, beyond double's precision near the mesh. Without the clamp,
+// tetrahedra across the documented range decide and pass; below FLT_MIN the
+// answer is "cannot decide", with the reason, never a failure.
+namespace {
+sv::LightResult verify_tetrahedron(double scale, int lights, bool *all_decided) {
+    const float s = (float)scale;
+    const std::vector<float> pos = {0, 0, 0, s, 0, 0, 0, s, 0, 0, 0, s};
+    const std::vector<uint32_t> idx = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    const sv::PreparedSurface t = prepare(pos, idx);
+    sv::VerifyOptions o;
+    o.points_per_light = 400;
+    sv::LightResult last;
+    *all_decided = true;
+    for (const sv::VerifyLight &l : sv::make_verify_lights(t, lights, 11)) {
+        last = sv::verify_light(t, l, sv::supported_variants(), o, 5);
+        if (!last.ok) return last;
+        if (last.undecided) *all_decided = false;
+    }
+    return last;
+}
+} // namespace
+
+TEST(VerifyScale, TetrahedraAcrossTheRangeDecideAndPass) {
+    for (double scale : {2e-38, 1e-33, 1e-20, 1.0, 1e20, 1e30, 5e35}) {
+        bool decided = false;
+        const sv::LightResult r = verify_tetrahedron(scale, 8, &decided);
+        EXPECT_TRUE(r.ok) << scale << ": " << r.failure;
+        EXPECT_TRUE(decided) << scale << ": " << r.undecided_reason;
+    }
+}
+
+TEST(VerifyScale, OutsideTheRangeIsUndecidedNeverFailed) {
+    for (double scale : {1e-45, 1e-40, 2e36}) {
+        bool decided = true;
+        const sv::LightResult r = verify_tetrahedron(scale, 8, &decided);
+        EXPECT_TRUE(r.ok) << scale << ": " << r.failure;
+        EXPECT_FALSE(decided) << scale;
+    }
+    bool decided = true;
+    const sv::LightResult r = verify_tetrahedron(1e-45, 1, &decided);
+    EXPECT_NE(r.undecided_reason.find("outside the range verify decides"), std::string::npos)
+        << r.undecided_reason;
+    EXPECT_LT(sv::kVerifyMinRadius, 2e-38 * 0.87);
+    EXPECT_GT(sv::kVerifyMaxRadius, 5e35 * 0.87);
+}
+
+// Three vertices at one position and collinear triangles: many points
+// cannot be decided; that is "cannot decide" with its reason, not FAILED.
+TEST(VerifyScale, DegenerateMeshIsUndecidedNotFailed) {
+    // A flat fan of collinear triangles plus a triangle with coincident
+    // corners, in a line: nothing but boundaries.
+    const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 1, 1e-7f, 0};
+    const std::vector<uint32_t> idx = {0, 1, 4, 1, 2, 4, 2, 3, 4, 0, 4, 3};
+    const sv::PreparedSurface t = prepare(pos, idx);
+    sv::VerifyOptions o;
+    o.points_per_light = 400;
+    int undecided = 0;
+    for (const sv::VerifyLight &l : sv::make_verify_lights(t, 8, 3)) {
+        const sv::LightResult r = sv::verify_light(t, l, sv::supported_variants(), o, 9);
+        EXPECT_TRUE(r.ok) << r.failure;
+        if (r.undecided) {
+            undecided++;
+            EXPECT_NE(r.undecided_reason.find("too close to a boundary"), std::string::npos)
+                << r.undecided_reason;
+        }
+    }
+    EXPECT_GT(undecided, 0);
+}

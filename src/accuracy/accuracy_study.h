@@ -64,6 +64,10 @@ struct StudyModel {
     float extents[3] = {0, 0, 0}; /* half sizes of the axis-aligned bounds */
     double radius = 0;            /* |extents| */
     int64_t triangles = 0, sil_edges = 0;
+    /* FNV-1a of the prepared surfaces' positions and indices: the lights
+     * are drawn from it and the seed, so a .gltf and a .glb of the same
+     * geometry (or the same file under another name) give the same table. */
+    uint64_t content_hash = 0;
 };
 
 class StudyError : public std::runtime_error {

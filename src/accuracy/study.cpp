@@ -67,6 +67,13 @@ uint64_t name_hash(const char *s) {
     return h;
 }
 
+/* FNV-1a over raw bytes, continuing from H. */
+uint64_t bytes_hash(uint64_t h, const void *data, std::size_t n) {
+    const unsigned char *p = static_cast<const unsigned char *>(data);
+    for (std::size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
 const float *vertex(const PreparedSurface &s, int t, int corner) {
     return &s.positions[3 * (std::size_t)s.indices[3 * (std::size_t)t + (std::size_t)corner]];
 }
@@ -104,6 +111,13 @@ std::unique_ptr<StudyModel> load_study_model(const std::string &path) {
         for (std::size_t k = 0; k < p.size(); k++) {
             lo[k % 3] = std::min(lo[k % 3], (double)p[k]);
             hi[k % 3] = std::max(hi[k % 3], (double)p[k]);
+        }
+        {
+            const PreparedSurface &ps = s->prepared;
+            uint64_t h = m->content_hash ? m->content_hash : 1469598103934665603ull;
+            h = bytes_hash(h, ps.positions.data(), ps.positions.size() * sizeof(float));
+            h = bytes_hash(h, ps.indices.data(), ps.indices.size() * sizeof(ps.indices[0]));
+            m->content_hash = h;
         }
         m->triangles += s->prepared.num_triangles();
         m->sil_edges += s->prepared.num_sil_edges();
@@ -162,7 +176,7 @@ const Placement *placement_by_name(const std::string &name) {
 LightSet make_lights(const StudyModel &m, const Placement &p, int count, uint64_t seed) {
     LightSet ls;
     ls.placement = &p;
-    svbench::Rng rng{seed ^ name_hash(p.name) ^ (name_hash(m.name.c_str()) << 1)};
+    svbench::Rng rng{seed ^ name_hash(p.name) ^ (m.content_hash << 1)};
     const double r = m.radius;
     const double c[3] = {m.center[0], m.center[1], m.center[2]};
     const std::string name = p.name;
@@ -363,7 +377,7 @@ void Study::time_variant(const Variant &v, const StudyModel &m, const LightSet &
 void Study::run_placement(const StudyModel &m, const Placement &p,
                           const std::vector<const Variant *> &vars) {
     const LightSet ls =
-        make_lights(m, p, o_.lights, o_.seed * 0x9E3779B97F4A7C15ull + name_hash(m.name.c_str()));
+        make_lights(m, p, o_.lights, o_.seed * 0x9E3779B97F4A7C15ull + m.content_hash);
     const std::size_t nv = vars.size();
     std::vector<StudyRow> rows(nv);
     for (std::size_t vi = 0; vi < nv; vi++) {

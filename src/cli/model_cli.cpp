@@ -5,8 +5,9 @@
  * scene (all primitives of the mesh merged, in world space).
  *
  * Exit status: 0 done (verify: every check passed); 1 a check failed;
- * 2 bad arguments; 3 the model could not be loaded or prepared (the message
- * on stderr names the file and the problem).
+ * 2 bad arguments; 3 the model could not be loaded or prepared, or is
+ * larger than the limits (the message on stderr names the file and the
+ * problem); 4 (verify) the check could not decide (the reason is printed).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -34,7 +35,28 @@ namespace {
 constexpr int kExitCheckFailed = 1;
 constexpr int kExitUsage = 2;
 constexpr int kExitBadModel = 3;
+constexpr int kExitUndecided = 4;
 
+/* verify's memory, estimated before it starts: per triangle of the largest
+ * surface (measured: 6.6 GB for a 10M-triangle grid), and its time per
+ * triangle, light and variant (77 s for that grid with 2 lights). */
+constexpr double kVerifyBytesPerTriangle = 700.0;
+constexpr double kVerifySecondsPerTriangleLight = 4e-6;
+constexpr long long kDefaultVerifyMaxMemoryMb = 8192;
+
+/* --max-memory SIZE: a whole number of bytes with an optional K, M or G
+ * (powers of 1024); plain numbers are megabytes. */
+long long memory_size(ArgReader &a) {
+    const std::string v = a.value();
+    std::size_t digits = 0;
+    while (digits < v.size() && v[digits] >= '0' && v[digits] <= '9') digits++;
+    const std::string unit = v.substr(digits);
+    long long shift = unit.empty() || unit == "M" ? 20 : unit == "K" ? 10 : unit == "G" ? 30 : -1;
+    if (digits == 0 || digits > 12 || shift < 0) {
+        usage_error("--max-memory needs a size like 512K, 800M (or 800), 8G; not '" + v + "'");
+    }
+    return std::stoll(v.substr(0, digits)) << shift;
+}
 struct Surface {
     sv::GltfSurface source; /* positions and indices dropped after preparing */
     sv::PreparedSurface prepared;
@@ -49,9 +71,13 @@ struct LoadedModel {
 /* Loads and prepares every surface; a failure is reported on stderr and
  * gives false. */
 bool load_model(const char *command, const std::string &path, const std::string &mesh,
-                LoadedModel *out) {
+                long long max_triangles, LoadedModel *out) {
     sv::GltfLoadOptions options;
     options.mesh_name = mesh;
+    if (max_triangles >= 0) {
+        options.max_triangles = (std::size_t)max_triangles;
+        options.max_vertices = 2 * (std::size_t)max_triangles;
+    }
     try {
         sv::GltfModel m = sv::load_gltf(path, options);
         out->path = path;
@@ -104,8 +130,13 @@ void add_report(sv::PrepareReport &t, const sv::PrepareReport &r) {
     t.dangling_sil_edges += r.dangling_sil_edges;
 }
 
+/* Cut at a UTF-8 character boundary (names are valid UTF-8: the loader
+ * makes them so), never inside a character. */
 std::string shorten(const std::string &s, std::size_t n) {
-    return s.size() <= n ? s : s.substr(0, n - 3) + "...";
+    if (s.size() <= n) return s;
+    std::size_t cut = n - 3;
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) cut--;
+    return s.substr(0, cut) + "...";
 }
 
 /* JSON file output: "-" is stdout. */
@@ -149,6 +180,7 @@ void json_report(FILE *f, const sv::PrepareReport &r) {
 
 struct ModelArgs {
     std::string model, mesh, json_path;
+    long long max_triangles = -1; /* -1: the loader's default */
 };
 
 /* The options inspect and verify share: MODEL, --mesh, --json, --help.
@@ -167,6 +199,8 @@ int parse_model_args(const char *command, int argc, char **argv, void (*usage)(F
                 out->mesh = a.value();
             } else if (a.is("--json")) {
                 out->json_path = a.value();
+            } else if (a.is("--max-triangles")) {
+                out->max_triangles = a.integer(0, (long long)1 << 40);
             } else if (extra(a)) {
                 continue;
             } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
@@ -217,8 +251,12 @@ void inspect_usage(FILE *out) {
                  "  --mesh NAME   only the instances of the mesh called NAME\n"
                  "  --json FILE   also write the report as JSON (schema shadowvol-inspect/1;\n"
                  "                FILE - is stdout, and the table then goes to stderr)\n"
+                 "  --max-triangles N  refuse a scene of more than N triangles (summed over\n"
+                 "                its instances, estimated before loading; default 16777216,\n"
+                 "                about 2 GB; 0 = no limit)\n"
                  "\n"
-                 "Exit status: 0 done, 2 bad arguments, 3 the model could not be loaded.\n");
+                 "Exit status: 0 done, 2 bad arguments, 3 the model could not be loaded\n"
+                 "(or is above the limits).\n");
 }
 
 int inspect_main(int argc, char **argv) {
@@ -229,7 +267,7 @@ int inspect_main(int argc, char **argv) {
     const std::string &model = args.model;
 
     LoadedModel m;
-    if (!load_model("inspect", model, args.mesh, &m)) return kExitBadModel;
+    if (!load_model("inspect", model, args.mesh, args.max_triangles, &m)) return kExitBadModel;
     JsonOut json;
     if (!json.open("inspect", args.json_path)) return kExitBadModel;
     FILE *out = json.f == stdout ? stderr : stdout;
@@ -336,8 +374,11 @@ void verify_usage(FILE *out) {
                  "            and an unculled light, a point outside the mesh is also checked\n"
                  "            to be in shadow exactly when that segment crosses the mesh.\n"
                  "Variants whose index lists are equal share the in-space check. Points too\n"
-                 "close to a boundary to decide are skipped and counted (at most 2%%).\n"
-                 "Stops at the first failure and prints the variant, the light and the point.\n"
+                 "close to a boundary to decide are skipped and counted; when more than 2%%\n"
+                 "of a light's points are, or the surface's radius is outside [1.2e-38, 1e36],\n"
+                 "the result is CANNOT DECIDE (exit 4) with the reason: not a pass, not a\n"
+                 "failure. Stops at the first failure and prints the variant, the light and\n"
+                 "the point.\n"
                  "\n"
                  "options:\n"
                  "  --lights N      lights per surface (default %d)\n"
@@ -347,19 +388,28 @@ void verify_usage(FILE *out) {
                  "  --mesh NAME     only the instances of the mesh called NAME\n"
                  "  --json FILE     also write the results as JSON (schema shadowvol-verify/1;\n"
                  "                  FILE - is stdout, and the table then goes to stderr)\n"
+                 "  --max-triangles N  as for inspect (default 16777216; 0 = no limit)\n"
+                 "  --max-memory SIZE  refuse to start when the estimate of verify's memory\n"
+                 "                  (about 700 bytes a triangle of the largest surface) is\n"
+                 "                  above SIZE (512K, 800M or 800, 8G; default %lldM;\n"
+                 "                  0 = no limit)\n"
                  "\n"
                  "Progress goes to stderr. Exit status: 0 every check passed, 1 a check failed,\n"
-                 "2 bad arguments, 3 the model could not be loaded.\n",
-                 kDefaultLights, kDefaultPoints);
+                 "2 bad arguments, 3 the model could not be loaded (or is above the limits),\n"
+                 "4 the check could not decide.\n",
+                 kDefaultLights, kDefaultPoints, kDefaultVerifyMaxMemoryMb);
 }
 
 int verify_main(int argc, char **argv) {
     ModelArgs args;
     int lights = kDefaultLights, points = kDefaultPoints;
     uint64_t seed = 1;
+    long long max_memory = kDefaultVerifyMaxMemoryMb << 20;
     std::vector<const sv_variant *> variants;
     auto extra = [&](ArgReader &a) {
-        if (a.is("--lights")) {
+        if (a.is("--max-memory")) {
+            max_memory = memory_size(a);
+        } else if (a.is("--lights")) {
             lights = (int)a.integer(1, 100000);
         } else if (a.is("--points")) {
             points = (int)a.integer(1, 10000000);
@@ -392,7 +442,28 @@ int verify_main(int argc, char **argv) {
     if (variants.empty()) variants = sv::supported_variants();
 
     LoadedModel m;
-    if (!load_model("verify", model, args.mesh, &m)) return kExitBadModel;
+    if (!load_model("verify", model, args.mesh, args.max_triangles, &m)) return kExitBadModel;
+    {   /* Hostile sizes: memory and time estimated before any volume. */
+        int64_t largest = 0, total = 0;
+        for (const Surface &s : m.surfaces) {
+            largest = std::max<int64_t>(largest, s.prepared.num_triangles());
+            total += s.prepared.num_triangles();
+        }
+        const double mb = kVerifyBytesPerTriangle * (double)largest / (1 << 20);
+        const double seconds = kVerifySecondsPerTriangleLight * (double)total * lights;
+        if (max_memory > 0 && mb * (1 << 20) > (double)max_memory) {
+            std::fprintf(stderr,
+                         "shadowvol verify: %s: %lld triangles in the largest surface need about "
+                         "%.1f MB (and %.0f s for %d lights), more than --max-memory %.1f MB\n",
+                         model.c_str(), (long long)largest, mb, seconds, lights,
+                         (double)max_memory / (1 << 20));
+            return kExitBadModel;
+        }
+        if (seconds > 30) {
+            std::fprintf(stderr, "shadowvol verify: %s: estimated %.0f s and %.0f MB\n",
+                         model.c_str(), seconds, mb);
+        }
+    }
     JsonOut json;
     if (!json.open("verify", args.json_path)) return kExitBadModel;
     FILE *out = json.f == stdout ? stderr : stdout;
@@ -411,8 +482,8 @@ int verify_main(int argc, char **argv) {
     /* Progress (surface and light) on a terminal only: logs stay clean. */
     const bool progress = isatty(2);
     std::vector<SurfaceVerdict> verdicts;
-    std::string failure;
-    std::size_t failed_surface = 0;
+    std::string failure, undecided;
+    std::size_t failed_surface = 0, undecided_surface = 0;
     for (std::size_t si = 0; si < m.surfaces.size() && failure.empty(); si++) {
         const Surface &s = m.surfaces[si];
         SurfaceVerdict v;
@@ -441,6 +512,10 @@ int verify_main(int argc, char **argv) {
                 failure = r.failure;
                 failed_surface = si;
                 break;
+            }
+            if (r.undecided && undecided.empty()) {
+                undecided = r.undecided_reason;
+                undecided_surface = si;
             }
         }
         v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -488,6 +563,14 @@ int verify_main(int argc, char **argv) {
             std::fprintf(stderr, "shadowvol verify: %s: surface %s: %s\n", model.c_str(),
                          m.surfaces[failed_surface].source.name.c_str(), failure.c_str());
         }
+    } else if (!undecided.empty()) {
+        std::fprintf(out, "CANNOT DECIDE: surface %s: %s\n",
+                     m.surfaces[undecided_surface].source.name.c_str(), undecided.c_str());
+        if (out != stderr) {
+            std::fprintf(stderr, "shadowvol verify: %s: cannot decide: surface %s: %s\n",
+                         model.c_str(), m.surfaces[undecided_surface].source.name.c_str(),
+                         undecided.c_str());
+        }
     } else {
         std::fprintf(out, "PASSED: every volume closed and right in space.\n");
     }
@@ -500,9 +583,14 @@ int verify_main(int argc, char **argv) {
         for (std::size_t i = 0; i < variants.size(); i++) {
             std::fprintf(json.f, "%s%s", i ? ", " : "", json_string(variants[i]->name).c_str());
         }
-        std::fprintf(json.f, "],\n \"passed\": %s, \"failure\": %s,\n \"surfaces\": [",
-                     failure.empty() ? "true" : "false",
-                     failure.empty() ? "null" : json_string(failure).c_str());
+        std::fprintf(json.f,
+                     "],\n \"passed\": %s, \"verdict\": \"%s\", \"failure\": %s, "
+                     "\"undecided\": %s,\n \"surfaces\": [",
+                     failure.empty() && undecided.empty() ? "true" : "false",
+                     !failure.empty() ? "failed" : !undecided.empty() ? "undecided" : "passed",
+                     failure.empty() ? "null" : json_string(failure).c_str(),
+                     failure.empty() && !undecided.empty() ? json_string(undecided).c_str()
+                                                           : "null");
         for (std::size_t i = 0; i < verdicts.size(); i++) {
             const SurfaceVerdict &v = verdicts[i];
             const sv::InSpaceCounts &c = v.counts;
@@ -526,7 +614,7 @@ int verify_main(int argc, char **argv) {
         }
         std::fprintf(json.f, "]}\n");
     }
-    return failure.empty() ? 0 : kExitCheckFailed;
+    return !failure.empty() ? kExitCheckFailed : !undecided.empty() ? kExitUndecided : 0;
 }
 
 } // namespace svcli

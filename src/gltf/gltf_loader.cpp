@@ -30,8 +30,12 @@
  *  - rigid: p' = W p, W = the node's world matrix, the product down the
  *    parent chain of each node's `matrix` or T * R * S (the rotation
  *    quaternion is normalized first: files store it to a few digits).
- *  - skinned (the node has a skin): the bind pose, as glTF defines it: the
- *    node's own transform is ignored, and p' = sum_k w_k * (world(joint_k) *
+ *  - skinned (the node has a skin): the pose of the file's joint NODES, as
+ *    their stored transforms place them. That is the bind pose only when
+ *    the file was saved in it: a character saved mid-animation loads in
+ *    that pose, not its bind pose (which the inverse bind matrices imply
+ *    but glTF does not store as node transforms). The skinned node's own
+ *    transform is ignored (glTF), and p' = sum_k w_k * (world(joint_k) *
  *    inverseBindMatrix_k) p over the vertex's influences (JOINTS_0/WEIGHTS_0,
  *    and JOINTS_1/WEIGHTS_1 when present). Absent inverseBindMatrices mean
  *    identity. The weights are divided by their sum (so the blend stays an
@@ -103,7 +107,7 @@
  *    refused; indices: SCALAR u8/u16/u32; JOINTS_n: VEC4 u8/u16; WEIGHTS_n:
  *    VEC4 float or normalized u8/u16; inverseBindMatrices: MAT4 FLOAT), no
  *    bufferView and not sparse, more than 2^28 components (a sane bound on
- *    what one accessor may make this loader allocate; 2^24 elements for a
+ *    what one accessor may make this loader allocate; 2^24 components for a
  *    sparse accessor without bufferView, whose zeros the file does not
  *    pay for), a count whose byte size overflows size_t;
  *  - buffer ranges: a bufferView or buffer index out of range, a bufferView
@@ -119,6 +123,17 @@
  *    JOINTS_n and WEIGHTS_n counts differing from POSITION's, more than two
  *    influence sets (8 influences), a joint index >= the skin's joint count,
  *    a negative or non-finite weight, all weights zero.
+ *  - hostile sizes (issue 17): JSON nested deeper than kGltfMaxJsonDepth
+ *    (checked on the bytes before tinygltf parses them); more nodes than
+ *    options.max_nodes; more triangles or vertices, summed over the selected
+ *    instances and estimated from the accessor counts before any surface is
+ *    built, than options.max_triangles / max_vertices (the message gives
+ *    the estimated memory and time). An accessor's buffer range is checked
+ *    before its values are allocated, so a small file cannot make the
+ *    loader allocate more than its bytes justify (sparse accessors without
+ *    bufferView: kMaxUnbackedComponents).
+ *  - messages: every text quoted from the file (tinygltf's errors, names)
+ *    is at most kGltfMaxQuotedBytes and valid UTF-8 (printable_text).
  * Every size computation that could overflow is checked (checked_add,
  * checked_mul). The host is little-endian (CMake requires x86-64), so
  * buffer bytes are read with memcpy as they are.
@@ -161,8 +176,9 @@ using tinygltf::Accessor;
 constexpr std::size_t kMaxAccessorComponents = std::size_t(1) << 28;
 
 /* A sparse accessor without bufferView has zeros for a base: nothing in the
- * file pays for its count, so it gets a tighter bound (16M elements). */
-constexpr std::size_t kMaxUnbackedElements = std::size_t(1) << 24;
+ * file pays for its count, so it gets a tighter bound (16M components,
+ * 128 MB of doubles: 5.6M VEC3 positions). */
+constexpr std::size_t kMaxUnbackedComponents = std::size_t(1) << 24;
 
 /* Indices are u32: a surface holds at most 2^32 vertices. */
 constexpr std::size_t kMaxSurfaceVertices = std::size_t(1) << 32;
@@ -193,7 +209,7 @@ bool checked_mul(std::size_t a, std::size_t b, std::size_t *product) {
     return true;
 }
 
-std::string quoted(const std::string &s) { return "'" + s + "'"; }
+std::string quoted(const std::string &s) { return "'" + printable_text(s) + "'"; }
 
 /* Formats a double the way a person wants to read it in a message. */
 std::string number_text(double v) {
@@ -428,8 +444,54 @@ bool ignore_image(tinygltf::Image *, const int, std::string *, std::string *, in
 
 // ------------------------------------------------------------- file level --
 
+/* A whole message's bound: a few quoted texts and the words around them. */
+constexpr std::size_t kMaxMessageBytes = 4 * kGltfMaxQuotedBytes;
+
 [[noreturn]] void fail_file(const std::string &path, const std::string &problem) {
-    throw GltfError(path + ": " + problem);
+    throw GltfError(printable_text(path, kGltfMaxQuotedBytes) + ": " +
+                    printable_text(problem, kMaxMessageBytes));
+}
+
+/* The deepest nesting of arrays and objects in JSON text, stopping at the
+ * first byte that goes past LIMIT (*at gets its offset); strings (with
+ * their escapes) skipped. Malformed text is tinygltf's to report. */
+int json_depth(const unsigned char *p, std::size_t n, int limit, std::size_t *at) {
+    int depth = 0, deepest = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < n; i++) {
+        const unsigned char c = p[i];
+        if (in_string) {
+            if (c == '\\') {
+                i++;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > deepest) {
+                deepest = depth;
+                if (deepest > limit) {
+                    *at = i;
+                    return deepest;
+                }
+            }
+        } else if (c == ']' || c == '}') {
+            depth--;
+        }
+    }
+    return deepest;
+}
+
+void check_json_depth(const std::string &path, const unsigned char *p, std::size_t n,
+                      std::size_t offset, const char *where) {
+    std::size_t at = 0;
+    if (json_depth(p, n, kGltfMaxJsonDepth, &at) > kGltfMaxJsonDepth) {
+        fail_file(path, std::string(where) + " nests arrays and objects more than " +
+                            std::to_string(kGltfMaxJsonDepth) + " deep (at byte " +
+                            std::to_string(offset + at) +
+                            "); refused before parsing (glTF needs about 8 levels)");
+    }
 }
 
 /* The whole file. Read here rather than by tinygltf so that a missing or
@@ -545,7 +607,7 @@ void add_tinygltf_lines(const std::string &text, std::vector<std::string> &notes
             end = text.size();
         }
         if (end > start) {
-            notes.push_back("tinygltf: " + text.substr(start, end - start));
+            notes.push_back("tinygltf: " + printable_text(text.substr(start, end - start)));
         }
         start = end + 1;
     }
@@ -558,10 +620,24 @@ std::string trimmed(std::string s) {
     return s;
 }
 
+/* For options.external_files = false: no file exists. */
+bool no_file_exists(const std::string &, void *) { return false; }
+bool no_file_read(std::vector<unsigned char> *, std::string *err, const std::string &name,
+                  void *) {
+    if (err) *err += "external file " + name + " refused (external files are off)\n";
+    return false;
+}
+
 /* Parses the file with tinygltf: GLB or JSON by the magic, external
  * buffers relative to the file's folder. */
-tinygltf::Model parse_gltf(const std::string &path, std::vector<std::string> &notes) {
-    const std::vector<unsigned char> bytes = read_file(path);
+tinygltf::Model parse_gltf(const std::string &path, const std::vector<unsigned char> &bytes,
+                           bool external_files, std::vector<std::string> &notes) {
+    if (bytes.empty()) {
+        fail_file(path, "empty file (not a glTF file)");
+    }
+    if (bytes.size() > UINT_MAX) {
+        fail_file(path, "file is 4 GiB or larger (tinygltf reads at most 2^32 - 1 bytes)");
+    }
     std::string base_dir = std::filesystem::path(path).parent_path().string();
     if (base_dir.empty()) {
         base_dir = ".";
@@ -569,14 +645,22 @@ tinygltf::Model parse_gltf(const std::string &path, std::vector<std::string> &no
 
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&ignore_image, nullptr);
+    if (!external_files) {
+        parser.SetFsCallbacks({&no_file_exists, &tinygltf::ExpandFilePath, &no_file_read,
+                               &tinygltf::WriteWholeFile, nullptr});
+    }
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
     try {
         if (has_glb_magic(bytes)) {
             const uint32_t length = check_glb_layout(path, bytes, notes);
+            /* check_glb_layout: the JSON chunk (header at 12) lies within length */
+            check_json_depth(path, bytes.data() + 20, read_u32le(bytes.data() + 12), 20,
+                             "the GLB's JSON chunk");
             ok = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, base_dir);
         } else if (looks_like_json_object(bytes)) {
+            check_json_depth(path, bytes.data(), bytes.size(), 0, "the JSON");
             ok = parser.LoadASCIIFromString(&model, &err, &warn,
                                             reinterpret_cast<const char *>(bytes.data()),
                                             static_cast<unsigned int>(bytes.size()), base_dir);
@@ -590,7 +674,15 @@ tinygltf::Model parse_gltf(const std::string &path, std::vector<std::string> &no
     }
     add_tinygltf_lines(warn, notes);
     if (!ok) {
-        fail_file(path, "tinygltf: " + (err.empty() ? std::string("failed") : trimmed(err)));
+        /* tinygltf echoes input (a whole data: URI, bytes that are not
+         * UTF-8): each of its lines quoted within the bound. */
+        std::string text;
+        std::vector<std::string> lines;
+        add_tinygltf_lines(trimmed(err), lines);
+        for (const std::string &line : lines) {
+            text += (text.empty() ? "" : "; ") + line.substr(std::strlen("tinygltf: "));
+        }
+        fail_file(path, "tinygltf: " + (text.empty() ? std::string("failed") : text));
     }
     /* tinygltf sometimes reports a problem and goes on (e.g. a buffer
      * without uri in a JSON file); what it loaded is still range-checked
@@ -600,6 +692,17 @@ tinygltf::Model parse_gltf(const std::string &path, std::vector<std::string> &no
 }
 
 // -------------------------------------------------------------- the loader --
+
+/* The size estimate behind options.max_triangles / max_vertices, for the
+ * message: bytes and seconds to load and prepare (measured on the 10M-
+ * triangle grid: 1.35 GB; about 0.3 us a triangle in Release). */
+constexpr double kBytesPerTriangle = 120.0;
+constexpr double kBytesPerVertex = 40.0;
+constexpr double kSecondsPerTriangle = 0.3e-6;
+
+std::size_t saturating_add(std::size_t a, std::size_t b) {
+    return a > SIZE_MAX - b ? SIZE_MAX : a + b;
+}
 
 /* A mesh to place: node -1 = at identity, no skin. */
 struct Instance {
@@ -643,6 +746,7 @@ private:
     std::string vertex_label(int mesh, const MeshGeometry &g, std::size_t vertex) const;
 
     void check_required_extensions() const;
+    void check_sizes(const std::vector<Instance> &instances) const;
 
     /* Node graph: parent_ and world_ for every node, all validated. */
     void compute_world_matrices();
@@ -657,8 +761,9 @@ private:
     const unsigned char *element_span(int view_index, std::size_t byte_offset, std::size_t count,
                                       std::size_t element_size, bool use_view_stride,
                                       const std::string &who, std::size_t *stride) const;
-    void apply_sparse(const Accessor &a, const std::string &who,
-                      std::vector<double> &values) const;
+    void apply_sparse(const Accessor &a, const std::string &who, std::vector<double> &values,
+                      bool write = true) const;
+    void check_sparse_ranges(const Accessor &a, const std::string &who) const;
 
     /* Surfaces. */
     bool build_surface(const Instance &instance, GltfSurface &surface);
@@ -1015,9 +1120,17 @@ const unsigned char *Loader::element_span(int view_index, std::size_t byte_offse
     return data.data() + view.byteOffset + byte_offset;
 }
 
-/* Writes a sparse accessor's values over the base values. */
+/* Checks a sparse accessor's counts, types and both byte ranges (before
+ * the accessor's values are allocated); apply_sparse then reads them. */
+void Loader::check_sparse_ranges(const Accessor &a, const std::string &who) const {
+    std::vector<double> none;
+    apply_sparse(a, who, none, false);
+}
+
+/* Writes a sparse accessor's values over the base values (WRITE false:
+ * only the checks of the ranges). */
 void Loader::apply_sparse(const Accessor &a, const std::string &who,
-                          std::vector<double> &values) const {
+                          std::vector<double> &values, bool write) const {
     const std::string sparse_who = who + " (sparse)";
     const int sparse_count = a.sparse.count;
     if (sparse_count < 1 || std::size_t(sparse_count) > a.count) {
@@ -1042,6 +1155,9 @@ void Loader::apply_sparse(const Accessor &a, const std::string &who,
     const unsigned char *value_bytes =
         element_span(a.sparse.values.bufferView, std::size_t(a.sparse.values.byteOffset), count,
                      value_size, false, sparse_who + " values", &value_stride);
+    if (!write) {
+        return;
+    }
     const std::size_t csize = component_size(a.componentType);
     for (std::size_t i = 0; i < count; i++) {
         const double target = read_component(index_bytes + i * index_stride, index_type, false);
@@ -1094,17 +1210,24 @@ std::vector<double> Loader::decode(int index, const AccessorFormat &format,
     if (a.bufferView < 0 && !a.sparse.isSparse) {
         fail(label + " has no bufferView (and is not sparse)");
     }
-    if (a.bufferView < 0 && a.count > kMaxUnbackedElements) {
+    if (a.bufferView < 0 && total > kMaxUnbackedComponents) {
         fail(label + ": sparse, without bufferView, and count " + std::to_string(a.count) +
-             " is too large (more than " + std::to_string(kMaxUnbackedElements) +
-             " elements of zeros)");
+             " is too large (more than " + std::to_string(kMaxUnbackedComponents) +
+             " components of zeros)");
+    }
+    /* The range first, then the allocation: a 380-byte file claiming 89M
+     * VEC3 elements must fail here, not after allocating 2 GB. */
+    std::size_t stride = 0;
+    const unsigned char *first = nullptr;
+    if (a.bufferView >= 0) {
+        first = element_span(a.bufferView, a.byteOffset, a.count, components * csize, true, label,
+                             &stride);
+    }
+    if (a.sparse.isSparse) {
+        check_sparse_ranges(a, label);
     }
     std::vector<double> values(total, 0.0);
     if (a.bufferView >= 0) {
-        std::size_t stride;
-        const unsigned char *first =
-            element_span(a.bufferView, a.byteOffset, a.count, components * csize, true, label,
-                         &stride);
         for (std::size_t e = 0; e < a.count; e++) {
             const unsigned char *element = first + e * stride;
             for (std::size_t c = 0; c < components; c++) {
@@ -1469,11 +1592,13 @@ bool Loader::build_surface(const Instance &instance, GltfSurface &surface) {
         append_primitive(instance.mesh, static_cast<int>(p), skin >= 0, g);
     }
 
-    surface.name = (mesh.name.empty() ? "mesh#" + std::to_string(instance.mesh) : mesh.name);
+    /* Names come from the file: printable and bounded (they are printed). */
+    surface.name = (mesh.name.empty() ? "mesh#" + std::to_string(instance.mesh)
+                                      : printable_text(mesh.name));
     if (instance.node >= 0) {
         const std::string &node_name = gltf_.nodes[instance.node].name;
         surface.name += " @ " + (node_name.empty() ? "node#" + std::to_string(instance.node)
-                                                   : node_name);
+                                                   : printable_text(node_name));
     }
     surface.mesh_index = instance.mesh;
     surface.node_index = instance.node;
@@ -1493,10 +1618,74 @@ bool Loader::build_surface(const Instance &instance, GltfSurface &surface) {
     return true;
 }
 
+/* Triangles and vertices the instances ask for, from the accessor counts
+ * alone (nothing decoded yet; an accessor that does not exist counts 0 and
+ * is reported when decoded), against the options' limits. The estimate
+ * takes no time worth measuring: one pass over the meshes' primitives. */
+void Loader::check_sizes(const std::vector<Instance> &instances) const {
+    std::vector<std::pair<std::size_t, std::size_t>> per_mesh(gltf_.meshes.size());
+    std::vector<bool> known(gltf_.meshes.size(), false);
+    /* An accessor above decode's own bound counts 0: decode names it. */
+    auto count_of = [&](int accessor) -> std::size_t {
+        if (accessor < 0 || accessor >= static_cast<int>(gltf_.accessors.size())) {
+            return 0;
+        }
+        const std::size_t count = gltf_.accessors[accessor].count;
+        return count > kMaxAccessorComponents ? 0 : count;
+    };
+    std::size_t triangles = 0, vertices = 0;
+    for (const Instance &instance : instances) {
+        if (!known[instance.mesh]) {
+            std::size_t t = 0, v = 0;
+            for (const tinygltf::Primitive &prim : gltf_.meshes[instance.mesh].primitives) {
+                const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+                if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+                    continue;
+                }
+                const auto position = prim.attributes.find("POSITION");
+                const std::size_t pv =
+                    position == prim.attributes.end() ? 0 : count_of(position->second);
+                const std::size_t corners = prim.indices >= 0 ? count_of(prim.indices) : pv;
+                v = saturating_add(v, pv);
+                t = saturating_add(t, mode == TINYGLTF_MODE_TRIANGLES ? corners / 3
+                                      : corners >= 3                  ? corners - 2
+                                                                      : 0);
+            }
+            per_mesh[instance.mesh] = {t, v};
+            known[instance.mesh] = true;
+        }
+        triangles = saturating_add(triangles, per_mesh[instance.mesh].first);
+        vertices = saturating_add(vertices, per_mesh[instance.mesh].second);
+    }
+    const bool too_many_triangles = options_.max_triangles && triangles > options_.max_triangles;
+    const bool too_many_vertices = options_.max_vertices && vertices > options_.max_vertices;
+    if (too_many_triangles || too_many_vertices) {
+        const double gb =
+            (kBytesPerTriangle * double(triangles) + kBytesPerVertex * double(vertices)) / 1e9;
+        char estimate[96];
+        std::snprintf(estimate, sizeof estimate, "about %.1f GB and %.0f s to load and prepare",
+                      gb, kSecondsPerTriangle * double(triangles));
+        fail("the scene asks for " + std::to_string(triangles) + " triangles and " +
+             std::to_string(vertices) + " vertices in " + std::to_string(instances.size()) +
+             " mesh instance(s) (" + estimate + "), more than the limit of " +
+             (too_many_triangles ? std::to_string(options_.max_triangles) + " triangles"
+                                 : std::to_string(options_.max_vertices) + " vertices") +
+             " (shadowvol: --max-triangles N raises it; GltfLoadOptions::max_triangles, "
+             "max_vertices)");
+    }
+}
+
 void Loader::run() {
     check_required_extensions();
+    if (options_.max_nodes && gltf_.nodes.size() > options_.max_nodes) {
+        fail(std::to_string(gltf_.nodes.size()) + " nodes, more than the limit of " +
+             std::to_string(options_.max_nodes) + " (about " +
+             std::to_string((gltf_.nodes.size() * 256) >> 20) +
+             " MB of transforms; GltfLoadOptions::max_nodes)");
+    }
     compute_world_matrices();
     const std::vector<Instance> instances = select_instances();
+    check_sizes(instances);
     for (const Instance &instance : instances) {
         GltfSurface surface;
         if (build_surface(instance, surface)) {
@@ -1513,11 +1702,73 @@ void Loader::run() {
 
 } // namespace
 
+std::string printable_text(const std::string &s, std::size_t max_bytes) {
+    std::string out;
+    const std::size_t n = s.size();
+    const unsigned char *p = reinterpret_cast<const unsigned char *>(s.data());
+    std::size_t i = 0;
+    auto escape = [&](unsigned char c) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02X", c);
+        out += hex;
+    };
+    while (i < n && i < max_bytes) {
+        const unsigned char c = p[i];
+        if (c < 0x20 || c == 0x7F) {
+            escape(c);
+            i++;
+            continue;
+        }
+        if (c < 0x80) {
+            out += static_cast<char>(c);
+            i++;
+            continue;
+        }
+        /* A well-formed UTF-8 sequence (RFC 3629: no overlong form, no
+         * surrogate, at most U+10FFFF), copied whole; else one escaped byte. */
+        std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3
+                          : c >= 0xF0 && c <= 0xF4                          ? 4
+                                                                            : 0;
+        bool ok = len > 0 && i + len <= n;
+        for (std::size_t k = 1; ok && k < len; k++) {
+            ok = (p[i + k] & 0xC0) == 0x80;
+        }
+        if (ok && len >= 3) {
+            const unsigned char c1 = p[i + 1];
+            ok = !(c == 0xE0 && c1 < 0xA0) && !(c == 0xED && c1 > 0x9F) &&
+                 !(c == 0xF0 && c1 < 0x90) && !(c == 0xF4 && c1 > 0x8F);
+        }
+        if (!ok) {
+            escape(c);
+            i++;
+            continue;
+        }
+        out.append(s, i, len);
+        i += len;
+    }
+    if (i < n) {
+        out += "... (" + std::to_string(n - i) + " more bytes)";
+    }
+    return out;
+}
+
 GltfModel load_gltf(const std::string &path, const GltfLoadOptions &options) {
     GltfModel out;
     out.path = path;
-    const tinygltf::Model gltf = parse_gltf(path, out.notes);
+    const tinygltf::Model gltf = parse_gltf(path, read_file(path), options.external_files,
+                                            out.notes);
     Loader(path, gltf, options, out).run();
+    return out;
+}
+
+GltfModel load_gltf_memory(const unsigned char *bytes, std::size_t size, const std::string &name,
+                           const GltfLoadOptions &options) {
+    GltfModel out;
+    out.path = name;
+    const tinygltf::Model gltf =
+        parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size), options.external_files,
+                   out.notes);
+    Loader(name, gltf, options, out).run();
     return out;
 }
 

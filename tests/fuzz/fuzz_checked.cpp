@@ -1,0 +1,240 @@
+/*
+ * libFuzzer target: the *_checked entry points of include/shadowvol.h on
+ * fuzzer-chosen counts, edges, indices, facing and cull bytes, alignments
+ * and capacities (issue 17). Each call must either refuse with an SV_E_*
+ * code (and then write nothing) or give exactly c_ref's result: the same
+ * return value, the same indices up to it, the same facing bytes after
+ * (CountFacingCull modifies them). Every array is allocated at exactly the
+ * size its contract documents (output: exactly `capacity` ints), so ASan
+ * reports any byte touched past the bound. Counts that the contract refuses
+ * outright (3 * numTriangles, 6 * numSilEdges or 2 * numIndices past
+ * INT_MAX) are tried with tiny arrays: they must be refused unread.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <climits>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "shadowvol.h"
+
+namespace {
+
+[[noreturn]] void finding(const char *routine, const char *variant, const char *what, long a,
+                          long b) {
+    std::fprintf(stderr, "FUZZ FINDING: %s, %s: %s (%ld vs %ld)\n", routine, variant, what, a, b);
+    std::fflush(stderr);
+    std::abort();
+}
+
+/* N elements of T at a fuzzer-chosen misalignment (0..15 bytes past a
+ * 64-byte boundary), in a block of exactly the bytes they need: ASan's
+ * redzone starts right after the last element. */
+template <class T> struct Exact {
+    unsigned char *block = nullptr;
+    T *p = nullptr;
+    size_t n = 0;
+    Exact(size_t count, unsigned misalign) : n(count) {
+        const size_t bytes = count * sizeof(T) + misalign;
+        block = static_cast<unsigned char *>(std::malloc(bytes ? bytes : 1));
+        /* malloc gives 16-byte alignment; misalign steps of sizeof(T) keep T aligned */
+        p = reinterpret_cast<T *>(block + misalign);
+    }
+    ~Exact() { std::free(block); }
+    Exact(const Exact &) = delete;
+    Exact &operator=(const Exact &) = delete;
+};
+
+unsigned misalignment(FuzzedDataProvider &d, size_t element) {
+    return (unsigned)(d.ConsumeIntegralInRange<unsigned>(0, 3) * element) % 16u;
+}
+
+const sv_variant *pick_variant(FuzzedDataProvider &d) {
+    int n = 0;
+    const sv_variant *all = sv_variants(&n);
+    const sv_variant *v = &all[d.ConsumeIntegralInRange<int>(0, n - 1)];
+    return (v->isa & sv_cpu_isa()) == v->isa ? v : sv_variant_by_name("c_ref");
+}
+
+/* A facing byte: mostly 0 or 1, sometimes anything. */
+uint8_t facing_byte(FuzzedDataProvider &d) {
+    const uint8_t b = d.ConsumeIntegral<uint8_t>();
+    return b < 240 ? (uint8_t)(b & 1) : b;
+}
+
+int count(FuzzedDataProvider &d, int max) {
+    const uint8_t kind = d.ConsumeIntegral<uint8_t>();
+    if (kind < 8) return -(int)d.ConsumeIntegralInRange<int>(1, 3);
+    return d.ConsumeIntegralInRange<int>(0, max);
+}
+
+void fuzz_count_facing(FuzzedDataProvider &d, const sv_variant *v) {
+    const int n = count(d, 1024);
+    const size_t len = n > 0 ? (size_t)n : 0;
+    Exact<uint8_t> f(len, misalignment(d, 1));
+    for (size_t i = 0; i < len; i++) f.p[i] = facing_byte(d);
+    const int got = sv_count_facing_checked(v, f.p, n);
+    if (got < 0) return;
+    const int want = sv_count_facing_checked(sv_variant_by_name("c_ref"), f.p, n);
+    if (got != want) finding("count_facing", v->name, "differs from c_ref", got, want);
+}
+
+void fuzz_count_facing_cull(FuzzedDataProvider &d, const sv_variant *v) {
+    if (d.ConsumeIntegral<uint8_t>() < 4) { /* 3 * numTriangles past INT_MAX: refused unread */
+        uint8_t f[1] = {0};
+        int idx[3] = {0, 0, 0};
+        uint8_t cull[1] = {0};
+        const int r = sv_count_facing_cull_checked(v, f, INT_MAX / 3 + 1, idx, cull, 1);
+        if (r != SV_E_OVERFLOW) finding("count_facing_cull", v->name, "huge count", r, SV_E_OVERFLOW);
+        return;
+    }
+    const int nt = count(d, 512), nv = d.ConsumeIntegralInRange<int>(0, 300);
+    const size_t t = nt > 0 ? (size_t)nt : 0;
+    Exact<uint8_t> f(t, misalignment(d, 1)), fr(t, 0);
+    Exact<int> idx(3 * t, misalignment(d, 4));
+    Exact<uint8_t> cull((size_t)nv, 0);
+    for (size_t i = 0; i < t; i++) fr.p[i] = f.p[i] = facing_byte(d);
+    for (size_t i = 0; i < 3 * t; i++) {
+        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0
+                       ? d.ConsumeIntegralInRange<int>(0, nv - 1)
+                       : d.ConsumeIntegralInRange<int>(-2, nv + 2);
+    }
+    for (int i = 0; i < nv; i++) {
+        const uint8_t b = d.ConsumeIntegral<uint8_t>();
+        cull.p[i] = b < 200 ? (uint8_t)(b & 0x3F) : b; /* mostly six light planes */
+    }
+    const int got = sv_count_facing_cull_checked(v, f.p, nt, idx.p, cull.p, nv);
+    if (got < 0) {
+        if (t && std::memcmp(f.p, fr.p, t)) finding("count_facing_cull", v->name, "refused but wrote", got, 0);
+        return;
+    }
+    const int want = sv_count_facing_cull_checked(sv_variant_by_name("c_ref"), fr.p, nt, idx.p, cull.p, nv);
+    if (got != want) finding("count_facing_cull", v->name, "differs from c_ref", got, want);
+    if (t && std::memcmp(f.p, fr.p, t)) finding("count_facing_cull", v->name, "facing differs", 0, 0);
+}
+
+SilEdge edge(FuzzedDataProvider &d, int nt, int nv) {
+    SilEdge e;
+    const bool wild = d.ConsumeIntegral<uint8_t>() >= 250;
+    e.p1 = wild ? d.ConsumeIntegralInRange<int>(-1, nt + 1) : d.ConsumeIntegralInRange<int>(0, nt);
+    e.p2 = wild ? d.ConsumeIntegralInRange<int>(-1, nt + 1) : d.ConsumeIntegralInRange<int>(0, nt);
+    e.v1 = 2 * d.ConsumeIntegralInRange<int>(0, nv > 0 ? nv - 1 : 0) + (wild ? d.ConsumeBool() : 0);
+    e.v2 = 2 * d.ConsumeIntegralInRange<int>(0, nv > 0 ? nv - 1 : 0) + (wild ? d.ConsumeBool() : 0);
+    return e;
+}
+
+void fuzz_sil(FuzzedDataProvider &d, const sv_variant *v) {
+    if (d.ConsumeIntegral<uint8_t>() < 4) {
+        uint8_t f[2] = {0, 1};
+        SilEdge e = {0, 1, 0, 2};
+        int out[6];
+        const int r = sv_create_sil_triangles_checked(v, out, 6, f, 1, &e, INT_MAX / 6 + 1);
+        if (r != SV_E_OVERFLOW) finding("create_sil_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
+        return;
+    }
+    const int nt = d.ConsumeIntegralInRange<int>(0, 300), ne = count(d, 400);
+    const int nv = d.ConsumeIntegralInRange<int>(1, 300);
+    const size_t edges = ne > 0 ? (size_t)ne : 0;
+    Exact<uint8_t> f((size_t)nt + 1, 0);
+    for (int i = 0; i <= nt; i++) f.p[i] = facing_byte(d);
+    if (d.ConsumeIntegral<uint8_t>() < 240) f.p[nt] = 1;
+    Exact<SilEdge> e(edges, 0);
+    for (size_t i = 0; i < edges; i++) e.p[i] = edge(d, nt, nv);
+    size_t capacity = 6 * edges;
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    Exact<int> out(capacity, misalignment(d, 4));
+    const int got = sv_create_sil_triangles_checked(v, out.p, capacity, f.p, nt, e.p, ne);
+    if (got < 0) return;
+    if ((size_t)got > capacity) finding("create_sil_triangles", v->name, "past capacity", got, (long)capacity);
+    std::vector<int> ref(6 * edges + 1);
+    const int want = sv_create_sil_triangles_checked(sv_variant_by_name("c_ref"), ref.data(), 6 * edges, f.p, nt, e.p, ne);
+    if (got != want) finding("create_sil_triangles", v->name, "differs from c_ref", got, want);
+    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int))) finding("create_sil_triangles", v->name, "indices differ", 0, 0);
+}
+
+void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
+    if (d.ConsumeIntegral<uint8_t>() < 4) {
+        uint8_t f[1] = {0};
+        int idx[3] = {0, 0, 0}, out[6];
+        const int r = sv_create_cap_triangles_checked(v, out, 6, f, idx, 3 * (INT_MAX / 6 + 1), 1);
+        if (r != SV_E_OVERFLOW) finding("create_cap_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
+        return;
+    }
+    const int nt = d.ConsumeIntegralInRange<int>(0, 300), nv = d.ConsumeIntegralInRange<int>(0, 300);
+    int ni = 3 * nt;
+    if (d.ConsumeIntegral<uint8_t>() < 8) ni += d.ConsumeIntegralInRange<int>(-4, 2);
+    const size_t nidx = ni > 0 ? (size_t)ni : 0;
+    Exact<uint8_t> f((size_t)(nidx / 3), 0);
+    for (size_t i = 0; i < nidx / 3; i++) f.p[i] = facing_byte(d);
+    Exact<int> idx(nidx, misalignment(d, 4));
+    for (size_t i = 0; i < nidx; i++) {
+        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0 ? d.ConsumeIntegralInRange<int>(0, nv - 1)
+                                                                : d.ConsumeIntegralInRange<int>(-1, nv + 1);
+    }
+    size_t capacity = 2 * nidx;
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    Exact<int> out(capacity, misalignment(d, 4));
+    const int got = sv_create_cap_triangles_checked(v, out.p, capacity, f.p, idx.p, ni, nv);
+    if (got < 0) return;
+    std::vector<int> ref(2 * nidx + 1);
+    const int want = sv_create_cap_triangles_checked(sv_variant_by_name("c_ref"), ref.data(), 2 * nidx, f.p, idx.p, ni, nv);
+    if (got != want) finding("create_cap_triangles", v->name, "differs from c_ref", got, want);
+    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int))) finding("create_cap_triangles", v->name, "indices differ", 0, 0);
+}
+
+void fuzz_volume(FuzzedDataProvider &d, const sv_variant *v) {
+    const int nt = d.ConsumeIntegralInRange<int>(0, 200), nv = d.ConsumeIntegralInRange<int>(1, 200);
+    const int ne = d.ConsumeIntegralInRange<int>(0, 300);
+    const int ni = 3 * nt;
+    Exact<int> idx((size_t)ni, misalignment(d, 4));
+    for (int i = 0; i < ni; i++) {
+        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 ? d.ConsumeIntegralInRange<int>(0, nv - 1)
+                                                      : d.ConsumeIntegralInRange<int>(-1, nv + 1);
+    }
+    Exact<SilEdge> e((size_t)ne, 0);
+    for (int i = 0; i < ne; i++) e.p[i] = edge(d, nt, nv);
+    Exact<uint8_t> f((size_t)nt + 1, misalignment(d, 1)), fr((size_t)nt + 1, 0);
+    for (int i = 0; i <= nt; i++) fr.p[i] = f.p[i] = facing_byte(d);
+    if (d.ConsumeIntegral<uint8_t>() < 240) fr.p[nt] = f.p[nt] = 1;
+    const bool use_cull = d.ConsumeBool();
+    Exact<uint8_t> cull((size_t)nv, 0);
+    for (int i = 0; i < nv; i++) {
+        const uint8_t b = d.ConsumeIntegral<uint8_t>();
+        cull.p[i] = b < 200 ? (uint8_t)(b & 0x3F) : b; /* mostly six light planes */
+    }
+    size_t capacity = sv_shadow_volume_capacity(ni, ne);
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    Exact<int> out(capacity, misalignment(d, 4));
+    const int got = sv_create_shadow_volume_checked(v, out.p, capacity, idx.p, ni, nv, e.p, ne, f.p,
+                                                    use_cull ? cull.p : nullptr);
+    if (got < 0) {
+        if (std::memcmp(f.p, fr.p, (size_t)nt + 1)) finding("create_shadow_volume", v->name, "refused but wrote facing", got, 0);
+        return;
+    }
+    std::vector<int> ref(sv_shadow_volume_capacity(ni, ne) + 1);
+    const int want = sv_create_shadow_volume_checked(sv_variant_by_name("c_ref"), ref.data(), ref.size() - 1, idx.p, ni, nv,
+                                                     e.p, ne, fr.p, use_cull ? cull.p : nullptr);
+    if (got != want) finding("create_shadow_volume", v->name, "differs from c_ref", got, want);
+    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int))) finding("create_shadow_volume", v->name, "indices differ", 0, 0);
+    if (std::memcmp(f.p, fr.p, (size_t)nt + 1)) finding("create_shadow_volume", v->name, "facing differs", 0, 0);
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    FuzzedDataProvider d(data, size);
+    const sv_variant *v = pick_variant(d);
+    switch (d.ConsumeIntegralInRange<int>(0, 4)) {
+    case 0: fuzz_count_facing(d, v); break;
+    case 1: fuzz_count_facing_cull(d, v); break;
+    case 2: fuzz_sil(d, v); break;
+    case 3: fuzz_cap(d, v); break;
+    default: fuzz_volume(d, v); break;
+    }
+    return 0;
+}
