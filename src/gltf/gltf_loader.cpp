@@ -1790,7 +1790,7 @@ struct Reader::Impl {
 Reader::Reader(const std::string &path) : impl_(new Impl) {
     impl_->path = path;
     impl_->out.path = path;
-    impl_->model = parse_gltf(path, impl_->out.notes);
+    impl_->model = parse_gltf(path, read_file(path), impl_->options.external_files, impl_->out.notes);
     impl_->loader.reset(new Loader(impl_->path, impl_->model, impl_->options, impl_->out));
     impl_->loader->check_required_extensions();
 }
