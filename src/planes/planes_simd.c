@@ -17,7 +17,9 @@
  *    the way in; 4x4 transposes on the way out.
  *  - sse2: each corner loaded as 8 + 4 bytes (movsd, movss, movlhps), a
  *    4x4 transpose (7 shuffles for 3 columns) per corner.
- *  - avx2 / avx512: each corner one masked 16-byte load that cannot fault
+ *  - avx2 (derive): see "sv_derive_planes_avx2" below: blocks in two
+ *    passes, every row (0, x, y, z) by one masked load, 4x4 transposes.
+ *  - avx2 (facing) / avx512: each corner one masked 16-byte load that cannot fault
  *    on its masked-out float and never reads past the array: EVEN rows from
  *    the vertex itself with mask (1,1,1,0) -> (x, y, z, 0), ODD rows from
  *    one float before it with mask (0,1,1,1) -> (0, x, y, z). Two such rows
