@@ -80,9 +80,12 @@ void sv_derive_planes_sse2(const float *positions, const int *indices, int numTr
  * must be below 2^31 / 3 = 715,827,882 (8.6 GB of positions). */
 void sv_derive_planes_avx2_gather(const float *positions, const int *indices, int numTriangles,
                                   Plane *planes);
-/* AVX2 without gathers: every corner one masked 16-byte load (vmaskmovps,
- * which cannot fault on its masked-out float), odd rows loaded one float
- * early so that blends do most of the transpose (src/planes/planes_simd.c). */
+/* AVX2 without gathers: every corner one masked 16-byte load from one float
+ * before the vertex (vmaskmovps with mask (0,1,1,1): it reads the vertex's
+ * 12 bytes only and cannot fault on its masked-out float), 4x4 transposes,
+ * and blocks of up to 256 triangles in two passes over an 8 KiB stack
+ * buffer, so that the square root and division leave the load chain
+ * (src/planes/planes_simd.c; docs/PLANES.md has the measurements). */
 void sv_derive_planes_avx2(const float *positions, const int *indices, int numTriangles,
                            Plane *planes);
 /* AVX-512 (F, VL, DQ): the AVX2 scheme on 16 triangles, masked loads. */

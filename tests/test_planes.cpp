@@ -8,6 +8,8 @@
 // and nothing is read outside the positions array (it is placed against
 // inaccessible pages). The reference's documented results (the zero plane,
 // no NaN) and its agreement with sv::triangle_plane on ordinary triangles.
+// Vertex 0 at a page start after an inaccessible page; degenerate
+// triangles in every lane position over several blocks.
 // The project's character and the real characters, when present.
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
@@ -53,7 +55,10 @@ std::vector<const sv_planes_variant *> runnable() {
 // that reads one byte outside the array faults.
 class FencedPositions {
 public:
-    explicit FencedPositions(size_t floats) : floats_(floats) {
+    // AT_START: the array begins right after the guard page before it
+    // (vertex 0's shifted masked load starts on that inaccessible page);
+    // otherwise it ends right before the guard page after it.
+    explicit FencedPositions(size_t floats, bool atStart = false) : floats_(floats) {
         const size_t page = (size_t)sysconf(_SC_PAGESIZE);
         const size_t bytes = floats * sizeof(float);
         const size_t body = (bytes + page - 1) / page * page;
@@ -64,7 +69,7 @@ public:
         if (mprotect(base_ + page, body, PROT_READ | PROT_WRITE) != 0) return;
         // The array ends at the guard page after it; when it fills the body
         // exactly it also starts at the guard page before it.
-        data_ = reinterpret_cast<float *>(base_ + page + body - bytes);
+        data_ = reinterpret_cast<float *>(atStart ? base_ + page : base_ + page + body - bytes);
     }
     ~FencedPositions() {
         if (base_) munmap(base_, total_);
@@ -361,6 +366,42 @@ TEST(Planes, NegativeCountsWriteNothing) {
             for (size_t i = 0; i < out.size(); i++) ASSERT_EQ(out.data()[i], 0x5A) << v->name;
             EXPECT_TRUE(out.guards_intact()) << v->name;
         }
+    }
+}
+
+// Vertex 0 at the very start of a page after an inaccessible one, used
+// by every corner of every lane of several blocks (the avx2 derive kernel
+// loads each corner from one float before the vertex, masked): nothing
+// faults, every plane bit-identical. And meshes whose triangles are all
+// degenerate, or degenerate in one lane position only, over several
+// blocks of 256 triangles (every lane of the SIMD step rewritten by the
+// scalar reference).
+TEST(Planes, VertexZeroAtPageStartAndDegenerateLanes) {
+    SCOPED_TRACE(svtest::seed_trace());
+    Rng rng = svtest::rng_for("VertexZeroAtPageStart");
+    const auto variants = runnable();
+    for (int n : {8, 64, 263, 600}) {
+        Mesh m = random_mesh(rng, 40, n, Scale::ordinary);
+        for (int t = 0; t < n; t++) m.indices[3 * t + (t % 3)] = 0;
+        FencedPositions fenced(m.positions.size(), true);
+        ASSERT_TRUE(fenced.ok());
+        std::memcpy(fenced.data(), m.positions.data(), m.positions.size() * sizeof(float));
+        std::vector<Plane> ref((size_t)n);
+        sv_derive_planes_c_ref(fenced.data(), m.indices.data(), n, ref.data());
+        for (const sv_planes_variant *v : variants) {
+            std::vector<Plane> got((size_t)n);
+            v->derive_planes(fenced.data(), m.indices.data(), n, got.data());
+            for (int t = 0; t < n; t++)
+                ASSERT_TRUE(same_bits(got[t], ref[t])) << v->name << ", plane " << t;
+        }
+    }
+    for (int lane = -1; lane < 8; lane++) {
+        Mesh m = random_mesh(rng, 50, 777, Scale::ordinary);
+        for (int t = 0; t < 777; t++) {
+            if (lane < 0 || t % 8 == lane) m.indices[3 * t + 1] = m.indices[3 * t];
+        }
+        check_mesh(m, variants, rng, "degenerate lane " + std::to_string(lane));
+        if (HasFatalFailure()) return;
     }
 }
 

@@ -17,7 +17,9 @@
  *    the way in; 4x4 transposes on the way out.
  *  - sse2: each corner loaded as 8 + 4 bytes (movsd, movss, movlhps), a
  *    4x4 transpose (7 shuffles for 3 columns) per corner.
- *  - avx2 / avx512: each corner one masked 16-byte load that cannot fault
+ *  - avx2 (derive): see "sv_derive_planes_avx2" below: blocks in two
+ *    passes, every row (0, x, y, z) by one masked load, 4x4 transposes.
+ *  - avx2 (facing) / avx512: each corner one masked 16-byte load that cannot fault
  *    on its masked-out float and never reads past the array: EVEN rows from
  *    the vertex itself with mask (1,1,1,0) -> (x, y, z, 0), ODD rows from
  *    one float before it with mask (0,1,1,1) -> (0, x, y, z). Two such rows
@@ -244,20 +246,136 @@ SV_TARGET_AVX2 static inline void store_planes8_split(Plane *out, __m256 a, __m2
     _mm256_storeu_ps(&out[6].a, _mm256_permute2f128_ps(o2, o3, 0x31));
 }
 
+/* ---- sv_derive_planes_avx2: blocks of up to 32 steps of 8 triangles -------
+ * The old one-step loop (load, transpose, cross product, sqrt, div,
+ * normalise, store) is one dependency chain of about 70 cycles per step
+ * (the sqrt and div alone 25) in about 170 instructions: the 256-entry
+ * reorder buffer of Zen 3 holds about 1.5 steps, so the loop ran at the
+ * chain's latency, not at the ports' throughput. Here a block runs in two
+ * passes over a stack buffer (8 KiB, L1):
+ *   pass 1, per step: 24 masked row loads, three 4x4 transposes, the edges,
+ *     the cross product and len2; the zero-plane test; the columns n, p0
+ *     and len2 stored; and 1/sqrt(len2) of the PREVIOUS step (its len2 is
+ *     ready, so the divider works beside the loads instead of at the end
+ *     of a chain);
+ *   pass 2, per step: a, b, c, d from the buffer, the output transpose, 4
+ *     stores.
+ * Rows: every corner one masked 16-byte load from one float before the
+ * vertex with mask (0,1,1,1) -> (0, x, y, z): it reads only the vertex's
+ * 12 bytes (the masked-out float cannot fault, even before the array), and
+ * every row has the same layout, so a plain 4x4 transpose (4 unpacks + 3
+ * shuffles per 3 columns) makes the columns. Row r holds triangles 2r (low
+ * lane) and 2r+1 (high lane), so each 256-bit store holds two consecutive
+ * planes. Each operation is the reference's, in its order; lanes outside
+ * 0 < len2 < inf are rewritten afterwards by the scalar reference. */
+#define SV_PLANES_BLOCK 32
+
+typedef struct {
+    __m256 nx, ny, nz, l2, px, py, pz, pad_;
+} sv_planes_step;
+
+/* Corners A (low lane) and B (high lane) as (0, x, y, z). */
+SV_TARGET_AVX2 static inline __m256 row2_shifted_avx2(const float *positions, int ia, int ib) {
+    const __m128i m = _mm_setr_epi32(0, -1, -1, -1);
+    const __m128 lo = _mm_maskload_ps(corner_shifted(positions, ia, 1), m);
+    const __m128 hi = _mm_maskload_ps(corner_shifted(positions, ib, 1), m);
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
+
+/* Rows (., x, y, z) of four structures, per lane -> their x, y, z columns. */
+#define TRANSPOSE3_SHIFTED_AVX2(r0, r1, r2, r3, X, Y, Z)                    \
+    do {                                                                   \
+        const __m256 t0_ = _mm256_unpacklo_ps(r0, r1); /* . . x0 x1 */     \
+        const __m256 t1_ = _mm256_unpacklo_ps(r2, r3);                     \
+        const __m256 t2_ = _mm256_unpackhi_ps(r0, r1); /* y0 y1 z0 z1 */   \
+        const __m256 t3_ = _mm256_unpackhi_ps(r2, r3);                     \
+        X = _mm256_shuffle_ps(t0_, t1_, _MM_SHUFFLE(3, 2, 3, 2));          \
+        Y = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(1, 0, 1, 0));          \
+        Z = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(3, 2, 3, 2));          \
+    } while (0)
+
+SV_TARGET_AVX2 static inline __m256 inv_len_avx2(__m256 len2) {
+    return _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(len2));
+}
+
+/* Pass 1 of one step: triangles ix[0..24) into *st; returns the lanes
+ * (bit l: see the row order above) that fail 0 < len2 < inf. */
+SV_TARGET_AVX2 static inline unsigned planes_pass1_avx2(const float *positions, const int *ix,
+                                                        sv_planes_step *st) {
+    __m256 q0[4], q1[4], q2[4];
+    for (int r = 0; r < 4; r++) {
+        const int *ta = ix + 6 * r, *tb = ix + 6 * r + 3;
+        q0[r] = row2_shifted_avx2(positions, ta[0], tb[0]);
+        q1[r] = row2_shifted_avx2(positions, ta[1], tb[1]);
+        q2[r] = row2_shifted_avx2(positions, ta[2], tb[2]);
+    }
+    __m256 px, py, pz, ax, ay, az, bx, by, bz;
+    TRANSPOSE3_SHIFTED_AVX2(q0[0], q0[1], q0[2], q0[3], px, py, pz);
+    TRANSPOSE3_SHIFTED_AVX2(q1[0], q1[1], q1[2], q1[3], ax, ay, az);
+    TRANSPOSE3_SHIFTED_AVX2(q2[0], q2[1], q2[2], q2[3], bx, by, bz);
+    ax = _mm256_sub_ps(ax, px);
+    ay = _mm256_sub_ps(ay, py);
+    az = _mm256_sub_ps(az, pz);
+    bx = _mm256_sub_ps(bx, px);
+    by = _mm256_sub_ps(by, py);
+    bz = _mm256_sub_ps(bz, pz);
+    const __m256 nx = _mm256_sub_ps(_mm256_mul_ps(ay, bz), _mm256_mul_ps(az, by));
+    const __m256 ny = _mm256_sub_ps(_mm256_mul_ps(az, bx), _mm256_mul_ps(ax, bz));
+    const __m256 nz = _mm256_sub_ps(_mm256_mul_ps(ax, by), _mm256_mul_ps(ay, bx));
+    const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, nx), _mm256_mul_ps(ny, ny)),
+                                      _mm256_mul_ps(nz, nz));
+    const unsigned ok = (unsigned)_mm256_movemask_ps(
+        _mm256_and_ps(_mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ),
+                      _mm256_cmp_ps(len2, _mm256_set1_ps(INFINITY), _CMP_LT_OQ)));
+    st->nx = nx;
+    st->ny = ny;
+    st->nz = nz;
+    st->l2 = len2;
+    st->px = px;
+    st->py = py;
+    st->pz = pz;
+    return ok ^ 0xFFu;
+}
+
 SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *indices,
                                           int numTriangles, Plane *planes) {
+    sv_planes_step buf[SV_PLANES_BLOCK];
+    uint8_t bad[SV_PLANES_BLOCK];
     int t = 0;
-    for (; t <= numTriangles - 8; t += 8) {
+    while (t <= numTriangles - 8) {
+        int steps = (numTriangles - t) / 8;
+        if (steps > SV_PLANES_BLOCK) steps = SV_PLANES_BLOCK;
         const int *ix = indices + 3 * t;
-        LOAD_TRI8_AVX2(positions, ix, PAIR_A, PAIR_B);
-        PLANES_AVX2(a, b, c, d, ok);
-        store_planes8_pairs(planes + t, a, b, c, d);
-        if (ok != 0xFF) {
-            for (int l = 0; l < 8; l++) {
-                const int tt = l < 4 ? 2 * l : 2 * (l - 4) + 1;
-                if (!(ok & (1u << l))) planes[t + tt] = sv_plane_one(positions, ix + 3 * tt);
+        unsigned anyBad = 0;
+        for (int s = 0; s < steps; s++) {
+            const unsigned b = planes_pass1_avx2(positions, ix + 24 * s, &buf[s]);
+            bad[s] = (uint8_t)b;
+            anyBad |= b;
+            /* The previous step's 1 / sqrt(len2), in place of its len2. */
+            if (s > 0) buf[s - 1].l2 = inv_len_avx2(buf[s - 1].l2);
+        }
+        buf[steps - 1].l2 = inv_len_avx2(buf[steps - 1].l2);
+        for (int s = 0; s < steps; s++) {
+            const __m256 inv = buf[s].l2;
+            const __m256 a = _mm256_mul_ps(buf[s].nx, inv);
+            const __m256 b = _mm256_mul_ps(buf[s].ny, inv);
+            const __m256 c = _mm256_mul_ps(buf[s].nz, inv);
+            __m256 d = _mm256_add_ps(
+                _mm256_add_ps(_mm256_mul_ps(a, buf[s].px), _mm256_mul_ps(b, buf[s].py)),
+                _mm256_mul_ps(c, buf[s].pz));
+            d = _mm256_xor_ps(d, _mm256_set1_ps(-0.0f));
+            store_planes8_pairs(planes + t + 8 * s, a, b, c, d);
+        }
+        if (anyBad) {
+            for (int s = 0; s < steps; s++) {
+                for (unsigned m = bad[s]; m; m &= m - 1) {
+                    const int l = __builtin_ctz(m);
+                    const int tt = 8 * s + (l < 4 ? 2 * l : 2 * (l - 4) + 1);
+                    planes[t + tt] = sv_plane_one(positions, ix + 3 * tt);
+                }
             }
         }
+        t += 8 * steps;
     }
     for (; t < numTriangles; t++) planes[t] = sv_plane_one(positions, indices + 3 * t);
 }
