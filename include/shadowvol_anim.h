@@ -157,6 +157,10 @@ struct AnimatedAsset {
  * animations, skins, lights and cameras (docs/ANIMATION.md lists them).
  * Throws GltfError "<path>: <problem>". */
 AnimatedAsset load_animated_gltf(const std::string &path);
+/* The same from SIZE bytes in memory (a .glb or .gltf image), NAME standing
+ * for the path in messages; buffers by external URI are refused. */
+AnimatedAsset load_animated_gltf_memory(const unsigned char *bytes, std::size_t size,
+                                        const std::string &name);
 
 /* The animation called NAME_OR_INDEX (a name first; else a decimal index).
  * Throws GltfError "<path>: no animation ...; the animations are: 0 'Walk',

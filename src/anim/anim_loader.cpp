@@ -86,6 +86,10 @@ const char *path_name(AnimChannel::Path p) {
 class AnimLoader {
 public:
     explicit AnimLoader(const std::string &path) : r_(path) { out_.path = path; }
+    AnimLoader(const unsigned char *bytes, std::size_t size, const std::string &name)
+        : r_(bytes, size, name) {
+        out_.path = name;
+    }
     AnimatedAsset run();
 
 private:
@@ -637,6 +641,12 @@ AnimatedAsset AnimLoader::run() {
 
 AnimatedAsset load_animated_gltf(const std::string &path) {
     AnimLoader loader(path);
+    return loader.run();
+}
+
+AnimatedAsset load_animated_gltf_memory(const unsigned char *bytes, std::size_t size,
+                                        const std::string &name) {
+    AnimLoader loader(bytes, size, name);
     return loader.run();
 }
 

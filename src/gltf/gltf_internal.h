@@ -65,6 +65,10 @@ public:
     /* Reads and parses PATH (load_gltf's file, GLB and tinygltf checks) and
      * checks its required extensions. */
     explicit Reader(const std::string &path);
+    /* The same from SIZE bytes in memory, NAME standing for the path in
+     * messages; external files (buffers by URI) are refused (the fuzz
+     * targets read so). */
+    Reader(const unsigned char *bytes, std::size_t size, const std::string &name);
     ~Reader();
     Reader(const Reader &) = delete;
     Reader &operator=(const Reader &) = delete;

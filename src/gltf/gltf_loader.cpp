@@ -1795,6 +1795,15 @@ Reader::Reader(const std::string &path) : impl_(new Impl) {
     impl_->loader->check_required_extensions();
 }
 
+Reader::Reader(const unsigned char *bytes, std::size_t size, const std::string &name) : impl_(new Impl) {
+    impl_->path = name;
+    impl_->out.path = name;
+    impl_->options.external_files = false;
+    impl_->model = parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size), false, impl_->out.notes);
+    impl_->loader.reset(new Loader(impl_->path, impl_->model, impl_->options, impl_->out));
+    impl_->loader->check_required_extensions();
+}
+
 Reader::~Reader() = default;
 
 const tinygltf::Model &Reader::model() const { return impl_->model; }

@@ -202,6 +202,14 @@ PoseStats SceneSequence::set_time(double time) {
         k0 = __rdtsc();
         pose_surface(m.asset, as, m.pose, m.root, m.scratch.data(), skinning_);
         st.ticks_skinning += __rdtsc() - k0;
+        for (float v : m.scratch) {
+            /* A pose can overflow float (a scale key of 1e30): refused, as
+             * a non-finite input position is. */
+            if (!std::isfinite(v)) {
+                throw SceneError(s.name + ": the pose at " + std::to_string(time) +
+                                 " s puts a vertex at a non-finite position");
+            }
+        }
         if (std::memcmp(m.scratch.data(), s.prepared.positions.data(), m.scratch.size() * sizeof(float)) == 0) {
             continue;
         }

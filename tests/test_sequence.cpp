@@ -1,0 +1,137 @@
+/*
+ * The scene in time (src/scene/sequence.h, issue 13) on the demo scene the
+ * build writes: the file's lights and camera; only the skinned character
+ * moves, so only it gets a new revision and new planes; times outside the
+ * walk clamp; frames reuse the static volumes; the frame is the same with
+ * every skinning kernel and planes variant (all bit-identical to their
+ * references); an unknown animation is refused with the list.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "frame.h"
+#include "sequence.h"
+
+namespace {
+
+using namespace sv;
+
+#ifdef SV_TEST_SMALL_FRAMES
+constexpr int kW = 96, kH = 64;
+#else
+constexpr int kW = 240, kH = 136;
+#endif
+
+SequenceOptions demo() {
+    SequenceOptions o;
+    o.file = SV_DEMO_SCENE;
+    o.aspect = (double)kW / kH;
+    return o;
+}
+
+int find(const Scene &s, const std::string &suffix) {
+    for (std::size_t i = 0; i < s.surfaces.size(); i++) {
+        const std::string &n = s.surfaces[i].name;
+        if (n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
+            return (int)i;
+        }
+    }
+    return -1;
+}
+
+TEST(Sequence, DemoSceneHasItsLightsCameraAndWalk) {
+    SceneSequence seq(demo());
+    const Scene &s = seq.scene();
+    EXPECT_TRUE(seq.animated());
+    EXPECT_EQ(seq.animation_name(), "walk");
+    EXPECT_DOUBLE_EQ(seq.start(), 0.0);
+    EXPECT_DOUBLE_EQ(seq.end(), 1.0);
+    ASSERT_EQ(s.lights.size(), 4u);
+    EXPECT_EQ(s.lights[0].kind, LightKind::point);
+    EXPECT_GT(s.lights[0].range, 0);
+    EXPECT_EQ(s.lights[1].kind, LightKind::spot);
+    EXPECT_EQ(s.lights[2].kind, LightKind::spot);
+    EXPECT_EQ(s.lights[3].kind, LightKind::directional);
+    EXPECT_GT(s.camera.near_distance, 0);
+    EXPECT_GE(find(s, "terrain @ terrain"), 0);
+    EXPECT_GT(s.triangles(), 100000);
+}
+
+TEST(Sequence, OnlyTheCharacterMovesAndTimesClamp) {
+    SceneSequence seq(demo());
+    const int ch = find(seq.scene(), "character @ character");
+    ASSERT_GE(ch, 0);
+    std::vector<uint64_t> rev;
+    for (const SceneSurface &s : seq.scene().surfaces) rev.push_back(s.revision);
+    const PoseStats a = seq.set_time(0.25);
+    EXPECT_EQ(a.surfaces_moved, 1);
+    EXPECT_EQ(a.planes_derived, seq.scene().surfaces[(std::size_t)ch].prepared.num_triangles());
+    for (std::size_t i = 0; i < rev.size(); i++) {
+        EXPECT_EQ(seq.scene().surfaces[i].revision, rev[i] + ((int)i == ch)) << seq.scene().surfaces[i].name;
+    }
+    /* The same time again: nothing moves. */
+    EXPECT_EQ(seq.set_time(0.25).surfaces_moved, 0);
+    /* Beyond the walk's end: the end's pose (glTF clamps). */
+    seq.set_time(1.0);
+    const std::vector<float> at_end = seq.scene().surfaces[(std::size_t)ch].prepared.positions;
+    EXPECT_EQ(seq.set_time(7.5).surfaces_moved, 0);
+    EXPECT_EQ(seq.scene().surfaces[(std::size_t)ch].prepared.positions, at_end);
+    seq.set_time(-3);
+    const std::vector<float> before = seq.scene().surfaces[(std::size_t)ch].prepared.positions;
+    seq.set_time(0);
+    EXPECT_EQ(seq.scene().surfaces[(std::size_t)ch].prepared.positions, before);
+}
+
+TEST(Sequence, StaticVolumesAreReusedAndKernelsAgree) {
+    render::RenderOptions o;
+    o.width = kW, o.height = kH;
+    render::VolumeCache cache;
+    o.cache = &cache;
+    SceneSequence seq(demo());
+    (void)render::render_frame(seq.scene(), o);
+    seq.set_time(0.125);
+    const render::Frame f = render::render_frame(seq.scene(), o);
+    int reused = 0, built = 0;
+    for (const auto &lf : f.lights) reused += lf.reused, built += lf.built;
+    EXPECT_GT(reused, 0);
+    EXPECT_LE(built, (int)f.lights.size()) << "only the character's volumes are built again";
+    /* Every skinning kernel and planes variant this CPU runs: the same frame. */
+    int nk = 0, np = 0;
+    const SkinningKernel *kernels = skinning_kernels(&nk);
+    const sv_planes_variant *planes = sv_planes_variants(&np);
+    for (int k = 0; k < nk; k++) {
+        if ((kernels[k].isa & sv_cpu_isa()) != kernels[k].isa) continue;
+        for (int p = 0; p < np; p++) {
+            if ((planes[p].isa & sv_cpu_isa()) != planes[p].isa) continue;
+            SequenceOptions so = demo();
+            so.skinning = &kernels[k];
+            so.planes = &planes[p];
+            SceneSequence other(so);
+            other.set_time(0.125);
+            render::RenderOptions q = o;
+            q.cache = nullptr;
+            const render::Frame g = render::render_frame(other.scene(), q);
+            EXPECT_EQ(g.rgb, f.rgb) << kernels[k].name << " / " << planes[p].name;
+        }
+    }
+}
+
+TEST(Sequence, UnknownAnimationIsRefusedWithTheList) {
+    SequenceOptions o = demo();
+    o.animation = "run";
+    try {
+        SceneSequence seq(o);
+        FAIL() << "an unknown animation was accepted";
+    } catch (const GltfError &e) {
+        EXPECT_NE(std::string(e.what()).find("'walk'"), std::string::npos) << e.what();
+    }
+    o.animation = "0";
+    EXPECT_NO_THROW(SceneSequence{o});
+}
+
+} // namespace
