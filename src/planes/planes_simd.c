@@ -55,7 +55,11 @@ static inline const float *corner_shifted(const float *positions, int index, int
 /* ---- SSE2 ------------------------------------------------------------------ */
 
 static inline __m128 load3_sse2(const float *p) {
-    const __m128 xy = _mm_castpd_ps(_mm_load_sd((const double *)(const void *)p));
+    /* x and y as one 8-byte load (movsd); through memcpy, since a vertex
+     * is only 4-byte aligned and a misaligned double is undefined in C. */
+    double xy_bits;
+    memcpy(&xy_bits, p, sizeof xy_bits);
+    const __m128 xy = _mm_castpd_ps(_mm_set_sd(xy_bits));
     return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
 }
 
