@@ -97,7 +97,7 @@ void sv_derive_planes_sse2(const float *positions, const int *indices, int numTr
     const __m128 zero = _mm_setzero_ps(), inf = _mm_set1_ps(INFINITY), one = _mm_set1_ps(1.0f);
     const __m128 sign = _mm_set1_ps(-0.0f);
     int t = 0;
-    for (; t <= numTriangles - 4; t += 4) {
+    for (; numTriangles - t >= 4; t += 4) {
         const int *ix = indices + 3 * t;
         LOAD_TRI4_SSE2(positions, ix);
         const __m128 nx = _mm_sub_ps(_mm_mul_ps(ay, bz), _mm_mul_ps(az, by));
@@ -132,7 +132,7 @@ void sv_facing_from_positions_sse2(const float *positions, const int *indices, i
     const __m128 lz = _mm_set1_ps(light->z), lw = _mm_set1_ps(light->w);
     const __m128 zero = _mm_setzero_ps();
     int t = 0;
-    for (; t <= numTriangles - 4; t += 4) {
+    for (; numTriangles - t >= 4; t += 4) {
         const int *ix = indices + 3 * t;
         LOAD_TRI4_SSE2(positions, ix);
         const __m128 nx = _mm_sub_ps(_mm_mul_ps(ay, bz), _mm_mul_ps(az, by));
@@ -346,7 +346,7 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *ind
     sv_planes_step buf[SV_PLANES_BLOCK];
     uint8_t bad[SV_PLANES_BLOCK];
     int t = 0;
-    while (t <= numTriangles - 8) {
+    while (numTriangles - t >= 8) {
         int steps = (numTriangles - t) / 8;
         if (steps > SV_PLANES_BLOCK) steps = SV_PLANES_BLOCK;
         const int *ix = indices + 3 * t;
@@ -406,7 +406,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const 
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
     int t = 0;
-    for (; t <= numTriangles - 8; t += 8) {
+    for (; numTriangles - t >= 8; t += 8) {
         const int *ix = indices + 3 * t;
         LOAD_TRI8_AVX2(positions, ix, SPLIT_A, SPLIT_B);
         FACING_AVX2(m);
@@ -462,7 +462,7 @@ SV_TARGET_AVX2 static inline void corners8(const int *ix, __m256i *c0, __m256i *
 SV_TARGET_AVX2 void sv_derive_planes_avx2_gather(const float *positions, const int *indices,
                                                  int numTriangles, Plane *planes) {
     int t = 0;
-    for (; t <= numTriangles - 8; t += 8) {
+    for (; numTriangles - t >= 8; t += 8) {
         const int *ix = indices + 3 * t;
         LOAD_TRI8_GATHER(positions, ix);
         PLANES_AVX2(a, b, c, d, ok);
@@ -483,7 +483,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions,
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
     int t = 0;
-    for (; t <= numTriangles - 8; t += 8) {
+    for (; numTriangles - t >= 8; t += 8) {
         const int *ix = indices + 3 * t;
         LOAD_TRI8_GATHER(positions, ix);
         FACING_AVX2(m);
@@ -549,7 +549,7 @@ SV_TARGET_AVX512 static inline __m512 row4_512(const float *positions, const int
 SV_TARGET_AVX512 void sv_derive_planes_avx512(const float *positions, const int *indices,
                                               int numTriangles, Plane *planes) {
     int t = 0;
-    for (; t <= numTriangles - 16; t += 16) {
+    for (; numTriangles - t >= 16; t += 16) {
         const int *ix = indices + 3 * t;
         LOAD_TRI16_512(positions, ix, 0);
         const __m512 nx = _mm512_sub_ps(_mm512_mul_ps(ay, bz), _mm512_mul_ps(az, by));
@@ -591,7 +591,7 @@ SV_TARGET_AVX512 void sv_facing_from_positions_avx512(const float *positions, co
     const __m512 lx = _mm512_set1_ps(light->x), ly = _mm512_set1_ps(light->y);
     const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
     int t = 0;
-    for (; t <= numTriangles - 16; t += 16) {
+    for (; numTriangles - t >= 16; t += 16) {
         const int *ix = indices + 3 * t;
         LOAD_TRI16_512(positions, ix, 1);
         const __m512 nx = _mm512_sub_ps(_mm512_mul_ps(ay, bz), _mm512_mul_ps(az, by));
