@@ -26,10 +26,11 @@ esac
 # tests third-party malformed glTF files; qemu-user runs the test suite as
 # CPUs without AVX-512 and without AVX; libosmesa6-dev gives the Mesa judge
 # (src/gljudge) its off-screen llvmpipe GL context; clang and libclang-rt-dev
-# (libFuzzer) build the fuzz targets (tests/fuzz).
+# (libFuzzer) build the fuzz targets (tests/fuzz: the test and fuzz jobs).
 packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
           libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user
-          libosmesa6-dev clang libclang-rt-dev)
+          libosmesa6-dev)
+[ "$job" = bench ] || packages+=(clang libclang-rt-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
