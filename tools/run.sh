@@ -67,13 +67,13 @@ if [ "$job" = fuzz ]; then
   "$fb/tests/fuzz/sv_fuzz_corpus" "$corpus/seed" models/character_1344.glb
   for d in ../shared/models /usr/share/assimp/models/glTF2; do
     [ -d "$d" ] || continue
-    find "$d" -name '*.glb' -size -2M -exec cp -n {} "$corpus/seed/glb/" \; 2>/dev/null || true
-    find "$d" -name '*.gltf' -size -2M -exec cp -n {} "$corpus/seed/gltf/" \; 2>/dev/null || true
+    find "$d" -name '*.glb' -size -300k -exec cp -n {} "$corpus/seed/glb/" \; 2>/dev/null || true
+    find "$d" -name '*.gltf' -size -300k -exec cp -n {} "$corpus/seed/gltf/" \; 2>/dev/null || true
   done
   status=0
   for t in fuzz_glb fuzz_gltf_json fuzz_checked; do
     work="$corpus/$t"; mkdir -p "$work"
-    args=(-max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+    args=(-max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=131072 -print_final_stats=1
           -artifact_prefix="$fb/fuzz-artifacts/$t-")
     seeds=()
     case $t in
