@@ -158,7 +158,8 @@ typedef int (*sv_count_facing_fn)(const uint8_t *facing, int numTriangles);
  *                four-triangle loop the AND of the cull bytes is compared
  *                SIGNED with pcmpgtb, so a triangle whose only shared cull
  *                bit is bit 7 is not culled there. Use bits 0..6 only
- *                (six light planes use bits 0..5).
+ *                (six light planes use bits 0..5); the checked entry
+ *                points refuse bit 7 for it (SV_E_CULL_BITS).
  *   numTriangles >= 0 (negative returns 0, touches nothing). */
 typedef int (*sv_count_facing_cull_fn)(uint8_t *facing, int numTriangles,
                                        const int *indices, const uint8_t *cullBits);
@@ -174,7 +175,9 @@ typedef int (*sv_count_facing_cull_fn)(uint8_t *facing, int numTriangles,
  *                  sse2_paper: 8-byte aligned (the listing keeps the output
  *                  pointer divided by 8 and addresses [reg*8]).
  *   facing         indexed by p1 and p2: each byte 0 or 1, so it needs
- *                  numTriangles + 1 bytes with facing[numTriangles] = 1.
+ *                  numTriangles + 1 bytes with facing[numTriangles] = 1
+ *                  (the checked entry points refuse any other last byte:
+ *                  SV_E_FACING_SENTINEL).
  *   silEdges       numSilEdges edges, 0 <= p1, p2 <= numTriangles, v1 and
  *                  v2 even (the xor-by-one trick relies on it).
  *   numSilEdges    >= 0 (negative returns 0 and writes nothing). */

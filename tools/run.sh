@@ -27,10 +27,11 @@ esac
 # CPUs without AVX-512 and without AVX; libosmesa6-dev gives the Mesa judge
 # (src/gljudge) its off-screen llvmpipe GL context; libtbb-dev (oneTBB) runs a
 # frame's jobs and screen bands in parallel; clang and libclang-rt-dev
-# (libFuzzer) build the fuzz targets (tests/fuzz).
+# (libFuzzer) build the fuzz targets (tests/fuzz: the test and fuzz jobs).
 packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
           libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user
-          libosmesa6-dev libtbb-dev clang libclang-rt-dev)
+          libosmesa6-dev libtbb-dev)
+[ "$job" = bench ] || packages+=(clang libclang-rt-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -68,13 +69,13 @@ if [ "$job" = fuzz ]; then
   "$fb/tests/fuzz/sv_fuzz_corpus" "$corpus/seed" models/character_1344.glb
   for d in ../shared/models /usr/share/assimp/models/glTF2; do
     [ -d "$d" ] || continue
-    find "$d" -name '*.glb' -size -2M -exec cp -n {} "$corpus/seed/glb/" \; 2>/dev/null || true
-    find "$d" -name '*.gltf' -size -2M -exec cp -n {} "$corpus/seed/gltf/" \; 2>/dev/null || true
+    find "$d" -name '*.glb' -size -300k -exec cp -n {} "$corpus/seed/glb/" \; 2>/dev/null || true
+    find "$d" -name '*.gltf' -size -300k -exec cp -n {} "$corpus/seed/gltf/" \; 2>/dev/null || true
   done
   status=0
   for t in fuzz_glb fuzz_gltf_json fuzz_checked fuzz_scene; do
     work="$corpus/$t"; mkdir -p "$work"
-    args=(-max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+    args=(-max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=131072 -print_final_stats=1
           -artifact_prefix="$fb/fuzz-artifacts/$t-")
     seeds=()
     case $t in

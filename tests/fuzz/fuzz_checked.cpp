@@ -54,6 +54,44 @@ unsigned misalignment(FuzzedDataProvider &d, size_t element) {
     return (unsigned)(d.ConsumeIntegralInRange<unsigned>(0, 3) * element) % 16u;
 }
 
+/* The contract, written again here from the header (not from
+ * src/contracts.c): the harness's own oracle of what must be accepted. */
+bool aligned_to(const void *p, unsigned a) { return ((uintptr_t)p & (uintptr_t)(a - 1)) == 0; }
+bool all_bool(const uint8_t *f, long n) {
+    for (long i = 0; i < n; i++) {
+        if (f[i] > 1) return false;
+    }
+    return true;
+}
+bool indices_in(const int *idx, long n, int nv) {
+    for (long i = 0; i < n; i++) {
+        if (idx[i] < 0 || idx[i] >= nv) return false;
+    }
+    return true;
+}
+bool edges_in(const SilEdge *e, long n, int nt, long nv /* -1: unknown */) {
+    for (long i = 0; i < n; i++) {
+        if (e[i].p1 < 0 || e[i].p1 > nt || e[i].p2 < 0 || e[i].p2 > nt) return false;
+        if (e[i].v1 < 0 || e[i].v2 < 0 || (e[i].v1 & 1) || (e[i].v2 & 1)) return false;
+        if (nv >= 0 && (e[i].v1 / 2 >= nv || e[i].v2 / 2 >= nv)) return false;
+    }
+    return true;
+}
+bool paper_cull(const sv_variant *v) { return v->count_facing_cull == sv_count_facing_cull_sse2_paper; }
+bool no_bit7(const uint8_t *c, int n) {
+    for (int i = 0; i < n; i++) {
+        if (c[i] & 0x80) return false;
+    }
+    return true;
+}
+/* Accepted exactly when in contract: a refusal of valid input, or an
+ * acceptance of invalid input (facing[numTriangles] = 0, sse2_paper's bit
+ * 7, ...), is a finding. */
+void hold_contract(const char *routine, const sv_variant *v, int status, bool valid) {
+    if (status >= 0 && !valid) finding(routine, v->name, "accepted out-of-contract input", status, 0);
+    if (status < 0 && valid) finding(routine, v->name, "refused in-contract input", status, 0);
+}
+
 const sv_variant *pick_variant(FuzzedDataProvider &d) {
     int n = 0;
     const sv_variant *all = sv_variants(&n);
@@ -79,6 +117,7 @@ void fuzz_count_facing(FuzzedDataProvider &d, const sv_variant *v) {
     Exact<uint8_t> f(len, misalignment(d, 1));
     for (size_t i = 0; i < len; i++) f.p[i] = facing_byte(d);
     const int got = sv_count_facing_checked(v, f.p, n);
+    hold_contract("count_facing", v, got, n >= 0 && aligned_to(f.p, v->align_facing) && all_bool(f.p, n));
     if (got < 0) return;
     const int want = sv_count_facing_checked(sv_variant_by_name("c_ref"), f.p, n);
     if (got != want) finding("count_facing", v->name, "differs from c_ref", got, want);
@@ -109,6 +148,9 @@ void fuzz_count_facing_cull(FuzzedDataProvider &d, const sv_variant *v) {
         cull.p[i] = b < 200 ? (uint8_t)(b & 0x3F) : b; /* mostly six light planes */
     }
     const int got = sv_count_facing_cull_checked(v, f.p, nt, idx.p, cull.p, nv);
+    hold_contract("count_facing_cull", v, got,
+                  nt >= 0 && all_bool(fr.p, nt) && indices_in(idx.p, 3L * nt, nv) &&
+                      (nt <= 0 || !paper_cull(v) || no_bit7(cull.p, nv)));
     if (got < 0) {
         if (t && std::memcmp(f.p, fr.p, t)) finding("count_facing_cull", v->name, "refused but wrote", got, 0);
         return;
@@ -149,6 +191,9 @@ void fuzz_sil(FuzzedDataProvider &d, const sv_variant *v) {
     if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_sil_triangles_checked(v, out.p, capacity, f.p, nt, e.p, ne);
+    hold_contract("create_sil_triangles", v, got,
+                  ne >= 0 && capacity >= 6 * edges && aligned_to(out.p, v->align_shadow_indices) &&
+                      all_bool(f.p, nt) && f.p[nt] == 1 && edges_in(e.p, ne, nt, -1));
     if (got < 0) return;
     if ((size_t)got > capacity) finding("create_sil_triangles", v->name, "past capacity", got, (long)capacity);
     std::vector<int> ref(6 * edges + 1);
@@ -180,6 +225,10 @@ void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
     if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_cap_triangles_checked(v, out.p, capacity, f.p, idx.p, ni, nv);
+    hold_contract("create_cap_triangles", v, got,
+                  ni >= 0 && ni % 3 == 0 && aligned_to(idx.p, v->align_indices) &&
+                      aligned_to(out.p, v->align_shadow_indices) && capacity >= 2 * nidx &&
+                      all_bool(f.p, ni / 3) && indices_in(idx.p, ni, nv));
     if (got < 0) return;
     std::vector<int> ref(2 * nidx + 1);
     const int want = sv_create_cap_triangles_checked(sv_variant_by_name("c_ref"), ref.data(), 2 * nidx, f.p, idx.p, ni, nv);
@@ -212,6 +261,13 @@ void fuzz_volume(FuzzedDataProvider &d, const sv_variant *v) {
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_shadow_volume_checked(v, out.p, capacity, idx.p, ni, nv, e.p, ne, f.p,
                                                     use_cull ? cull.p : nullptr);
+    hold_contract("create_shadow_volume", v, got,
+                  capacity >= sv_shadow_volume_capacity(ni, ne) &&
+                      (use_cull || aligned_to(f.p, v->align_facing)) &&
+                      aligned_to(idx.p, v->align_indices) &&
+                      aligned_to(out.p, v->align_shadow_indices) && all_bool(fr.p, nt) &&
+                      fr.p[nt] == 1 && indices_in(idx.p, ni, nv) && edges_in(e.p, ne, nt, nv) &&
+                      (!use_cull || nt == 0 || !paper_cull(v) || no_bit7(cull.p, nv)));
     if (got < 0) {
         if (std::memcmp(f.p, fr.p, (size_t)nt + 1)) finding("create_shadow_volume", v->name, "refused but wrote facing", got, 0);
         return;

@@ -48,7 +48,7 @@ void check_message(const std::string &m, const char *what) {
  * every variant's volume for kLights lights, checked closed and equal to
  * c_ref's, on surfaces up to kMaxClosureTriangles; the in-space check of
  * the verifier (kPoints points a light) up to kMaxVerifiedTriangles. */
-constexpr int kMaxClosureTriangles = 20000;
+constexpr int kMaxClosureTriangles = 5000;
 constexpr int kMaxVerifiedTriangles = 300;
 constexpr int kLights = 2;
 constexpr int kPoints = 8;
