@@ -22,27 +22,15 @@
 #include <cstring>
 #include <string>
 
+#include "fuzz_support.h"
 #include "shadowvol_gltf.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_verify.h"
 
 namespace {
 
-[[noreturn]] void finding(const std::string &what) {
-    std::fprintf(stderr, "FUZZ FINDING: %s\n", what.c_str());
-    std::fflush(stderr);
-    std::abort();
-}
-
-/* Messages: at most a few kGltfMaxQuotedBytes, printable UTF-8. */
-void check_message(const std::string &m, const char *what) {
-    if (m.size() > 16 * sv::kGltfMaxQuotedBytes) {
-        finding(std::string(what) + " of " + std::to_string(m.size()) + " bytes");
-    }
-    if (sv::printable_text(m, m.size()) != m) {
-        finding(std::string(what) + " is not printable UTF-8: " + sv::printable_text(m));
-    }
-}
+using svfuzz::check_message;
+using svfuzz::finding;
 
 /* What each input gets, sized so an input takes about a millisecond:
  * every variant's volume for kLights lights, checked closed and equal to

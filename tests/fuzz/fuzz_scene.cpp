@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "shadowvol_anim.h"
+#include "fuzz_support.h"
 #include "shadowvol_gltf.h"
 #include "shadowvol_planes.h"
 #include "shadowvol_scene.h"
@@ -32,20 +33,8 @@
 
 namespace {
 
-[[noreturn]] void finding(const std::string &what) {
-    std::fprintf(stderr, "FUZZ FINDING: %s\n", what.c_str());
-    std::fflush(stderr);
-    std::abort();
-}
-
-void check_message(const std::string &m, const char *what) {
-    if (m.size() > 16 * sv::kGltfMaxQuotedBytes) {
-        finding(std::string(what) + " of " + std::to_string(m.size()) + " bytes");
-    }
-    if (sv::printable_text(m, m.size()) != m) {
-        finding(std::string(what) + " is not printable UTF-8: " + sv::printable_text(m));
-    }
-}
+using svfuzz::check_message;
+using svfuzz::finding;
 
 /* Sized so an input takes about a millisecond. */
 constexpr int kMaxSurfaceTriangles = 20000;
