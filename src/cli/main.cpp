@@ -5,7 +5,8 @@
  * dispatches.
  *
  * Exit status: 0 done; 1 a correctness check failed; 2 bad arguments; 3 a
- * model file could not be loaded (inspect, verify, render).
+ * model file could not be loaded (inspect, verify, render, scene); 4 verify
+ * cannot decide.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -69,7 +70,7 @@ void usage(FILE *out) {
     std::fprintf(out, "\n"
                       "'shadowvol <command> --help' describes a command's options.\n"
                       "Exit status: 0 done, 1 a correctness check failed, 2 bad arguments,\n"
-                      "3 a model could not be loaded.\n");
+                      "3 a model could not be loaded, 4 verify cannot decide (the reason printed).\n");
 }
 
 } // namespace
