@@ -127,6 +127,15 @@ public:
  * or below). */
 void add_model(Scene &scene, const std::string &path, const Placement &placement);
 
+/* Throws SceneError naming PATH when PL has a number that is not finite or
+ * a scale of 0 or below. */
+void check_placement(const std::string &path, const Placement &pl);
+/* PL as a matrix: translation + scale * R_y(yaw), for posed surfaces
+ * (add_model places its vertices by the same formula, term by term). */
+Mat4d placement_matrix(const Placement &pl);
+/* S's box from its prepared positions. */
+void update_bounds(SceneSurface &s);
+
 /* A square ground plane (two triangles, facing +y) at the lowest y of the
  * surfaces, centred under them, with a side of 8 times their horizontal
  * radius (at least 1): large enough for the shadows of lights above. */

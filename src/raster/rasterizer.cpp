@@ -283,8 +283,7 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
 
 /* EMIT(span, y) for each row of TRI inside BAND. */
 template <class Emit>
-void Rasterizer::walk_rows(const SetupTriangle &tri, int width, RowBand band, Emit &&emit) {
-    (void)width;
+void Rasterizer::walk_rows(const SetupTriangle &tri, RowBand band, Emit &&emit) {
     const int y_first = std::max(tri.y_first, band.row_begin);
     const int y_last = std::min(tri.y_last, band.row_end - 1);
     if (y_first > y_last) return;
@@ -345,7 +344,7 @@ void Rasterizer::walk_rows(const SetupTriangle &tri, int width, RowBand band, Em
 
 void Rasterizer::walk_depth(const SetupTriangle &tri, Target &t, RowBand band,
                             RowCounts &r) const {
-    walk_rows(tri, t.width, band, [&](const RowSpan &span, int y) {
+    walk_rows(tri, band, [&](const RowSpan &span, int y) {
         const std::size_t row = (std::size_t)y * (std::size_t)t.width;
         prefetch_ahead(t.depth.data(), nullptr, t.width, t.height, y, span.x_begin);
         const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
@@ -362,7 +361,7 @@ void Rasterizer::walk_stencil(const SetupTriangle &tri, const float *depth, uint
                               RowCounts &r) const {
     /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
     const uint8_t delta = ((mode == StencilMode::zpass) == tri.front) ? 1 : 255;
-    walk_rows(tri, width, band, [&](const RowSpan &span, int y) {
+    walk_rows(tri, band, [&](const RowSpan &span, int y) {
         const std::size_t row = (std::size_t)y * (std::size_t)width;
         prefetch_ahead(depth, stencil, width, height, y, span.x_begin);
         const RowBuffers b{const_cast<float *>(depth) + row, nullptr, stencil + row};

@@ -182,7 +182,7 @@ public:
 private:
     const RowKernels *kernels_;
     template <class Emit>
-    static void walk_rows(const SetupTriangle &tri, int width, RowBand band, Emit &&emit);
+    static void walk_rows(const SetupTriangle &tri, RowBand band, Emit &&emit);
 };
 
 } // namespace sv::raster

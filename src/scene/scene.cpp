@@ -70,6 +70,15 @@ bool inside_closed_surface(const SceneSurface &s, const Vec3d &p) {
     return crossings % 2 == 1;
 }
 
+
+/* Colours for successive surfaces: muted, distinguishable. */
+const std::array<float, 3> kPalette[] = {
+    {0.85f, 0.55f, 0.35f}, {0.45f, 0.65f, 0.85f}, {0.60f, 0.80f, 0.45f},
+    {0.85f, 0.75f, 0.40f}, {0.75f, 0.50f, 0.75f}, {0.50f, 0.80f, 0.75f},
+};
+
+} // namespace
+
 void update_bounds(SceneSurface &s) {
     const std::vector<float> &p = s.prepared.positions;
     const double inf = std::numeric_limits<double>::infinity();
@@ -84,13 +93,23 @@ void update_bounds(SceneSurface &s) {
     if (p.empty()) s.lo = s.hi = {};
 }
 
-/* Colours for successive surfaces: muted, distinguishable. */
-const std::array<float, 3> kPalette[] = {
-    {0.85f, 0.55f, 0.35f}, {0.45f, 0.65f, 0.85f}, {0.60f, 0.80f, 0.45f},
-    {0.85f, 0.75f, 0.40f}, {0.75f, 0.50f, 0.75f}, {0.50f, 0.80f, 0.75f},
-};
+void check_placement(const std::string &path, const Placement &pl) {
+    if (!finite(pl.translation) || !std::isfinite(pl.yaw_degrees) || !std::isfinite(pl.scale)) {
+        throw SceneError(path + ": the placement has a number that is not finite");
+    }
+    if (!(pl.scale > 0)) throw SceneError(path + ": the scale must be above 0");
+}
 
-} // namespace
+Mat4d placement_matrix(const Placement &pl) {
+    const double yaw = pl.yaw_degrees * kPi / 180.0;
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    Mat4d m; /* column-major: p' = t + scale * R_y(yaw) p */
+    m.m[0] = pl.scale * c, m.m[1] = 0, m.m[2] = -pl.scale * s, m.m[3] = 0;
+    m.m[4] = 0, m.m[5] = pl.scale, m.m[6] = 0, m.m[7] = 0;
+    m.m[8] = pl.scale * s, m.m[9] = 0, m.m[10] = pl.scale * c, m.m[11] = 0;
+    m.m[12] = pl.translation.x, m.m[13] = pl.translation.y, m.m[14] = pl.translation.z, m.m[15] = 1;
+    return m;
+}
 
 Mat4d Mat4d::operator*(const Mat4d &b) const {
     Mat4d r;
@@ -182,10 +201,7 @@ int64_t Scene::triangles() const {
 }
 
 void add_model(Scene &scene, const std::string &path, const Placement &pl) {
-    if (!finite(pl.translation) || !std::isfinite(pl.yaw_degrees) || !std::isfinite(pl.scale)) {
-        throw SceneError(path + ": the placement has a number that is not finite");
-    }
-    if (!(pl.scale > 0)) throw SceneError(path + ": the scale must be above 0");
+    check_placement(path, pl);
     const GltfModel model = load_gltf(path);
     const double yaw = pl.yaw_degrees * kPi / 180.0;
     const double c = std::cos(yaw), s = std::sin(yaw);

@@ -14,28 +14,6 @@
 namespace sv {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-Mat4d placement_matrix(const Placement &p) {
-    const double c = std::cos(p.yaw_degrees * kPi / 180), s = std::sin(p.yaw_degrees * kPi / 180);
-    Mat4d m;
-    /* translation + scale * R_y(yaw), column-major */
-    m.m[0] = p.scale * c, m.m[1] = 0, m.m[2] = -p.scale * s, m.m[3] = 0;
-    m.m[4] = 0, m.m[5] = p.scale, m.m[6] = 0, m.m[7] = 0;
-    m.m[8] = p.scale * s, m.m[9] = 0, m.m[10] = p.scale * c, m.m[11] = 0;
-    m.m[12] = p.translation.x, m.m[13] = p.translation.y, m.m[14] = p.translation.z, m.m[15] = 1;
-    return m;
-}
-
-void box_of(const std::vector<float> &pos, Vec3d &lo, Vec3d &hi) {
-    lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (std::size_t i = 0; i + 2 < pos.size(); i += 3) {
-        lo = {std::min(lo.x, (double)pos[i]), std::min(lo.y, (double)pos[i + 1]), std::min(lo.z, (double)pos[i + 2])};
-        hi = {std::max(hi.x, (double)pos[i]), std::max(hi.y, (double)pos[i + 1]), std::max(hi.z, (double)pos[i + 2])};
-    }
-}
-
 bool same_light(const SceneLight &a, const SceneLight &b) {
     return a.position.x == b.position.x && a.position.y == b.position.y && a.position.z == b.position.z &&
            a.direction.x == b.direction.x && a.direction.y == b.direction.y &&
@@ -79,9 +57,7 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
         auto m = std::make_shared<Model>();
         m->path = files[fi].path;
         m->asset = load_animated_gltf(files[fi].path);
-        if (!(files[fi].placement.scale > 0) || !std::isfinite(files[fi].placement.scale)) {
-            throw SceneError(files[fi].path + ": the placement's scale must be a finite number above 0");
-        }
+        check_placement(files[fi].path, files[fi].placement);
         m->root = placement_matrix(files[fi].placement);
         if (!m->asset.animations.empty()) {
             m->animation = fi == 0 && !o.animation.empty() ? find_animation(m->asset, o.animation) : 0;
@@ -115,7 +91,7 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
             pose_surface(m->asset, as, m->pose, m->root, s.prepared.positions.data(), skinning_);
             planes_->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
                                    s.prepared.num_triangles(), s.prepared.planes.data());
-            box_of(s.prepared.positions, s.lo, s.hi);
+            update_bounds(s);
             links_.push_back({(int)models_.size(), (int)si});
             scene_.surfaces.push_back(std::move(s));
         }
@@ -219,7 +195,7 @@ PoseStats SceneSequence::set_time(double time) {
                                s.prepared.num_triangles(), s.prepared.planes.data());
         st.ticks_planes += __rdtsc() - k0;
         st.planes_derived += s.prepared.num_triangles();
-        box_of(s.prepared.positions, s.lo, s.hi);
+        update_bounds(s);
         s.revision++;
         st.surfaces_moved++;
     }
