@@ -26,7 +26,7 @@
 
 #include <unistd.h>
 
-#include "../accuracy/accuracy_plot.h"
+#include "svg_scatter.h"
 #include "../accuracy/accuracy_study.h"
 #include "cli_args.h"
 #include "sysinfo.h"
@@ -367,13 +367,13 @@ int accuracy_main(int argc, char **argv) {
 
     /* ---- Plot ---- */
     if (!plot_path.empty()) {
-        std::vector<sv::acc::PlotPoint> pts;
+        std::vector<svplot::ScatterPoint> pts;
         for (const sv::acc::Variant *v : vars) {
             const Totals &t = totals[v];
             pts.push_back({v->name, v->family, t.ticks(),
                            t.tests > 0 ? (double)t.mis / (double)t.tests : 0.0});
         }
-        sv::acc::PlotText text;
+        svplot::ScatterText text;
         text.title = "Facing decision: accuracy against speed";
         text.subtitle = std::to_string(models.size()) + " model(s), " +
                         std::to_string(places.size()) + " light placements, " +
@@ -383,7 +383,7 @@ int accuracy_main(int argc, char **argv) {
         text.zero_label = "0";
         text.footnote = "Points on the 0 row agree with the exact predicate on every test.";
         if (!timing) text.footnote += " Timing was off (--no-timing): no speeds.";
-        if (!write_file(plot_path, sv::acc::svg_loglog_scatter(pts, text))) {
+        if (!write_file(plot_path, svplot::render_loglog_scatter(pts, text))) {
             std::fprintf(stderr, "shadowvol accuracy: cannot write %s\n", plot_path.c_str());
             return kExitBadModel;
         }
