@@ -202,10 +202,10 @@ int accuracy_main(int argc, char **argv) {
                     for (const sv::acc::Variant &x : sv::acc::variants()) {
                         names += (names.empty() ? "" : ", ") + std::string(x.name);
                     }
-                    usage_error("unknown variant '" + v + "' (variants: " + names + ")");
+                    usage_error("unknown variant '" + quoted(v) + "' (variants: " + names + ")");
                 }
                 if (!sv::acc::runnable(*var)) {
-                    usage_error("variant '" + v + "' needs an instruction set this CPU lacks");
+                    usage_error("variant '" + quoted(v) + "' needs an instruction set this CPU lacks");
                 }
                 if (std::find(opt.variants.begin(), opt.variants.end(), var) == opt.variants.end()) {
                     opt.variants.push_back(var);
@@ -218,16 +218,16 @@ int accuracy_main(int argc, char **argv) {
                     for (const sv::acc::Placement &x : sv::acc::placements()) {
                         names += (names.empty() ? "" : ", ") + std::string(x.name);
                     }
-                    usage_error("unknown placement '" + p + "' (placements: " + names + ")");
+                    usage_error("unknown placement '" + quoted(p) + "' (placements: " + names + ")");
                 }
                 if (std::find(opt.placements.begin(), opt.placements.end(), pl) ==
                     opt.placements.end()) {
                     opt.placements.push_back(pl);
                 }
             } else if (a.arg().rfind("-", 0) == 0) {
-                usage_error("unknown option '" + a.arg() + "'");
+                usage_error("unknown option '" + quoted(a.arg()) + "'");
             } else {
-                usage_error("unexpected argument '" + a.arg() + "' (models go after --model)");
+                usage_error("unexpected argument '" + quoted(a.arg()) + "' (models go after --model)");
             }
         }
     } catch (const UsageError &e) {
