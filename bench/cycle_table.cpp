@@ -128,6 +128,25 @@ template <bool kCull> struct VolumeCall {
     }
 };
 
+/* One light's whole job (issue 15): A, then the volume; or A, B and the
+ * volume with the culling decision (no cull bits when B finds the surface
+ * inside the light volume, as sv_calculate_cull_bits_c_ref's contract
+ * says). */
+template <bool kCull> struct PipelineCall {
+    const BenchVariant *bv;
+    const Workload *w;
+    int operator()(const CallArgs &a) const {
+        bv->pipeline_facing(w->planes.data(), w->numTriangles, a.light, a.facing);
+        const uint8_t *cull = nullptr;
+        if (kCull && bv->pipeline_cull_bits(w->positions.data(), w->numVerts, &w->bounds,
+                                            a.lightPlanes, a.cull) == 0) {
+            cull = a.cull;
+        }
+        return sv_create_shadow_volume(bv->kernels, a.out, w->indices.data(), w->numIndices,
+                                       w->silEdges.data(), w->numSilEdges, a.facing, cull);
+    }
+};
+
 struct Context {
     const Workload *w;
     const std::vector<Expected> *expected; /* per light, for this routine */
@@ -313,7 +332,7 @@ CallArgs prepare_slot(const Context &c, Routine r, size_t s, int li) {
     const Light &l = w.lights[(size_t)li];
     Slot &sl = c.buf->slots[s];
     initial_facing(r, w, l, sl.facing.data());
-    if (r == Routine::calculate_cull_bits) {
+    if (r == Routine::calculate_cull_bits || r == Routine::pipeline_cull) {
         std::fill_n(sl.cull.data(), w.numVerts, kPoisonByte);
     }
     if (writes_indices(r)) {
@@ -516,6 +535,8 @@ void measure(TimerKind k, const Context &c, Row &row) {
                                       w.numSilEdges},
                      c, row);
         break;
+    case Routine::pipeline: measure_with(k, PipelineCall<false>{&bv, &w}, c, row); break;
+    case Routine::pipeline_cull: measure_with(k, PipelineCall<true>{&bv, &w}, c, row); break;
     }
 }
 
@@ -598,7 +619,10 @@ ModelTable run_cycle_table(const TableOptions &o, const MachineTiming &m, const 
         throw std::logic_error("workload " + w.name + " has no lights");
     }
     /* Every buffer is allocated more aligned than any variant asks. */
-    for (const BenchVariant *bv : o.variants) {
+    /* The planned variant becomes the plan for this workload's size. */
+    std::vector<const BenchVariant *> variants;
+    for (const BenchVariant *bv : o.variants) variants.push_back(resolve_planned(bv, w.numTriangles));
+    for (const BenchVariant *bv : variants) {
         const sv_variant *v = bv->kernels;
         if (v && (kBufferAlignment % v->align_facing || kBufferAlignment % v->align_indices ||
                   kBufferAlignment % v->align_shadow_indices)) {
@@ -622,7 +646,7 @@ ModelTable run_cycle_table(const TableOptions &o, const MachineTiming &m, const 
             continue;
         }
         for (Routine r : routines) {
-            for (const BenchVariant *v : o.variants) {
+            for (const BenchVariant *v : variants) {
                 if (implements(*v, r)) {
                     Row row;
                     row.routine = r;

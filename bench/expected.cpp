@@ -51,7 +51,7 @@ uint64_t digest(const void *data, size_t bytes) {
 
 void initial_facing(Routine r, const Workload &w, const Light &l, uint8_t *facing) {
     const size_t n = (size_t)w.numTriangles + 1;
-    if (r == Routine::calculate_facing) {
+    if (r == Routine::calculate_facing || r == Routine::pipeline || r == Routine::pipeline_cull) {
         std::fill_n(facing, n, kPoisonByte);
     } else {
         std::memcpy(facing, l.facing.data(), n);
@@ -93,6 +93,23 @@ SlotImage reference_image(Routine r, const Workload &w, const Light &l) {
             ref, out.data(), w.indices.data(), w.numIndices, w.silEdges.data(), w.numSilEdges, f,
             r == Routine::create_shadow_volume_cull ? l.cullBits.data() : nullptr);
         break;
+    case Routine::pipeline:
+    case Routine::pipeline_cull: {
+        /* The second computation of A (and B) decides, then the volume
+         * by c_ref: what the whole job must give. */
+        oracle_facing(w.planes.data(), w.numTriangles, l.position, f);
+        const uint8_t *cull = nullptr;
+        if (r == Routine::pipeline_cull) {
+            s.cull.assign((size_t)w.numVerts, kPoisonByte);
+            if (oracle_cull_bits(w.positions.data(), w.numVerts, w.bounds, l.planes,
+                                 s.cull.data()) == 0) {
+                cull = s.cull.data();
+            }
+        }
+        s.count = sv_create_shadow_volume(ref, out.data(), w.indices.data(), w.numIndices,
+                                          w.silEdges.data(), w.numSilEdges, f, cull);
+        break;
+    }
     }
     if (writes_indices(r)) {
         out.resize((size_t)std::max(0, s.count));
@@ -149,7 +166,8 @@ std::string compare_with_reference(Routine r, const Workload &w, const Light &l,
     const bool indicesOk =
         !writes_indices(r) || digest(indices, (size_t)got * sizeof(int)) == e.indices;
     const bool facingOk = digest(facing, nf) == e.facing;
-    const bool cullOk = r != Routine::calculate_cull_bits || digest(cull, (size_t)w.numVerts) == e.cull;
+    const bool cullOk = (r != Routine::calculate_cull_bits && r != Routine::pipeline_cull) ||
+                        digest(cull, (size_t)w.numVerts) == e.cull;
     if (indicesOk && facingOk && cullOk) {
         return std::string();
     }

@@ -203,6 +203,8 @@ void limits(JsonWriter &j, const BenchRun &run) {
             j.value(f.lookups);
             j.key("store_port_ticks");
             j.value(f.storePort);
+            j.key("streaming_floor_ticks");
+            j.value(f.streaming);
             j.end_object();
         }
     }

@@ -142,6 +142,12 @@ std::vector<RoutineFloor> routine_floors(const MachineLimits &l, const Workload 
     const Terms sil{16 * E / l.l1LoadBytes, 2 * E / lookup, 24 * sE / l.storeBytes};
     const Terms cap{13 * N / l.l1LoadBytes, 0, 24 * nf / l.storeBytes};
     const Terms capCulled{13 * N / l.l1LoadBytes, 0, 24 * culledNf / l.storeBytes};
+    /* Appendix A: 16 bytes of plane read and one facing byte written per
+     * triangle; B: 16 bytes of position read, one cull byte written per
+     * vertex (the light box's planes stay in registers). */
+    const double V = w.numVerts;
+    const Terms facingA{16 * N / l.l1LoadBytes, 0, N / l.storeBytes};
+    const Terms cullB{16 * V / l.l1LoadBytes, 0, V / l.storeBytes};
 
     for (const Row &r : t.rows) {
         if (!r.moving || (!floors.empty() && floors.back().routine == r.routine)) {
@@ -155,7 +161,11 @@ std::vector<RoutineFloor> routine_floors(const MachineLimits &l, const Workload 
         case Routine::create_cap_triangles: x = cap; break;
         case Routine::create_shadow_volume: x = count + sil + cap; break;
         case Routine::create_shadow_volume_cull: x = cull + sil + capCulled; break;
-        default: continue; /* appendices A and B: not modelled */
+        case Routine::calculate_facing: x = facingA; break;
+        case Routine::calculate_cull_bits: x = cullB; break;
+        case Routine::pipeline: x = facingA + count + sil + cap; break;
+        case Routine::pipeline_cull: x = facingA + cullB + cull + sil + capCulled; break;
+        default: continue;
         }
         /* Loads and lookups share the load ports; stores have their own. */
         RoutineFloor f{r.routine};
@@ -163,6 +173,7 @@ std::vector<RoutineFloor> routine_floors(const MachineLimits &l, const Workload 
         f.lookups = x.lookups;
         f.storePort = x.stores;
         f.ticks = std::max(f.loadPorts, f.storePort);
+        f.streaming = std::max(x.loads, x.stores);
         floors.push_back(f);
     }
     return floors;
@@ -192,8 +203,9 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
                  "ports' time for the bytes read and the lookups made, the store port's for the\n"
                  "bytes written; the floor is the larger\n",
                  w.name.c_str());
-    std::fprintf(out, "%-26s %9s %9s %9s %9s | %-13s %9s | %9s %9s\n", "routine", "floor",
-                 "load port", "(lookups)", "store", "best variant", "median", "sse2/2", "c_ref/8");
+    std::fprintf(out, "%-26s %9s %9s %9s %9s %9s | %-13s %9s %8s | %9s %9s\n", "routine", "floor",
+                 "streaming", "load port", "(lookups)", "store", "best variant", "median",
+                 "/stream", "sse2/2", "c_ref/8");
     for (const RoutineFloor &f : floors) {
         const Row *best = nullptr, *sse2 = nullptr, *cref = nullptr;
         for (const Row &r : t.rows) {
@@ -212,16 +224,21 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
         }
         const std::string sse2Goal = sse2 ? std::to_string((long)(sse2->median / 2 + 0.5)) : "-";
         const std::string crefGoal = cref && (f.routine == Routine::create_shadow_volume ||
-                                              f.routine == Routine::create_shadow_volume_cull)
+                                              f.routine == Routine::create_shadow_volume_cull ||
+                                              f.routine == Routine::pipeline ||
+                                              f.routine == Routine::pipeline_cull)
                                          ? std::to_string((long)(cref->median / 8 + 0.5))
                                          : "-";
-        std::fprintf(out, "%-26s %9.0f %9.0f %9.0f %9.0f | %-13s %9.0f | %9s %9s\n",
-                     routine_name(f.routine), f.ticks, f.loadPorts, f.lookups, f.storePort,
-                     best ? best->variant->name : "-", best ? best->median : 0.0,
-                     sse2Goal.c_str(), crefGoal.c_str());
+        std::fprintf(out, "%-26s %9.0f %9.0f %9.0f %9.0f %9.0f | %-13s %9.0f %7.1fx | %9s %9s\n",
+                     routine_name(f.routine), f.ticks, f.streaming, f.loadPorts, f.lookups,
+                     f.storePort, best ? best->variant->name : "-", best ? best->median : 0.0,
+                     best && f.streaming > 0 ? best->median / f.streaming : 0.0, sse2Goal.c_str(),
+                     crefGoal.c_str());
     }
     std::fprintf(out,
-                 "(sse2/2: the median twice as fast as sse2_paper's; c_ref/8: eight times c_ref's,\n"
+                 "(streaming: only the bytes read and written at the best rates, no lookups;\n"
+                 " /stream: the best median over it. sse2/2: the median twice as fast as\n"
+                 " sse2_paper's; c_ref/8: eight times c_ref's,\n"
                  " the whole volume's goal. A floor far below the best variant: the kernel, not\n"
                  " the machine, is the limit; a goal below the floor: no kernel that looks its\n"
                  " tables up with loads or gathers can reach it on this core.)\n");

@@ -67,6 +67,11 @@ struct RoutineFloor {
     double lookups = 0;   /* of which lookups */
     double storePort = 0; /* stores */
     double ticks = 0;     /* the floor: the larger of the two, per call */
+    /* The streaming floor (issue 15): only the bytes the call must read and
+     * write, at the best load and store rates, without the lookup term, so
+     * that a kernel holding its tables in registers (which escapes the
+     * lookups) still has a floor that means something. */
+    double streaming = 0;
 };
 /* One per routine the table measured (moving light), in its order; none
  * when the machine's vector rates were not measured. */

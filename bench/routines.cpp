@@ -3,7 +3,11 @@
  */
 #include "routines.h"
 
+#include "shadowvol_plan.h"
+
 #include <cstring>
+#include <deque>
+#include <mutex>
 #include <stdexcept>
 
 namespace svbench {
@@ -13,6 +17,7 @@ const Routine kAllRoutines[kNumRoutines] = {
     Routine::count_facing,         Routine::count_facing_cull,
     Routine::create_sil_triangles, Routine::create_cap_triangles,
     Routine::create_shadow_volume, Routine::create_shadow_volume_cull,
+    Routine::pipeline,             Routine::pipeline_cull,
 };
 
 namespace {
@@ -21,6 +26,7 @@ const char *const kRoutineNames[kNumRoutines] = {
     "calculate_facing",     "calculate_cull_bits",  "count_facing",
     "count_facing_cull",    "create_sil_triangles", "create_cap_triangles",
     "create_shadow_volume", "create_shadow_volume_cull",
+    "pipeline",             "pipeline_cull",
 };
 
 /* Implementations of appendices A and B come from the library's own table
@@ -52,6 +58,26 @@ std::vector<BenchVariant> make_bench_variants() {
         }
         same->calculate_facing = c.calculate_facing;
         same->calculate_cull_bits = c.calculate_cull_bits;
+    }
+    /* The planner's choice: resolved per workload (resolve_planned). */
+    BenchVariant planned{"planned", 0, nullptr, nullptr, nullptr};
+    planned.planned = true;
+    all.push_back(planned);
+    for (BenchVariant &b : all) {
+        if (!b.kernels) continue;
+        const sv_facing_variant *pick = nullptr;
+        for (int k = 0; k < nf; k++) {
+            if (std::strcmp(fv[k].name, b.name) == 0) {
+                pick = &fv[k];
+                break;
+            }
+            if ((fv[k].isa & b.kernels->isa) == fv[k].isa) pick = &fv[k]; /* the table ascends */
+        }
+        if (pick) {
+            b.pipeline_facing = pick->calculate_facing;
+            b.pipeline_cull_bits = pick->calculate_cull_bits;
+            b.pipeline_facing_name = pick->name;
+        }
     }
     return all;
 }
@@ -99,12 +125,14 @@ const char *element_name(Element e) {
 }
 
 bool needs_light(Routine r) {
-    return r == Routine::calculate_facing || r == Routine::calculate_cull_bits;
+    return r == Routine::calculate_facing || r == Routine::calculate_cull_bits ||
+           r == Routine::pipeline || r == Routine::pipeline_cull;
 }
 
 bool writes_indices(Routine r) {
     return r == Routine::create_sil_triangles || r == Routine::create_cap_triangles ||
-           r == Routine::create_shadow_volume || r == Routine::create_shadow_volume_cull;
+           r == Routine::create_shadow_volume || r == Routine::create_shadow_volume_cull ||
+           r == Routine::pipeline || r == Routine::pipeline_cull;
 }
 
 const std::vector<BenchVariant> &bench_variants() {
@@ -130,10 +158,35 @@ std::string variant_list() {
     return s;
 }
 
+const BenchVariant *resolve_planned(const BenchVariant *v, int numTriangles) {
+    if (!v->planned) return v;
+    static std::mutex lock;
+    static std::deque<BenchVariant> resolved;
+    static bool wisdom_read = false;
+    std::lock_guard<std::mutex> g(lock);
+    if (!wisdom_read) {
+        char path[1024];
+        sv_wisdom_load(sv_wisdom_default_path(path, sizeof path));
+        wisdom_read = true;
+    }
+    const sv_plan *p = sv_plan_for(numTriangles, SV_PLAN_MEASURE);
+    BenchVariant b = *v;
+    b.origin = v;
+    b.kernels = &p->kernels;
+    b.calculate_facing = b.pipeline_facing = p->calculate_facing;
+    b.calculate_cull_bits = b.pipeline_cull_bits = p->calculate_cull_bits;
+    b.pipeline_facing_name = p->variant[SV_ROUTINE_CALCULATE_FACING];
+    resolved.push_back(b);
+    return &resolved.back();
+}
+
 bool implements(const BenchVariant &v, Routine r) {
+    if (v.planned) return true; /* every routine, once resolved */
     switch (r) {
     case Routine::calculate_facing: return v.calculate_facing != nullptr;
     case Routine::calculate_cull_bits: return v.calculate_cull_bits != nullptr;
+    case Routine::pipeline:
+    case Routine::pipeline_cull: return v.kernels != nullptr && v.pipeline_facing != nullptr;
     default: return v.kernels != nullptr;
     }
 }

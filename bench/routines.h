@@ -35,8 +35,14 @@ enum class Routine {
     create_cap_triangles,      /* App. F */
     create_shadow_volume,      /* sv_create_shadow_volume, cullBits NULL */
     create_shadow_volume_cull, /* sv_create_shadow_volume with cull bits */
+    /* One light's whole job as a user calls it (issue 15): A, then the
+     * volume (C, E, F); and A, B, then the volume with the culling
+     * decision (D, E, F; no culling when B says the surface is inside
+     * the light volume). */
+    pipeline,
+    pipeline_cull,
 };
-constexpr int kNumRoutines = 8;
+constexpr int kNumRoutines = 10;
 extern const Routine kAllRoutines[kNumRoutines];
 
 /* The names of the table and of the JSON document. */
@@ -53,9 +59,9 @@ enum class Element { triangle, sil_edge, vertex };
 Element element_of(Routine r);
 const char *element_name(Element e); /* "triangle", "SilEdge", "vertex" */
 
-/* Appendices A and B need a light with a position and planes: a workload
- * whose facing patterns are generated rather than lit has no rows for
- * them. */
+/* Appendices A and B (and the pipelines, which start with them) need a
+ * light with a position and planes: a workload whose facing patterns are
+ * generated rather than lit has no rows for them. */
 bool needs_light(Routine r);
 /* The routine writes shadow indices (the output buffer). */
 bool writes_indices(Routine r);
@@ -72,7 +78,26 @@ struct BenchVariant {
     const sv_variant *kernels;               /* C-F and the volume; nullptr: none */
     CalculateFacingFn calculate_facing;      /* A; nullptr: none */
     CalculateCullBitsFn calculate_cull_bits; /* B; nullptr: none */
+    /* What the pipeline rows run for A and B: the variant's own, else (a
+     * kernel variant without them: c_branchless, sse2_paper, avx512vbmi)
+     * the facing variant of the highest ISA the variant itself needs
+     * (sse2_paper's pipeline is the paper's: the SSE2 A and B, then its
+     * listings). */
+    CalculateFacingFn pipeline_facing = nullptr;
+    CalculateCullBitsFn pipeline_cull_bits = nullptr;
+    const char *pipeline_facing_name = nullptr;
+    /* "planned": the planner's choice (include/shadowvol_plan.h) for the
+     * workload's size, resolved per workload by resolve_planned(). */
+    bool planned = false;
+    /* A resolved planned variant: the table's entry it was made from. */
+    const BenchVariant *origin = nullptr;
 };
+
+/* For the planned variant: a variant with the kernels and A/B of the plan
+ * for a mesh of NUMTRIANGLES (sv_plan_for with SV_PLAN_MEASURE: the wisdom
+ * file's plan when it has this CPU, else measured now). Other variants come
+ * back unchanged. The result lives as long as the program. */
+const BenchVariant *resolve_planned(const BenchVariant *v, int numTriangles);
 
 /* Every variant compiled in, the reference (c_ref) first, in the library's
  * order; those whose ISA this CPU lacks included. */

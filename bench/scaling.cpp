@@ -176,7 +176,7 @@ int failed_scaling_rows(const ScalingRun &run) {
 
 const Row *scaling_row(const ScalingMesh &m, Routine routine, const BenchVariant *variant) {
     for (const Row &r : m.table.rows) {
-        if (r.routine == routine && r.variant == variant) {
+        if (r.routine == routine && (r.variant == variant || r.variant->origin == variant)) {
             return &r;
         }
     }

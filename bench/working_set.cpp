@@ -87,6 +87,24 @@ WorkingSet working_set(Routine r, const MeshShape &s) {
                     {"silhouette", silQuads},
                     {"caps", caps(s.culled)}};
         break;
+    case Routine::pipeline: /* A writes the facing bytes the volume reads */
+        ws.terms = {{"planes", kPlaneBytes},
+                    {"facing", kFacingByte},
+                    {"indices", kTriangleIndexBytes},
+                    {"SilEdges", s.edgesPerTriangle * kSilEdgeBytes},
+                    {"silhouette", silQuads},
+                    {"caps", caps(0)}};
+        break;
+    case Routine::pipeline_cull:
+        ws.terms = {{"planes", kPlaneBytes},
+                    {"positions", s.verticesPerTriangle * kPositionBytes},
+                    {"facing", kFacingByte},
+                    {"indices", kTriangleIndexBytes},
+                    {"cull bits", s.verticesPerTriangle * kCullByte},
+                    {"SilEdges", s.edgesPerTriangle * kSilEdgeBytes},
+                    {"silhouette", silQuads},
+                    {"caps", caps(s.culled)}};
+        break;
     }
     for (const WorkingSetTerm &t : ws.terms) {
         ws.total += t.bytes;

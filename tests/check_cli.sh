@@ -113,11 +113,13 @@ else
   for r in count_facing create_sil_triangles create_shadow_volume; do
     line=$(grep -E "^$r +[0-9]+ " "$tmp/out" | tail -1)
     [ -n "$line" ] || { err "--limits: no floor row for $r"; continue; }
-    # floor, load port, lookups, store: numbers; the floor is the larger port
+    # floor, streaming floor, load port, lookups, store: numbers; the floor
+    # is the larger port; the streaming floor (no lookups) is not above it
     set -- $line
     [ "$2" -gt 0 ] || err "--limits: $r floor $2 is not positive"
-    [ "$2" -ge "$3" ] && [ "$2" -ge "$5" ] || err "--limits: $r floor $2 below a port ($3, $5)"
-    [ "$3" -ge "$4" ] || err "--limits: $r lookups $4 above the load port's $3"
+    [ "$2" -ge "$4" ] && [ "$2" -ge "$6" ] || err "--limits: $r floor $2 below a port ($4, $6)"
+    [ "$4" -ge "$5" ] || err "--limits: $r lookups $5 above the load port's $4"
+    [ "$3" -gt 0 ] && [ "$3" -le "$2" ] || err "--limits: $r streaming floor $3 not in (0, floor $2]"
   done
   grep -qE '^count_facing_cull +[0-9]+ ' "$tmp/out" && err "--limits: a floor for a routine not run"
   # the AVX2 forms of the primitives, under the ISA limit

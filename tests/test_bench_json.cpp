@@ -43,8 +43,12 @@ const char *const kSchema = "shadowvol-bench/1";
 const std::set<std::string> kRoutines = {
     "calculate_facing",     "calculate_cull_bits",  "count_facing",
     "count_facing_cull",    "create_sil_triangles", "create_cap_triangles",
-    "create_shadow_volume", "create_shadow_volume_cull",
+    "create_shadow_volume", "create_shadow_volume_cull", "pipeline",
+    "pipeline_cull",
 };
+/* The pipelines (A, B and the volume): every kernel variant, with its own
+ * or the nearest facing variant's A and B (routines.h). */
+const std::set<std::string> kPipelineRoutines = {"pipeline", "pipeline_cull"};
 /* Routines every variant of the library's table implements; appendices A
  * and B exist as c_ref only so far. */
 const std::set<std::string> kKernelRoutines = {
@@ -85,6 +89,7 @@ std::set<std::string> facing_variant_names(bool runnableOnly) {
 std::set<std::string> all_variant_names() {
     std::set<std::string> names = variant_names(false);
     for (const std::string &f : facing_variant_names(false)) names.insert(f);
+    names.insert("planned"); /* the planner's choice (shadowvol_plan.h) */
     return names;
 }
 
@@ -294,6 +299,18 @@ public:
                     }
                 }
             }
+            for (const std::string &routine : kPipelineRoutines) {
+                for (const std::string &variant : variant_names(true)) {
+                    if (!seen.count(std::make_tuple(routine, variant, regime))) {
+                        fail(model, "no row " + routine + " " + variant + " " + regime);
+                    }
+                }
+            }
+            for (const std::string &routine : kRoutines) {
+                if (!seen.count(std::make_tuple(routine, std::string("planned"), regime))) {
+                    fail(model, "no row " + routine + " planned " + regime);
+                }
+            }
         }
     }
 };
@@ -389,10 +406,11 @@ TEST_F(BenchJson, DocumentMatchesTheSchemaAndCoversEveryRow) {
     const json doc = document();
     const std::vector<std::string> errors = validate(doc);
     EXPECT_TRUE(errors.empty()) << join(errors);
-    /* 6 kernel routines x the runnable kernel variants + 2 calculate_*
-     * routines x the runnable A/B variants, in 2 regimes. */
+    /* 6 kernel routines and 2 pipelines x the runnable kernel variants + 2
+     * calculate_* routines x the runnable A/B variants + the planned
+     * variant on all 10, in 2 regimes. */
     const size_t want =
-        2 * (6 * variant_names(true).size() + 2 * facing_variant_names(true).size());
+        2 * (8 * variant_names(true).size() + 2 * facing_variant_names(true).size() + 10);
     EXPECT_EQ(doc.at("results").size(), want);
 }
 
@@ -422,7 +440,7 @@ TEST_F(BenchJson, DashWritesTheDocumentToStdoutAndTheTableToStderr) {
     ASSERT_FALSE(doc.is_discarded()) << "stdout is not JSON:\n" << stdoutJson_.substr(0, 2000);
     EXPECT_EQ(doc.value("schema", ""), kSchema);
     ASSERT_TRUE(doc.contains("results") && doc.at("results").is_array());
-    EXPECT_EQ(doc.at("results").size(), variant_names(true).size());
+    EXPECT_EQ(doc.at("results").size(), variant_names(true).size() + 1) << "and planned";
     Validator v;
     v.document(doc);
     EXPECT_TRUE(v.errors.empty()) << join(v.errors);
@@ -464,6 +482,8 @@ TEST_F(BenchJson, LimitsReportTheRatesAndAFloorPerRoutine) {
         EXPECT_GT(floor, 0.0) << f.dump();
         EXPECT_TRUE(lookup >= 0 && lookup <= load) << f.dump();
         EXPECT_TRUE(store >= 0 && floor == std::max(load, store)) << f.dump();
+        const double streaming = f.value("streaming_floor_ticks", -1.0);
+        EXPECT_TRUE(streaming > 0 && streaming <= floor) << f.dump();
     }
     EXPECT_EQ(routines, (std::set<std::string>{"count_facing", "create_shadow_volume"}));
 }

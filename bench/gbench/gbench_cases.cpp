@@ -83,6 +83,8 @@ template <class F> void with_call(Case &c, F &&f) {
                                            l.cullBits.data());
         });
         break;
+    case Routine::pipeline:
+    case Routine::pipeline_cull: break; /* not registered (gbench_main.cpp) */
     }
 }
 

@@ -165,6 +165,12 @@ int main(int argc, char **argv) {
     std::deque<svgbench::Case> cases; /* stable addresses for the lambdas */
     for (svbench::Routine r : svbench::kAllRoutines) {
         for (const svbench::BenchVariant &v : svbench::bench_variants()) {
+            /* The pipelines and the planner's choice are the cycle table's
+             * (shadowvol bench); this twin times the paper's routines. */
+            if (v.planned || r == svbench::Routine::pipeline ||
+                r == svbench::Routine::pipeline_cull) {
+                continue;
+            }
             if (!svbench::implements(v, r) || (v.isa & sv_cpu_isa()) != v.isa) {
                 continue;
             }
