@@ -121,8 +121,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     try {
         bool help = false;
         switch (which) {
-        case 0: check_render(svcli::parse_render_args(argc, argv.data(), help)); break;
-        case 1: check_scene(svcli::parse_scene_args(argc, argv.data(), help)); break;
+        /* --help ends the parse at once (and the program only prints the
+         * usage): what was parsed before it is not checked. */
+        case 0: {
+            const svcli::RenderArgs r = svcli::parse_render_args(argc, argv.data(), help);
+            if (!help) check_render(r);
+            break;
+        }
+        case 1: {
+            const svcli::SceneArgs s = svcli::parse_scene_args(argc, argv.data(), help);
+            if (!help) check_scene(s);
+            break;
+        }
         case 2: check_light(sv::parse_light(rest)); break;
         case 3: check_camera(sv::parse_camera(rest)); break;
         case 4: check_placement(sv::parse_model_placement(rest)); break;
