@@ -158,6 +158,17 @@ void sv_facing_from_positions_sse2(const float *positions, const int *indices, i
 
 #define SV_TARGET_AVX2 __attribute__((target("avx2,bmi2")))
 
+/* Eight mask bits -> eight 0/1 bytes by BMI2 pdep. 32-bit x86 has no
+ * 64-bit pdep: there, two 32-bit deposits of four bits each. */
+static inline SV_TARGET_AVX2 unsigned long long mask8_to_bytes(unsigned m) {
+#if defined(__x86_64__)
+    return _pdep_u64(m, 0x0101010101010101ull);
+#else
+    return (unsigned long long)_pdep_u32(m & 0xFu, 0x01010101u) |
+           ((unsigned long long)_pdep_u32(m >> 4, 0x01010101u) << 32);
+#endif
+}
+
 /* Corner rows of two triangles, one per 128-bit lane; SHIFT 0: (x,y,z,0),
  * SHIFT 1: (0,x,y,z). */
 SV_TARGET_AVX2 static inline __m256 row2_avx2(const float *positions, int ia, int ib, int shift) {
@@ -410,7 +421,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const 
         const int *ix = indices + 3 * t;
         LOAD_TRI8_AVX2(positions, ix, SPLIT_A, SPLIT_B);
         FACING_AVX2(m);
-        const unsigned long long bytes = _pdep_u64(m, 0x0101010101010101ull);
+        const unsigned long long bytes = mask8_to_bytes(m);
         memcpy(facing + t, &bytes, 8);
     }
     for (; t < numTriangles; t++)
@@ -487,7 +498,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions,
         const int *ix = indices + 3 * t;
         LOAD_TRI8_GATHER(positions, ix);
         FACING_AVX2(m);
-        const unsigned long long bytes = _pdep_u64(m, 0x0101010101010101ull);
+        const unsigned long long bytes = mask8_to_bytes(m);
         memcpy(facing + t, &bytes, 8);
     }
     for (; t < numTriangles; t++)
