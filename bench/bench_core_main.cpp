@@ -1,12 +1,18 @@
 /*
  * `shadowvol bench` for the core-only builds (SV_CORE_ONLY, 32-bit x86;
- * docs/platforms.md): the cycle table of the bundled character, printed as
- * the full program prints it (table_report.h), from the same measurement
- * code (cycle_table.h). The full CLI's other commands (render, scene,
- * accuracy, --scaling, --json) need libraries that the core build leaves
- * out (TBB, OSMesa), so this program has the table only.
+ * docs/platforms.md): the cycle table of the project's character, printed
+ * as the full program prints it (table_report.h), from the same
+ * measurement code (cycle_table.h). The full CLI's other commands (render,
+ * scene, accuracy, --scaling, --json) need libraries that the core build
+ * leaves out (TBB, OSMesa), so this program has the table only.
  *
- *   shadowvol bench [--quick] [--runs N] [--seed S] [--model FILE.glb]
+ * The character is built in memory by the model generator
+ * (tools/generate_models, svgen::build_character(1)): the mesh that
+ * models/character_1344.glb holds byte for byte (the generated_models test
+ * proves it), without the glTF loader, whose tinygltf build alone would
+ * double this program's build time.
+ *
+ *   shadowvol bench [--quick] [--runs N] [--seed S]
  *
  * --limits is refused with a clear message: its probes are System V
  * x86-64 asm (bench/machine_limits.asm), not built here.
@@ -21,7 +27,9 @@
 #include <string>
 
 #include "bench_run.h"
-#include "model_workload.h"
+#include "lights.h"
+#include "model_gen.h"
+#include "shadowvol_mesh.h"
 #include "routines.h"
 #include "table_report.h"
 #include "timer.h"
@@ -41,12 +49,13 @@ constexpr int kExitBadModel = 3;
 
 void usage(FILE *out) {
     std::fprintf(out,
-                 "usage: shadowvol bench [--quick] [--runs N] [--seed S] [--model FILE.glb]\n"
+                 "usage: shadowvol bench [--quick] [--runs N] [--seed S]\n"
                  "\n"
                  "The cycle table (every routine of every variant this CPU runs, moving and\n"
-                 "fixed light) on the bundled character, or on FILE.glb. This build is the\n"
-                 "core-only one (docs/platforms.md): the full program's other commands and\n"
-                 "options are not in it.\n");
+                 "fixed light) on the generated character (1344 triangles, the mesh of\n"
+                 "models/character_1344.glb). This build is the core-only one\n"
+                 "(docs/platforms.md): the full program's other commands and options are\n"
+                 "not in it.\n");
 }
 
 bool parse_long(const char *s, long lo, long hi, long &out) {
@@ -61,7 +70,6 @@ bool parse_long(const char *s, long lo, long hi, long &out) {
 int bench(int argc, char **argv) {
     bool quick = false;
     long runs = 0, seed = 1;
-    std::string model = SV_MODELS_DIR "/character_1344.glb";
     for (int i = 0; i < argc; i++) {
         const std::string a = argv[i];
         auto value = [&](const char *name) -> const char * {
@@ -86,8 +94,6 @@ int bench(int argc, char **argv) {
                 std::fprintf(stderr, "shadowvol bench: --seed takes 0 to 2147483647\n");
                 return kExitUsage;
             }
-        } else if (a == "--model") {
-            model = value("--model");
         } else if (a == "--limits") {
             std::fprintf(stderr,
                          "shadowvol bench: --limits is not available on this platform: its "
@@ -119,12 +125,23 @@ int bench(int argc, char **argv) {
             run.options.variants.push_back(&v);
         }
     }
-    run.realModels = "not run (the core-only build times one model)";
+    run.realModels = "the generated character only (the core-only build has no glTF loader)";
 
     try {
         ModelRun mr;
-        mr.workload = make_model_workload(model, LightTargets{}, kLights, run.seed, nullptr);
+        const svgen::TriMesh mesh = svgen::build_character(1);
+        const sv::PreparedSurface prepared = sv::prepare_surface(
+            mesh.positions.data(), mesh.num_vertices(), mesh.indices.data(), mesh.indices.size());
+        mr.workload = workload_from_surface(
+            prepared, "character_1344",
+            "the generated character (tools/generate_models), the mesh of "
+            "models/character_1344.glb");
+        mr.workload.surfaces = 1;
+        place_lights(mr.workload, LightTargets{}, kLights, run.seed, nullptr);
         run.models.push_back(std::move(mr));
+    } catch (const sv::PrepareError &e) {
+        std::fprintf(stderr, "shadowvol bench: the generated character: %s\n", e.what());
+        return kExitBadModel;
     } catch (const WorkloadError &e) {
         std::fprintf(stderr, "shadowvol bench: %s\n", e.what());
         return kExitBadModel;
