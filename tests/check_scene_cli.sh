@@ -90,4 +90,21 @@ expect 3 --animation no-such-walk
 expect 3 --add "$tmp/missing.glb"
 printf 'not a gltf' >"$tmp/junk.glb"
 expect 3 "$tmp/junk.glb"
+
+# A hostile argument (100 KB, with control characters and bytes that are
+# not UTF-8) is quoted bounded and printable in the refusal (issue 17): at
+# most 300 input bytes per quote (sv::kGltfMaxQuotedBytes), a few quotes.
+huge="point:1,2,$(printf '\001\377%.0s' $(seq 1 50000))"
+for opt in --light --camera --add --sideways; do
+  want=2; [ "$opt" = --add ] && want=3  # --add takes any file name; it cannot be opened
+  if [ "$opt" = --sideways ]; then args=("--sideways$huge"); else args=("$opt" "$huge"); fi
+  "$sv" scene --size 64x48 --frames 1 --no-truth --no-check --out "$tmp/bad" "${args[@]}" \
+    >"$tmp/out" 2>"$tmp/err"
+  rc=$?
+  [ $rc -eq $want ] || err "scene $opt with a 100 KB argument exited $rc, expected $want"
+  bytes=$(wc -c <"$tmp/err")
+  [ "$bytes" -gt 0 ] && [ "$bytes" -le 4800 ] \
+    || err "scene $opt with a 100 KB argument printed $bytes bytes (1..4800 expected)"
+  LC_ALL=C grep -q $'[\x01\xff]' "$tmp/err" && err "scene $opt echoed raw control or non-UTF-8 bytes"
+done
 exit $fail

@@ -25,7 +25,7 @@
 
 #include "accuracy_internal.h"
 #include "expansion.h"
-#include "accuracy_plot.h"
+#include "svg_scatter.h"
 #include "accuracy_reference.h"
 #include "accuracy_study.h"
 #include "accuracy_variants.h"
@@ -1164,13 +1164,13 @@ TEST(Study, BadModelIsAnError) {
 }
 
 TEST(Plot, SvgIsWellFormed) {
-    std::vector<acc::PlotPoint> pts = {{"c_ref", "c_ref", 1.2, 1e-6},
+    std::vector<svplot::ScatterPoint> pts = {{"c_ref", "c_ref", 1.2, 1e-6},
                                        {"c_ref_avx2", "c_ref", 0.5, 1e-6},
                                        {"exact", "exact", 20, 0},
                                        {"a<b>&\"", "odd", 3, 0.5},
                                        {"no speed", "odd", 0, 0.5}};
-    acc::PlotText text{"T", "S", "X", "Y", "0", "F"};
-    const std::string svg = acc::svg_loglog_scatter(pts, text);
+    svplot::ScatterText text{"T", "S", "X", "Y", "0", "F"};
+    const std::string svg = svplot::render_loglog_scatter(pts, text);
     EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find(">c_ref_avx2<"), std::string::npos);

@@ -7,7 +7,12 @@
 
 #include "mman_compat.h"
 
+#if !defined(_WIN32)
+#include <sys/wait.h> // the death tests' signal checks (Linux only)
+#endif
+
 #include <climits>
+#include <csignal>
 
 using namespace svtest;
 
@@ -317,5 +322,137 @@ TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
     EXPECT_EQ(sv_create_sil_triangles_sse2_paper(out, facing, e, n), 6);
     const int expected[6] = {4, 6, 7, 5, 4, 7};
     EXPECT_EQ(0, memcmp(out, expected, sizeof expected));
+}
+#endif // SV_HAVE_ASM_SSE2
+
+// C-7 / D-7, every count from INT_MIN to INT_MIN + 300 (the listings break
+// on the first 256 of them in C and the first 5 in D, each in its own way:
+// see docs/ERRATA.md), for every variant: 0 back, nothing touched.
+TEST(Errata, C7D7_EveryCountNearIntMinTouchesNothing) {
+    Rng rng = rng_for("Errata.C7D7");
+    NoAccessPage page;
+    for (const sv_variant *v : runnable_variants()) {
+        for (int k = 0; k <= 300; k++) {
+            const int n = INT32_MIN + k;
+            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing, ptr_arg(page.as<uint8_t>()),
+                                   int_arg(n, rng)),
+                      0)
+                << v->name << " count_facing n=INT_MIN+" << k;
+            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
+                                   ptr_arg(page.as<uint8_t>()), int_arg(n, rng),
+                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>())),
+                      0)
+                << v->name << " count_facing_cull n=INT_MIN+" << k;
+        }
+    }
+}
+
+#if defined(SV_HAVE_ASM_SSE2)
+// LIMIT D-5 (kept), for every count 1..12: the four-triangle loop runs over
+// the first n - n % 4 triangles, the one-triangle tail over the LAST n % 4;
+// with cull bytes sharing only bit 7 exactly the tail's triangles are culled.
+TEST(Errata, D5_Limit_OnlyTheLastNMod4TrianglesAreCulled) {
+    uint8_t cull[3] = {0x80, 0x80, 0x80};
+    std::vector<int> indices;
+    for (int t = 0; t < 12; t++) indices.insert(indices.end(), {0, 1, 2});
+    for (int n = 1; n <= 12; n++) {
+        std::vector<uint8_t> facing((size_t)n + 1, 0), ref((size_t)n + 1, 0);
+        EXPECT_EQ(sv_count_facing_cull_sse2_paper(facing.data(), n, indices.data(), cull), n % 4)
+            << "n=" << n;
+        for (int t = 0; t < n; t++) {
+            EXPECT_EQ(facing[(size_t)t], t >= n - n % 4 ? 1 : 0) << "n=" << n << " triangle " << t;
+        }
+        EXPECT_EQ(sv_count_facing_cull_c_ref(ref.data(), n, indices.data(), cull), n);
+    }
+}
+
+#if defined(__linux__) && GTEST_HAS_DEATH_TEST
+// The child died of the fault: SIGSEGV, or (under AddressSanitizer, whose
+// handler reports the SEGV and exits) a non-zero exit.
+static bool faulted(int status) {
+    return (WIFSIGNALED(status) && WTERMSIG(status) == SIGSEGV) ||
+           (WIFEXITED(status) && WEXITSTATUS(status) != 0);
+}
+
+// LIMIT C-4 (kept), the raw routine: the 16-byte loops' movdqa / paddusb
+// with a memory operand need 16-byte alignment, the 4- and 1-byte loops do
+// not. 15 bytes at an odd address count right; 16 fault (SIGSEGV: #GP).
+TEST(ErrataDeathTest, C4_Limit_UnalignedFacingFaultsFrom16Bytes) {
+    alignas(16) uint8_t facing[64];
+    memset(facing, 1, sizeof facing);
+    EXPECT_EQ(sv_count_facing_sse2_paper(facing + 1, 15), 15);
+    EXPECT_EXIT(sv_count_facing_sse2_paper(facing + 1, 16), faulted, "");
+}
+
+// LIMIT F-6 (kept), the raw routine: the walk starts at indices + numIndices
+// and counts numIndices / 3 whole triangles back, so for numIndices % 3 != 0
+// every triangle is read shifted by numIndices % 3 indices (7 indices: the
+// triangles at indices + 1 and + 4); from four triangles on, loop4's movdqa
+// meets the misaligned address and faults.
+TEST(ErrataDeathTest, F6_Limit_PartialTrianglesShiftEveryTriangle) {
+    alignas(16) int indices[16];
+    for (int i = 0; i < 16; i++) indices[i] = 2 * i;
+    uint8_t facing[6] = {0, 0, 0, 0, 0, 1};
+    alignas(16) int out[48], shifted[48];
+    const int n = sv_create_cap_triangles_sse2_paper(out, facing, indices, 7);
+    const int e = sv_create_cap_triangles_c_ref(shifted, facing, indices + 1, 6);
+    ASSERT_EQ(n, 12);
+    ASSERT_EQ(n, e);
+    EXPECT_EQ(0, memcmp(out, shifted, sizeof(int) * (size_t)n));
+    EXPECT_EXIT(sv_create_cap_triangles_sse2_paper(out, facing, indices, 13),
+                faulted, "");
+}
+#endif
+
+// LIMIT E-7 (kept), the raw routine: the output advances by 3 * (f1 ^ f2)
+// indices per half of the quad, so a facing byte of 2 against 0 advances
+// twice as far: the C writes the edge's 6 indices and returns 6, the
+// listing returns 12 (6 of them never written).
+TEST(Errata, E7_Limit_FacingByteTwoAdvancesTwice) {
+    uint8_t facing[3] = {2, 0, 1};
+    SilEdge edge = {0, 1, 2, 4};
+    alignas(16) int ref[12], fast[12];
+    EXPECT_EQ(sv_create_sil_triangles_c_ref(ref, facing, &edge, 1), 6);
+    EXPECT_EQ(sv_create_sil_triangles_sse2_paper(fast, facing, &edge, 1), 12);
+}
+
+// LIMIT F-5 (kept): appendix F keeps its output pointer / 8 as appendix E
+// does (its own code, the same trick), so an output 4 mod 8 is written from
+// 4 bytes before it and the count comes back one short, in the
+// four-triangle loop and in the one-triangle tail alike.
+TEST(Errata, F5_Limit_CapOutputBelow8ByteAlignmentWritesBeforeIt) {
+    const svtest::IsaLimitLifted lifted;
+    alignas(16) int indices[12];
+    for (int i = 0; i < 12; i++) indices[i] = 2 * i;
+    const uint8_t facing12[5] = {0, 1, 0, 0, 1}, facing9[4] = {0, 1, 0, 1};
+    for (int numIndices : {12, 9}) { // loop4 + nothing; the tail only
+        const uint8_t *facing = numIndices == 12 ? facing12 : facing9;
+        alignas(16) int ref[24];
+        const int e = sv_create_cap_triangles_c_ref(ref, facing, indices, numIndices);
+        GuardedBuffer out((size_t)e * sizeof(int), 4); // 4 mod 8
+        ASSERT_EQ((uintptr_t)out.data() % 8, (uintptr_t)4);
+        const int n = sv_create_cap_triangles_sse2_paper(out.as<int>(), facing, indices, numIndices);
+        EXPECT_EQ(n, e - 1) << "numIndices=" << numIndices;
+        EXPECT_FALSE(out.guards_intact()) << "the 4 bytes before the output were written";
+        // What lands from 4 bytes before the output is the whole volume.
+        EXPECT_EQ(0, memcmp(out.data() - 4, ref, sizeof(int) * (size_t)e));
+        GuardedBuffer out2((size_t)e * sizeof(int), 4);
+        EXPECT_EQ(sv_create_cap_triangles_checked(&paper(), out2.as<int>(), (size_t)e, facing,
+                                                  indices, numIndices, 24),
+                  SV_E_ALIGNMENT);
+        EXPECT_TRUE(out2.guards_intact());
+    }
+}
+
+// LIMIT F-9 (kept), the raw routine: paddd x, x doubles in 32 bits, so a
+// vertex number of 2^30 or more wraps (2^30 -> INT_MIN); the checked entry
+// points refuse numVerts above 2^30 (Contracts.*).
+TEST(Errata, F9_Limit_VertexNumbersFrom2To30WrapWhenDoubled) {
+    alignas(16) int indices[4] = {1 << 30, (1 << 30) + 1, 5, 0};
+    const uint8_t facing[2] = {0, 1};
+    alignas(16) int out[8];
+    ASSERT_EQ(sv_create_cap_triangles_sse2_paper(out, facing, indices, 3), 6);
+    const int want[6] = {10, INT32_MIN + 2, INT32_MIN, INT32_MIN + 1, INT32_MIN + 3, 11};
+    EXPECT_EQ(0, memcmp(out, want, sizeof want));
 }
 #endif // SV_HAVE_ASM_SSE2

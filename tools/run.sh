@@ -64,8 +64,9 @@ fi
 
 if [ "$job" = fuzz ]; then
   # libFuzzer targets (tests/fuzz): GLB bytes, .gltf JSON (with a glTF key
-  # dictionary), the *_checked entry points against c_ref, and GLB bytes
-  # through the animated scene (poses, skinning, planes). The seed corpus
+  # dictionary), the *_checked entry points against c_ref, GLB bytes
+  # through the animated scene (poses, skinning, planes), and the render and
+  # scene command lines (fuzz_options). The seed corpus
   # is generated (sv_fuzz_corpus); ../shared/models and Debian's
   # assimp-testmodels seed it too when present (copied into the work
   # corpus under the build folder, never into the repository). A finding
@@ -76,7 +77,7 @@ if [ "$job" = fuzz ]; then
   fb="${FUZZ_BUILD_DIR:-build-fuzz}"
   CC=clang CXX=clang++ cmake -S . -B "$fb" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSV_FUZZ=ON -DSV_BUILD_TESTS=OFF "${launcher[@]}" >/dev/null
-  cmake --build "$fb" --target fuzz_glb fuzz_gltf_json fuzz_checked fuzz_scene sv_fuzz_corpus >&2
+  cmake --build "$fb" --target fuzz_glb fuzz_gltf_json fuzz_checked fuzz_scene fuzz_options sv_fuzz_corpus >&2
   corpus="$fb/fuzz-corpus"
   mkdir -p "$corpus/seed" "$fb/fuzz-artifacts"
   "$fb/tests/fuzz/sv_fuzz_corpus" "$corpus/seed" models/character_1344.glb
@@ -86,7 +87,7 @@ if [ "$job" = fuzz ]; then
     find "$d" -name '*.gltf' -size -300k -exec cp -n {} "$corpus/seed/gltf/" \; 2>/dev/null || true
   done
   status=0
-  for t in fuzz_glb fuzz_gltf_json fuzz_checked fuzz_scene; do
+  for t in fuzz_glb fuzz_gltf_json fuzz_checked fuzz_scene fuzz_options; do
     work="$corpus/$t"; mkdir -p "$work"
     args=(-max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=131072 -print_final_stats=1
           -artifact_prefix="$fb/fuzz-artifacts/$t-")
@@ -94,6 +95,7 @@ if [ "$job" = fuzz ]; then
     case $t in
       fuzz_glb|fuzz_scene) seeds=("$corpus/seed/glb") ;;
       fuzz_gltf_json) seeds=("$corpus/seed/gltf"); args+=(-dict=tests/fuzz/gltf.dict) ;;
+      fuzz_options) seeds=("$corpus/seed/options") ;;
     esac
     log="$fb/fuzz-$t.log"
     echo "tools/run.sh fuzz: $t for $secs s (log: $log)" >&2

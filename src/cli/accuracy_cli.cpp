@@ -26,7 +26,7 @@
 
 #include <unistd.h>
 
-#include "../accuracy/accuracy_plot.h"
+#include "svg_scatter.h"
 #include "../accuracy/accuracy_study.h"
 #include "cli_args.h"
 #include "sysinfo.h"
@@ -202,10 +202,10 @@ int accuracy_main(int argc, char **argv) {
                     for (const sv::acc::Variant &x : sv::acc::variants()) {
                         names += (names.empty() ? "" : ", ") + std::string(x.name);
                     }
-                    usage_error("unknown variant '" + v + "' (variants: " + names + ")");
+                    usage_error("unknown variant '" + quoted(v) + "' (variants: " + names + ")");
                 }
                 if (!sv::acc::runnable(*var)) {
-                    usage_error("variant '" + v + "' needs an instruction set this CPU lacks");
+                    usage_error("variant '" + quoted(v) + "' needs an instruction set this CPU lacks");
                 }
                 if (std::find(opt.variants.begin(), opt.variants.end(), var) == opt.variants.end()) {
                     opt.variants.push_back(var);
@@ -218,16 +218,16 @@ int accuracy_main(int argc, char **argv) {
                     for (const sv::acc::Placement &x : sv::acc::placements()) {
                         names += (names.empty() ? "" : ", ") + std::string(x.name);
                     }
-                    usage_error("unknown placement '" + p + "' (placements: " + names + ")");
+                    usage_error("unknown placement '" + quoted(p) + "' (placements: " + names + ")");
                 }
                 if (std::find(opt.placements.begin(), opt.placements.end(), pl) ==
                     opt.placements.end()) {
                     opt.placements.push_back(pl);
                 }
             } else if (a.arg().rfind("-", 0) == 0) {
-                usage_error("unknown option '" + a.arg() + "'");
+                usage_error("unknown option '" + quoted(a.arg()) + "'");
             } else {
-                usage_error("unexpected argument '" + a.arg() + "' (models go after --model)");
+                usage_error("unexpected argument '" + quoted(a.arg()) + "' (models go after --model)");
             }
         }
     } catch (const UsageError &e) {
@@ -367,13 +367,13 @@ int accuracy_main(int argc, char **argv) {
 
     /* ---- Plot ---- */
     if (!plot_path.empty()) {
-        std::vector<sv::acc::PlotPoint> pts;
+        std::vector<svplot::ScatterPoint> pts;
         for (const sv::acc::Variant *v : vars) {
             const Totals &t = totals[v];
             pts.push_back({v->name, v->family, t.ticks(),
                            t.tests > 0 ? (double)t.mis / (double)t.tests : 0.0});
         }
-        sv::acc::PlotText text;
+        svplot::ScatterText text;
         text.title = "Facing decision: accuracy against speed";
         text.subtitle = std::to_string(models.size()) + " model(s), " +
                         std::to_string(places.size()) + " light placements, " +
@@ -383,7 +383,7 @@ int accuracy_main(int argc, char **argv) {
         text.zero_label = "0";
         text.footnote = "Points on the 0 row agree with the exact predicate on every test.";
         if (!timing) text.footnote += " Timing was off (--no-timing): no speeds.";
-        if (!write_file(plot_path, sv::acc::svg_loglog_scatter(pts, text))) {
+        if (!write_file(plot_path, svplot::render_loglog_scatter(pts, text))) {
             std::fprintf(stderr, "shadowvol accuracy: cannot write %s\n", plot_path.c_str());
             return kExitBadModel;
         }

@@ -14,11 +14,17 @@
 #include <cstdlib>
 #include <string>
 
+#include "shadowvol_gltf.h"
+
 namespace svcli {
 
 struct UsageError {
     std::string message;
 };
+
+/* TEXT from the command line as a message may quote it: at most
+ * sv::kGltfMaxQuotedBytes, printable UTF-8 (sv::printable_text). */
+inline std::string quoted(const std::string &text) { return sv::printable_text(text); }
 
 [[noreturn]] inline void usage_error(const std::string &message) { throw UsageError{message}; }
 
@@ -61,7 +67,7 @@ public:
         const long long v = digits ? std::strtoll(s.c_str(), &end, 10) : 0;
         if (!digits || errno == ERANGE || *end || v < lo || v > hi) {
             usage_error(opt_ + " needs a whole number from " + std::to_string(lo) + " to " +
-                        std::to_string(hi) + ", not '" + s + "'");
+                        std::to_string(hi) + ", not '" + quoted(s) + "'");
         }
         return v;
     }
@@ -72,7 +78,7 @@ public:
         const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
         const unsigned long long v = digits ? std::strtoull(s.c_str(), &end, 10) : 0;
         if (!digits || errno == ERANGE || *end) {
-            usage_error(opt_ + " needs a whole number from 0 to 18446744073709551615, not '" + s +
+            usage_error(opt_ + " needs a whole number from 0 to 18446744073709551615, not '" + quoted(s) +
                         "'");
         }
         return v;

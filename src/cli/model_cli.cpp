@@ -53,7 +53,7 @@ long long memory_size(ArgReader &a) {
     const std::string unit = v.substr(digits);
     long long shift = unit.empty() || unit == "M" ? 20 : unit == "K" ? 10 : unit == "G" ? 30 : -1;
     if (digits == 0 || digits > 12 || shift < 0) {
-        usage_error("--max-memory needs a size like 512K, 800M (or 800), 8G; not '" + v + "'");
+        usage_error("--max-memory needs a size like 512K, 800M (or 800), 8G; not '" + quoted(v) + "'");
     }
     return std::stoll(v.substr(0, digits)) << shift;
 }
@@ -204,11 +204,11 @@ int parse_model_args(const char *command, int argc, char **argv, void (*usage)(F
             } else if (extra(a)) {
                 continue;
             } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
-                usage_error("unknown option '" + a.arg() + "'");
+                usage_error("unknown option '" + quoted(a.arg()) + "'");
             } else if (out->model.empty()) {
                 out->model = a.arg();
             } else {
-                usage_error("unexpected argument '" + a.arg() + "'");
+                usage_error("unexpected argument '" + quoted(a.arg()) + "'");
             }
         }
         if (out->model.empty()) {
@@ -423,10 +423,10 @@ int verify_main(int argc, char **argv) {
                 const sv_variant *all = sv_variants(&n);
                 std::string names;
                 for (int i = 0; i < n; i++) names += (i ? ", " : "") + std::string(all[i].name);
-                usage_error("unknown variant '" + v + "' (variants: " + names + ")");
+                usage_error("unknown variant '" + quoted(v) + "' (variants: " + names + ")");
             }
             if ((var->isa & sv_cpu_isa()) != var->isa) {
-                usage_error("variant '" + v + "' needs an instruction set this CPU lacks");
+                usage_error("variant '" + quoted(v) + "' needs an instruction set this CPU lacks");
             }
             if (std::find(variants.begin(), variants.end(), var) == variants.end()) {
                 variants.push_back(var);

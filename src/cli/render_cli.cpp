@@ -11,6 +11,7 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include "render_cli.h"
+#include "render_args.h"
 
 #include <sys/stat.h>
 
@@ -40,86 +41,6 @@ namespace svcli {
 namespace {
 
 constexpr int kExitMismatch = 1, kExitUsage = 2, kExitBadModel = 3;
-
-struct RenderArgs {
-    std::vector<sv::ModelPlacement> models;
-    bool ground = false;
-    std::vector<sv::SceneLight> lights;
-    bool has_camera = false;
-    sv::Camera camera;
-    int width = 1280, height = 1024;
-    sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
-    std::string out_dir = "shadowvol-render";
-    std::string json_path;
-    std::string kernels, variant;
-    bool truth = true, gl = true;
-    int threads = 0;
-};
-
-} // namespace
-
-void parse_frame_size(const std::string &s, int &w, int &h) {
-    const std::size_t x = s.find('x');
-    auto num = [&](const std::string &t) -> long long {
-        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
-        return std::stoll(t);
-    };
-    const long long a = x == std::string::npos ? -1 : num(s.substr(0, x));
-    const long long b = x == std::string::npos ? -1 : num(s.substr(x + 1));
-    if (a < 1 || b < 1 || a > sv::render::kMaxFrameSide || b > sv::render::kMaxFrameSide ||
-        a * b > sv::render::kMaxFramePixels) {
-        usage_error("--size needs WxH with 1 <= W, H <= " + std::to_string(sv::render::kMaxFrameSide) +
-                    " (not '" + s + "')");
-    }
-    w = (int)a, h = (int)b;
-}
-
-namespace {
-
-RenderArgs parse(int argc, char **argv, bool &help) {
-    RenderArgs r;
-    ArgReader a(argc, argv);
-    while (a.next()) {
-        if (a.is_flag("--help") || a.is_flag("-h")) {
-            help = true;
-            return r;
-        } else if (a.is("--add")) {
-            r.models.push_back(sv::parse_model_placement(a.value()));
-        } else if (a.is_flag("--ground")) {
-            r.ground = true;
-        } else if (a.is("--light")) {
-            r.lights.push_back(sv::parse_light(a.value()));
-        } else if (a.is("--camera")) {
-            r.camera = sv::parse_camera(a.value());
-            r.has_camera = true;
-        } else if (a.is("--size")) {
-            parse_frame_size(a.value(), r.width, r.height);
-        } else if (a.is("--mode")) {
-            const std::string m = a.value();
-            if (m == "zpass") r.mode = sv::render::ModeChoice::zpass;
-            else if (m == "zfail") r.mode = sv::render::ModeChoice::zfail;
-            else if (m == "auto") r.mode = sv::render::ModeChoice::automatic;
-            else usage_error("--mode needs zpass, zfail or auto, not '" + m + "'");
-        } else if (a.is("--out")) {
-            r.out_dir = a.value();
-        } else if (a.is("--json")) {
-            r.json_path = a.value();
-        } else if (a.is("--kernels")) {
-            r.kernels = a.value();
-        } else if (a.is("--variant")) {
-            r.variant = a.value();
-        } else if (a.is_flag("--no-truth")) {
-            r.truth = false;
-        } else if (a.is_flag("--no-gl")) {
-            r.gl = false;
-        } else if (a.is("--threads")) {
-            r.threads = (int)a.integer(1, 256);
-        } else {
-            usage_error("unknown option '" + a.arg() + "'");
-        }
-    }
-    return r;
-}
 
 double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz : 0; }
 
@@ -199,7 +120,7 @@ int render_main(int argc, char **argv) {
     RenderArgs args;
     try {
         bool help = false;
-        args = parse(argc, argv, help);
+        args = parse_render_args(argc, argv, help);
         if (help) {
             render_usage(stdout);
             return 0;

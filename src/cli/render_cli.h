@@ -20,7 +20,6 @@ namespace svcli {
 
 /* Shared with shadowvol scene: --size WxH (throws UsageError), the output
  * folder (false when it cannot be made), a pass's counters as JSON. */
-void parse_frame_size(const std::string &text, int &width, int &height);
 bool make_dir(const std::string &dir);
 void counters_json(svbench::JsonWriter &j, const sv::raster::PassCounters &c);
 

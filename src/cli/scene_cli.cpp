@@ -12,6 +12,7 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include "scene_cli.h"
+#include "scene_args.h"
 
 #include <tbb/info.h>
 #include <unistd.h>
@@ -44,90 +45,6 @@ namespace svcli {
 namespace {
 
 constexpr int kExitMismatch = 1, kExitUsage = 2, kExitBadModel = 3;
-
-struct SceneArgs {
-    sv::SequenceOptions seq;
-    int frames = 0;          /* 0: the default */
-    bool has_time = false;
-    double time_from = 0, time_to = 0;
-    double fps = 8;
-    int threads = 0;         /* 0: every core */
-    bool full = false;       /* render with no shortcuts */
-    bool check = true;       /* render the full frame beside and compare */
-    bool truth = true;
-    int width = 640, height = 512;
-    std::string out_dir = "shadowvol-scene";
-    std::string json_path;
-    std::string skinning;
-};
-
-double parse_number(const std::string &text, const std::string &what) {
-    const std::vector<double> v = sv::parse_numbers(text, what);
-    if (v.size() != 1) usage_error(what + " needs one number, not '" + text + "'");
-    return v[0];
-}
-
-SceneArgs parse(int argc, char **argv, bool &help) {
-    SceneArgs r;
-    ArgReader a(argc, argv);
-    while (a.next()) {
-        if (a.is_flag("--help") || a.is_flag("-h")) {
-            help = true;
-            return r;
-        } else if (a.is("--add")) {
-            r.seq.adds.push_back(sv::parse_model_placement(a.value()));
-        } else if (a.is_flag("--ground")) {
-            r.seq.ground = true;
-        } else if (a.is("--light")) {
-            r.seq.lights.push_back(sv::parse_light(a.value()));
-        } else if (a.is("--camera")) {
-            r.seq.camera = sv::parse_camera(a.value());
-            r.seq.has_camera = true;
-        } else if (a.is("--animation")) {
-            r.seq.animation = a.value();
-            if (r.seq.animation.empty()) usage_error("--animation needs a name or an index");
-        } else if (a.is("--frames")) {
-            r.frames = (int)a.integer(1, 10000);
-        } else if (a.is("--time")) {
-            const std::string t = a.value();
-            const std::size_t c = t.find(':');
-            if (c == std::string::npos) usage_error("--time needs FROM:TO in seconds, not '" + t + "'");
-            r.time_from = parse_number(t.substr(0, c), "--time");
-            r.time_to = parse_number(t.substr(c + 1), "--time");
-            if (!(r.time_to >= r.time_from)) usage_error("--time " + t + ": TO must not be before FROM");
-            r.has_time = true;
-        } else if (a.is("--fps")) {
-            r.fps = parse_number(a.value(), "--fps");
-            if (!(r.fps > 0 && r.fps <= 10000)) usage_error("--fps needs a number above 0 and at most 10000");
-        } else if (a.is("--threads")) {
-            r.threads = (int)a.integer(1, 256);
-        } else if (a.is_flag("--full")) {
-            r.full = true;
-        } else if (a.is_flag("--no-check")) {
-            r.check = false;
-        } else if (a.is_flag("--no-truth")) {
-            r.truth = false;
-        } else if (a.is("--size")) {
-            parse_frame_size(a.value(), r.width, r.height);
-        } else if (a.is("--out")) {
-            r.out_dir = a.value();
-        } else if (a.is("--json")) {
-            r.json_path = a.value();
-        } else if (a.is("--skinning")) {
-            r.skinning = a.value();
-        } else if (a.arg().rfind("-", 0) == 0) {
-            usage_error("unknown option '" + a.arg() + "'");
-        } else if (r.seq.file.empty()) {
-            const sv::ModelPlacement m = sv::parse_model_placement(a.arg());
-            r.seq.file = m.path;
-            r.seq.placement = m.placement;
-        } else {
-            usage_error("one scene file only (add more with --add): '" + a.arg() + "'");
-        }
-    }
-    if (r.has_time && r.frames) usage_error("--frames and --time exclude each other");
-    return r;
-}
 
 double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz : 0; }
 double kt(uint64_t ticks) { return (double)ticks / 1000.0; }
@@ -295,7 +212,7 @@ int scene_main(int argc, char **argv) {
     SceneArgs args;
     try {
         bool help = false;
-        args = parse(argc, argv, help);
+        args = parse_scene_args(argc, argv, help);
         if (help) {
             scene_usage(stdout);
             return 0;

@@ -2,6 +2,7 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include "svg_plot.h"
+#include "svg_common.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,32 @@
 #include <stdexcept>
 
 namespace svplot {
+
+/* The primitives svg_common.h declares, shared with svg_scatter.cpp. */
+namespace detail {
+
+/* Okabe and Ito's colour-blind-safe palette (yellow left out: too pale on
+ * white), then black; the marker shape also differs per series. */
+const char *const kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                "#E69F00", "#56B4E9", "#000000"};
+const int kNumColours = sizeof kColours / sizeof kColours[0];
+
+const char *colour(int k) { return kColours[((k % kNumColours) + kNumColours) % kNumColours]; }
+
+std::string num(double v) {
+    if (!std::isfinite(v)) {
+        throw std::logic_error("svg_plot: a coordinate is not finite");
+    }
+    char s[32];
+    std::snprintf(s, sizeof s, "%.2f", v);
+    return s;
+}
+
+std::string attr(const char *name, const std::string &value) {
+    return std::string(" ") + name + "=\"" + xml_escape(value) + "\"";
+}
+
+} // namespace detail
 
 namespace {
 
@@ -24,25 +51,10 @@ constexpr double kLine = 15;        /* caption and note line height */
 constexpr double kPanelGap = 18;
 constexpr double kMarkerSize = 4;
 
-/* Okabe and Ito's colour-blind-safe palette (yellow left out: too pale on
- * white), then black; the marker shape also differs per series. */
-const char *const kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                "#E69F00", "#56B4E9", "#000000"};
-constexpr int kNumColours = sizeof kColours / sizeof kColours[0];
 constexpr int kNumShapes = 5;
 
-std::string num(double v) {
-    if (!std::isfinite(v)) {
-        throw std::logic_error("svg_plot: a coordinate is not finite");
-    }
-    char s[32];
-    std::snprintf(s, sizeof s, "%.2f", v);
-    return s;
-}
-
-std::string attr(const char *name, const std::string &value) {
-    return std::string(" ") + name + "=\"" + xml_escape(value) + "\"";
-}
+using detail::attr;
+using detail::num;
 
 /* One axis' mapping from data to pixels. */
 struct Scale {
@@ -265,7 +277,7 @@ double render_panel(std::string &out, const Panel &p, double top, const Document
     for (size_t k = 0; k < p.series.size(); k++) {
         const Series &s = p.series[k];
         const int style = style_of(s, k);
-        const char *colour = kColours[style % kNumColours];
+        const char *colour = detail::colour(style);
         std::vector<Point> line = s.line;
         std::stable_sort(line.begin(), line.end(),
                          [](const Point &a, const Point &b) { return a.x < b.x; });
@@ -293,7 +305,7 @@ double render_panel(std::string &out, const Panel &p, double top, const Document
     out += "<g class=\"legend\">\n";
     for (size_t k = 0; k < p.series.size(); k++) {
         const int style = style_of(p.series[k], k);
-        const char *colour = kColours[style % kNumColours];
+        const char *colour = detail::colour(style);
         out += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 28) +
                "\" y2=\"" + num(ly) + "\"" + attr("stroke", colour) + " stroke-width=\"2\"/>";
         out += marker(style, lx + 14, ly, colour, true, "");

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -203,6 +204,29 @@ int main(int argc, char **argv) {
         emit(dir, "sparse", d,
              one_mesh + ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
                         "\"indices\":" + std::to_string(i) + "}]}]");
+    }
+    { // command lines for fuzz_options: the selector byte, then NUL-separated arguments
+        fs::create_directories(dir / "options");
+        const std::vector<std::pair<char, std::vector<std::string>>> lines = {
+            {0, {"--add", "models/character_1344.glb@1,0,-2,30,1.5", "--ground", "--light",
+                 "point:2,4,3,20", "--light", "spot:0,5,0,0,-1,0,10,30", "--camera",
+                 "eye=3,2,5,target=0,1,0,fov=50,near=0.1", "--size", "640x480", "--mode=zfail",
+                 "--threads", "2", "--no-gl"}},
+            {1, {"scene.glb@0,0,0", "--frames", "12", "--light", "dir:0.2,-1,0.1", "--size=320x200",
+                 "--animation", "0", "--fps", "24", "--full", "--json", "-"}},
+            {1, {"scene.glb", "--time", "0.5:2.25", "--light", "point:auto", "--no-truth"}},
+            {2, {"spot:1,2,3,0,0,-1,5,40"}},
+            {3, {"eye=0,1.5,4,target=0,1,0,up=0,1,0,fov=45"}},
+            {4, {"a.glb@1e3,-2.5e-3,7,-90,0.25"}},
+            {5, {"8192x8192"}}};
+        int k = 0;
+        for (const auto &line : lines) {
+            std::string bytes(1, line.first);
+            for (std::size_t i = 0; i < line.second.size(); i++) {
+                bytes += (i ? std::string(1, '\0') : std::string()) + line.second[i];
+            }
+            write(dir / "options" / ("line_" + std::to_string(k++)), bytes);
+        }
     }
     if (argc > 2) { // the project's character, in both containers
         std::ifstream in(argv[2], std::ios::binary);

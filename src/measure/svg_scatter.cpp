@@ -1,5 +1,5 @@
 /*
- * The log-log scatter plot of accuracy_plot.h.
+ * The log-log scatter plot of svg_scatter.h.
  *
  * Layout: a plot area with decade grid lines (both axes log10, the range
  * widened to whole decades around the data), a zero row below it, the
@@ -10,29 +10,17 @@
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
-#include "accuracy_plot.h"
+#include "svg_scatter.h"
+
+#include "svg_common.h"
+#include "svg_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
-namespace sv {
-namespace acc {
-
-std::string xml_escape(const std::string &s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += c;
-        }
-    }
-    return out;
-}
+namespace svplot {
 
 namespace {
 
@@ -42,14 +30,7 @@ constexpr double kZeroRow = 36;   /* height of the y = 0 row under the plot */
 constexpr double kLabelH = 13;    /* label line height */
 constexpr double kCharW = 6.6;    /* approximate width of a 11px character */
 
-const char *const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f", v);
-    return buf;
-}
+using detail::num;
 
 /* "10^k" as SVG text with a superscript. */
 std::string decade_label(int k) {
@@ -67,10 +48,10 @@ struct Box {
 
 } // namespace
 
-std::string svg_loglog_scatter(const std::vector<PlotPoint> &points, const PlotText &text) {
-    std::vector<PlotPoint> pts;
+std::string render_loglog_scatter(const std::vector<ScatterPoint> &points, const ScatterText &text) {
+    std::vector<ScatterPoint> pts;
     int dropped = 0;
-    for (const PlotPoint &p : points) {
+    for (const ScatterPoint &p : points) {
         if (p.x > 0 && std::isfinite(p.x) && p.y >= 0 && std::isfinite(p.y)) {
             pts.push_back(p);
         } else {
@@ -80,7 +61,7 @@ std::string svg_loglog_scatter(const std::vector<PlotPoint> &points, const PlotT
     /* Whole decades around the data (at least one decade each way). */
     double xmin = 1, xmax = 10, ymin = 1e-6, ymax = 1e-1;
     bool firstx = true, firsty = true;
-    for (const PlotPoint &p : pts) {
+    for (const ScatterPoint &p : pts) {
         xmin = firstx ? p.x : std::min(xmin, p.x);
         xmax = firstx ? p.x : std::max(xmax, p.x);
         firstx = false;
@@ -150,9 +131,9 @@ std::string svg_loglog_scatter(const std::vector<PlotPoint> &points, const PlotT
     /* Colours by group, in order of appearance. */
     std::map<std::string, std::string> colour;
     std::vector<std::string> groups;
-    for (const PlotPoint &p : pts) {
+    for (const ScatterPoint &p : pts) {
         if (!colour.count(p.group)) {
-            colour[p.group] = kPalette[groups.size() % (sizeof kPalette / sizeof kPalette[0])];
+            colour[p.group] = detail::colour((int)groups.size());
             groups.push_back(p.group);
         }
     }
@@ -163,13 +144,13 @@ std::string svg_loglog_scatter(const std::vector<PlotPoint> &points, const PlotT
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return py(pts[a].y) < py(pts[b].y); });
     std::vector<Box> placed;
-    for (const PlotPoint &p : pts) {
+    for (const ScatterPoint &p : pts) {
         s += "<circle cx=\"" + num(px(p.x)) + "\" cy=\"" + num(py(p.y)) + "\" r=\"4.5\" fill=\"" +
              colour[p.group] + "\" stroke=\"#222\" stroke-width=\"0.6\"/>\n";
         placed.push_back({px(p.x) - 5, py(p.y) - 5, px(p.x) + 5, py(p.y) + 5});
     }
     for (std::size_t i : order) {
-        const PlotPoint &p = pts[i];
+        const ScatterPoint &p = pts[i];
         const double w = kCharW * (double)p.label.size();
         const double x = px(p.x) + 7;
         double y = py(p.y) + 4;
@@ -213,5 +194,4 @@ std::string svg_loglog_scatter(const std::vector<PlotPoint> &points, const PlotT
     return s;
 }
 
-} // namespace acc
-} // namespace sv
+} // namespace svplot

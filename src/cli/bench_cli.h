@@ -1,11 +1,11 @@
 /*
  * `shadowvol bench`: option parsing and usage of the cycle table, as a
- * function the shadowvol program's dispatcher (src/cli/main.cpp) calls.
+ * function the shadowvol program's dispatcher (main.cpp) calls.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
-#ifndef SV_BENCH_BENCH_CLI_H
-#define SV_BENCH_BENCH_CLI_H
+#ifndef SV_CLI_BENCH_CLI_H
+#define SV_CLI_BENCH_CLI_H
 
 #include <cstdio>
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_run.h"
+#include "shadowvol_gltf.h"
 #include "cycle_table.h"
 #include "json_report.h"
 #include "machine_limits.h"
@@ -70,8 +71,10 @@ struct UsageError {
     std::string message;
 };
 
+/* A refusal; the message quotes command-line text, so it is made printable
+ * and bounded here, once for every caller (issue 17). */
 [[noreturn]] void bad(const std::string &message) {
-    throw UsageError{message};
+    throw UsageError{sv::printable_text(message, 4 * sv::kGltfMaxQuotedBytes)};
 }
 
 long long parse_int(const std::string &opt, const std::string &s, long long lo, long long hi) {

@@ -1,0 +1,74 @@
+/*
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "render_args.h"
+
+#include <string>
+
+#include "cli_args.h"
+#include "scene_options.h"
+
+namespace svcli {
+
+void parse_frame_size(const std::string &s, int &w, int &h) {
+    const std::size_t x = s.find('x');
+    auto num = [&](const std::string &t) -> long long {
+        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
+        return std::stoll(t);
+    };
+    const long long a = x == std::string::npos ? -1 : num(s.substr(0, x));
+    const long long b = x == std::string::npos ? -1 : num(s.substr(x + 1));
+    if (a < 1 || b < 1 || a > sv::render::kMaxFrameSide || b > sv::render::kMaxFrameSide ||
+        a * b > sv::render::kMaxFramePixels) {
+        usage_error("--size needs WxH with 1 <= W, H <= " + std::to_string(sv::render::kMaxFrameSide) +
+                    " (not '" + quoted(s) + "')");
+    }
+    w = (int)a, h = (int)b;
+}
+
+RenderArgs parse_render_args(int argc, char **argv, bool &help) {
+    RenderArgs r;
+    ArgReader a(argc, argv);
+    while (a.next()) {
+        if (a.is_flag("--help") || a.is_flag("-h")) {
+            help = true;
+            return r;
+        } else if (a.is("--add")) {
+            r.models.push_back(sv::parse_model_placement(a.value()));
+        } else if (a.is_flag("--ground")) {
+            r.ground = true;
+        } else if (a.is("--light")) {
+            r.lights.push_back(sv::parse_light(a.value()));
+        } else if (a.is("--camera")) {
+            r.camera = sv::parse_camera(a.value());
+            r.has_camera = true;
+        } else if (a.is("--size")) {
+            parse_frame_size(a.value(), r.width, r.height);
+        } else if (a.is("--mode")) {
+            const std::string m = a.value();
+            if (m == "zpass") r.mode = sv::render::ModeChoice::zpass;
+            else if (m == "zfail") r.mode = sv::render::ModeChoice::zfail;
+            else if (m == "auto") r.mode = sv::render::ModeChoice::automatic;
+            else usage_error("--mode needs zpass, zfail or auto, not '" + quoted(m) + "'");
+        } else if (a.is("--out")) {
+            r.out_dir = a.value();
+        } else if (a.is("--json")) {
+            r.json_path = a.value();
+        } else if (a.is("--kernels")) {
+            r.kernels = a.value();
+        } else if (a.is("--variant")) {
+            r.variant = a.value();
+        } else if (a.is_flag("--no-truth")) {
+            r.truth = false;
+        } else if (a.is_flag("--no-gl")) {
+            r.gl = false;
+        } else if (a.is("--threads")) {
+            r.threads = (int)a.integer(1, 256);
+        } else {
+            usage_error("unknown option '" + quoted(a.arg()) + "'");
+        }
+    }
+    return r;
+}
+
+} // namespace svcli

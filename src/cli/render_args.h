@@ -1,0 +1,46 @@
+/*
+ * The command line of `shadowvol render`, parsed into RenderArgs with
+ * nothing run and no file opened: what render_cli.cpp acts on, and what
+ * tests/fuzz/fuzz_options.cpp feeds hostile arguments.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_CLI_RENDER_ARGS_H
+#define SV_CLI_RENDER_ARGS_H
+
+#include <string>
+#include <vector>
+
+#include "frame.h"
+#include "scene_options.h"
+#include "shadowvol_scene.h"
+
+namespace svcli {
+
+struct RenderArgs {
+    std::vector<sv::ModelPlacement> models;
+    bool ground = false;
+    std::vector<sv::SceneLight> lights;
+    bool has_camera = false;
+    sv::Camera camera;
+    int width = 1280, height = 1024;
+    sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
+    std::string out_dir = "shadowvol-render";
+    std::string json_path;
+    std::string kernels, variant;
+    bool truth = true, gl = true;
+    int threads = 0;
+};
+
+/* argv[1..] of `shadowvol render`. --help / -h sets HELP and returns at
+ * once. Throws UsageError (cli_args.h) or sv::SceneError (a malformed
+ * --light, --camera, --add) with a message naming the argument. */
+RenderArgs parse_render_args(int argc, char **argv, bool &help);
+
+/* "WxH" -> width, height, each 1..kMaxFrameSide and at most kMaxFramePixels
+ * in all; UsageError otherwise. */
+void parse_frame_size(const std::string &text, int &width, int &height);
+
+} // namespace svcli
+
+#endif

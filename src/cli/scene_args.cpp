@@ -1,0 +1,86 @@
+/*
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "scene_args.h"
+
+#include <string>
+#include <vector>
+
+#include "cli_args.h"
+#include "render_args.h"
+#include "scene_options.h"
+
+namespace svcli {
+namespace {
+
+double parse_number(const std::string &text, const std::string &what) {
+    const std::vector<double> v = sv::parse_numbers(text, what);
+    if (v.size() != 1) usage_error(what + " needs one number, not '" + quoted(text) + "'");
+    return v[0];
+}
+
+} // namespace
+
+SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
+    SceneArgs r;
+    ArgReader a(argc, argv);
+    while (a.next()) {
+        if (a.is_flag("--help") || a.is_flag("-h")) {
+            help = true;
+            return r;
+        } else if (a.is("--add")) {
+            r.seq.adds.push_back(sv::parse_model_placement(a.value()));
+        } else if (a.is_flag("--ground")) {
+            r.seq.ground = true;
+        } else if (a.is("--light")) {
+            r.seq.lights.push_back(sv::parse_light(a.value()));
+        } else if (a.is("--camera")) {
+            r.seq.camera = sv::parse_camera(a.value());
+            r.seq.has_camera = true;
+        } else if (a.is("--animation")) {
+            r.seq.animation = a.value();
+            if (r.seq.animation.empty()) usage_error("--animation needs a name or an index");
+        } else if (a.is("--frames")) {
+            r.frames = (int)a.integer(1, 10000);
+        } else if (a.is("--time")) {
+            const std::string t = a.value();
+            const std::size_t c = t.find(':');
+            if (c == std::string::npos) usage_error("--time needs FROM:TO in seconds, not '" + quoted(t) + "'");
+            r.time_from = parse_number(t.substr(0, c), "--time");
+            r.time_to = parse_number(t.substr(c + 1), "--time");
+            if (!(r.time_to >= r.time_from)) usage_error("--time " + quoted(t) + ": TO must not be before FROM");
+            r.has_time = true;
+        } else if (a.is("--fps")) {
+            r.fps = parse_number(a.value(), "--fps");
+            if (!(r.fps > 0 && r.fps <= 10000)) usage_error("--fps needs a number above 0 and at most 10000");
+        } else if (a.is("--threads")) {
+            r.threads = (int)a.integer(1, 256);
+        } else if (a.is_flag("--full")) {
+            r.full = true;
+        } else if (a.is_flag("--no-check")) {
+            r.check = false;
+        } else if (a.is_flag("--no-truth")) {
+            r.truth = false;
+        } else if (a.is("--size")) {
+            parse_frame_size(a.value(), r.width, r.height);
+        } else if (a.is("--out")) {
+            r.out_dir = a.value();
+        } else if (a.is("--json")) {
+            r.json_path = a.value();
+        } else if (a.is("--skinning")) {
+            r.skinning = a.value();
+        } else if (a.arg().rfind("-", 0) == 0) {
+            usage_error("unknown option '" + quoted(a.arg()) + "'");
+        } else if (r.seq.file.empty()) {
+            const sv::ModelPlacement m = sv::parse_model_placement(a.arg());
+            r.seq.file = m.path;
+            r.seq.placement = m.placement;
+        } else {
+            usage_error("one scene file only (add more with --add): '" + quoted(a.arg()) + "'");
+        }
+    }
+    if (r.has_time && r.frames) usage_error("--frames and --time exclude each other");
+    return r;
+}
+
+} // namespace svcli

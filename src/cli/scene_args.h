@@ -1,0 +1,41 @@
+/*
+ * The command line of `shadowvol scene`, parsed into SceneArgs with
+ * nothing run and no file opened: what scene_cli.cpp acts on, and what
+ * tests/fuzz/fuzz_options.cpp feeds hostile arguments.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_CLI_SCENE_ARGS_H
+#define SV_CLI_SCENE_ARGS_H
+
+#include <string>
+
+#include "sequence.h"
+
+namespace svcli {
+
+struct SceneArgs {
+    sv::SequenceOptions seq;
+    int frames = 0;          /* 0: the default */
+    bool has_time = false;
+    double time_from = 0, time_to = 0;
+    double fps = 8;
+    int threads = 0;         /* 0: every core */
+    bool full = false;       /* render with no shortcuts */
+    bool check = true;       /* render the full frame beside and compare */
+    bool truth = true;
+    int width = 640, height = 512;
+    std::string out_dir = "shadowvol-scene";
+    std::string json_path;
+    std::string skinning;
+};
+
+/* argv[1..] of `shadowvol scene`. --help / -h sets HELP and returns at
+ * once. Throws UsageError (cli_args.h) or sv::SceneError (a malformed
+ * --light, --camera, --add or scene file placement) with a message naming
+ * the argument. */
+SceneArgs parse_scene_args(int argc, char **argv, bool &help);
+
+} // namespace svcli
+
+#endif
