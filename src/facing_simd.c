@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "facing_internal.h"
+#include "mask_bytes.h"
 #include "shadowvol.h"
 
 /* The reference's expressions, for tails (the same operations). */
@@ -164,18 +165,7 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
 
 /* ---- AVX2 (x86-64-v3) ---------------------------------------------------- */
 
-#define SV_TARGET_AVX2 __attribute__((target("avx2,bmi2")))
-
-/* Eight mask bits -> eight 0/1 bytes by BMI2 pdep. 32-bit x86 has no
- * 64-bit pdep: there, two 32-bit deposits of four bits each. */
-static inline SV_TARGET_AVX2 unsigned long long mask8_to_bytes(unsigned m) {
-#if defined(__x86_64__)
-    return _pdep_u64(m, 0x0101010101010101ull);
-#else
-    return (unsigned long long)_pdep_u32(m & 0xFu, 0x01010101u) |
-           ((unsigned long long)_pdep_u32(m >> 4, 0x01010101u) << 32);
-#endif
-}
+#define SV_TARGET_AVX2 __attribute__((target("avx2")))
 
 /* Rows r0..r3 each hold two structures (low lane: s, high lane: s + 4);
  * an in-lane transpose gives 8 lanes of a, b, c, d in the order
@@ -216,9 +206,8 @@ SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangl
         s = _mm256_add_ps(s, _mm256_mul_ps(c, lz));
         s = _mm256_add_ps(s, _mm256_mul_ps(d, lw));
         const unsigned m = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s, zero, _CMP_GT_OQ));
-        /* Eight mask bits -> eight 0/1 bytes (BMI2 pdep). */
-        const unsigned long long bytes = mask8_to_bytes(m);
-        memcpy(facing + i, &bytes, 8);
+        /* Eight mask bits -> eight 0/1 bytes (mask_bytes.h: not pdep). */
+        memcpy(facing + i, &kMaskBytes[m], 8);
     }
     for (; i < numTriangles; i++) facing[i] = facing_one(&planes[i], light);
     facing[numTriangles] = 1;
@@ -251,7 +240,7 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
             s = _mm256_add_ps(s, _mm256_mul_ps(pc[k], z));
             s = _mm256_add_ps(s, pd[k]);
             const unsigned m = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s, zero, _CMP_LT_OQ));
-            bytes |= mask8_to_bytes(m) << cs.live[k];
+            bytes |= kMaskBytes[m] << cs.live[k];
         }
         memcpy(cullBits + j, &bytes, 8);
     }

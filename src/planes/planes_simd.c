@@ -42,6 +42,7 @@
 #include <string.h>
 
 #include "planes_internal.h"
+#include "../mask_bytes.h"
 
 /* The address of vertex I minus SHIFT floats (shift 1 for the odd rows),
  * through uintptr_t: for vertex 0 it points before the array, where the
@@ -156,18 +157,7 @@ void sv_facing_from_positions_sse2(const float *positions, const int *indices, i
 
 /* ---- AVX2 ------------------------------------------------------------------ */
 
-#define SV_TARGET_AVX2 __attribute__((target("avx2,bmi2")))
-
-/* Eight mask bits -> eight 0/1 bytes by BMI2 pdep. 32-bit x86 has no
- * 64-bit pdep: there, two 32-bit deposits of four bits each. */
-static inline SV_TARGET_AVX2 unsigned long long mask8_to_bytes(unsigned m) {
-#if defined(__x86_64__)
-    return _pdep_u64(m, 0x0101010101010101ull);
-#else
-    return (unsigned long long)_pdep_u32(m & 0xFu, 0x01010101u) |
-           ((unsigned long long)_pdep_u32(m >> 4, 0x01010101u) << 32);
-#endif
-}
+#define SV_TARGET_AVX2 __attribute__((target("avx2")))
 
 /* Corner rows of two triangles, one per 128-bit lane; SHIFT 0: (x,y,z,0),
  * SHIFT 1: (0,x,y,z). */
@@ -421,8 +411,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const 
         const int *ix = indices + 3 * t;
         LOAD_TRI8_AVX2(positions, ix, SPLIT_A, SPLIT_B);
         FACING_AVX2(m);
-        const unsigned long long bytes = mask8_to_bytes(m);
-        memcpy(facing + t, &bytes, 8);
+        memcpy(facing + t, &kMaskBytes[m], 8); /* mask_bytes.h: not pdep */
     }
     for (; t < numTriangles; t++)
         facing[t] = sv_facing_from_positions_one(positions, indices + 3 * t, light);
@@ -498,8 +487,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions,
         const int *ix = indices + 3 * t;
         LOAD_TRI8_GATHER(positions, ix);
         FACING_AVX2(m);
-        const unsigned long long bytes = mask8_to_bytes(m);
-        memcpy(facing + t, &bytes, 8);
+        memcpy(facing + t, &kMaskBytes[m], 8); /* mask_bytes.h: not pdep */
     }
     for (; t < numTriangles; t++)
         facing[t] = sv_facing_from_positions_one(positions, indices + 3 * t, light);
