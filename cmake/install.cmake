@@ -1,6 +1,7 @@
 # The installable library (issue 16): `cmake --install <build> --prefix P`
 # puts in place
-#   P/include/shadowvol.h, shadowvol_planes.h   the C API (routines; per-frame planes)
+#   P/include/shadowvol.h, shadowvol_planes.h,  the C API (routines; per-frame planes;
+#     shadowvol_plan.h                          dispatch by measurement)
 #   P/include/shadowvol_mesh.h                  the C++ mesh preparation
 #   P/lib/libshadowvol.a                        static (imported shadowvol::shadowvol)
 #   P/lib/libshadowvol.so.<version>             shared (imported shadowvol::shadowvol_shared)
@@ -58,6 +59,7 @@ set_property(TARGET shadowvol APPEND PROPERTY INTERFACE_LINK_LIBRARIES
   $<INSTALL_INTERFACE:stdc++> $<INSTALL_INTERFACE:m>)
 
 install(FILES include/shadowvol.h include/shadowvol_mesh.h include/shadowvol_planes.h
+              include/shadowvol_plan.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS shadowvol shadowvol_shared EXPORT shadowvolTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

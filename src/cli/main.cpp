@@ -18,6 +18,7 @@
 #include "model_cli.h"
 #include "render_cli.h"
 #include "scene_cli.h"
+#include "tune_cli.h"
 
 #ifndef SV_PROJECT_VERSION
 #define SV_PROJECT_VERSION "unknown"
@@ -45,6 +46,8 @@ const Command kCommands[] = {
      svcli::render_main, svcli::render_usage},
     {"scene", "play a glTF scene in time, building only what each frame requires, proved pixel for pixel",
      svcli::scene_main, svcli::scene_usage},
+    {"tune", "measure every variant per routine and mesh size; save this CPU's fastest as its plans",
+     svcli::tune_main, svcli::tune_usage},
 };
 
 const Command *find_command(const char *name) {

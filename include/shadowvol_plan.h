@@ -1,0 +1,124 @@
+/*
+ * shadowvol: dispatch by measurement (issue 15). sv_best_variant() picks the
+ * highest instruction set the CPU runs; that is not always the fastest
+ * (on an Intel Sapphire Rapids the AVX2 volume kernels beat the AVX-512
+ * ones from about 100k triangles on; on AMD before Zen 3, BMI2's pdep and
+ * AVX2's gathers are microcoded). A plan is one variant per routine for
+ * one size class of mesh, chosen by timing every variant this CPU runs on
+ * a generated mesh of that class (FFTW's "wisdom" is the model):
+ *
+ *   const sv_plan *p = sv_plan_for(numTriangles, SV_PLAN_ESTIMATE);
+ *   p->calculate_facing(planes, numTriangles, &light, facing);
+ *   n = sv_create_shadow_volume(&p->kernels, out, ...);
+ *
+ * Where a plan comes from, in order:
+ *   1. measured in this process (sv_plan_measure, SV_PLAN_MEASURE);
+ *   2. the wisdom file (sv_wisdom_load; `shadowvol tune` writes it), for
+ *      the CPU model it was measured on only;
+ *   3. built-in: the static choice (sv_best_variant and
+ *      sv_best_facing_variant), with the exceptions measured on CPUs this
+ *      project has run on (src/plan/builtin.cpp names them and their
+ *      source).
+ * SV_PLAN_MEASURE measures a class on its first use when neither 1 nor 2
+ * has it (tens of milliseconds for the small classes, about a second for
+ * the largest); SV_PLAN_ESTIMATE never measures.
+ *
+ * Every plan's kernels are those of the variant table, so a plan computes
+ * exactly what c_ref computes; its kernels' alignment needs are the largest
+ * of the chosen variants' (kernels.align_*). Thread-safe.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SHADOWVOL_PLAN_H
+#define SHADOWVOL_PLAN_H
+
+#include <stddef.h>
+
+#include "shadowvol.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The routines a plan chooses for, in pipeline order. */
+typedef enum sv_routine {
+    SV_ROUTINE_CALCULATE_FACING,     /* appendix A */
+    SV_ROUTINE_CALCULATE_CULL_BITS,  /* appendix B */
+    SV_ROUTINE_COUNT_FACING,         /* C */
+    SV_ROUTINE_COUNT_FACING_CULL,    /* D */
+    SV_ROUTINE_CREATE_SIL_TRIANGLES, /* E */
+    SV_ROUTINE_CREATE_CAP_TRIANGLES, /* F */
+    SV_NUM_ROUTINES
+} sv_routine;
+/* "calculate_facing", ... (the benchmark's names); NULL out of range. */
+const char *sv_routine_name(sv_routine r);
+
+/* Size classes by triangle count: 0 below 4096 (the arrays fit L1/L2),
+ * 1 below 65536, 2 below 524288, 3 from there on (DRAM). */
+#define SV_NUM_SIZE_CLASSES 4
+int sv_size_class(int numTriangles);
+/* The triangle count of the mesh a class is measured on. */
+int sv_size_class_triangles(int sizeClass);
+
+typedef struct sv_plan {
+    int size_class;
+    const char *source;                   /* "measured", "wisdom" or "built-in" */
+    const char *variant[SV_NUM_ROUTINES]; /* the chosen variant's name per routine */
+    /* Median TSC ticks per call of each routine's choice on the class's
+     * mesh, where measured (0 for built-in plans). */
+    double ticks[SV_NUM_ROUTINES];
+    sv_calculate_facing_fn calculate_facing;
+    sv_calculate_cull_bits_fn calculate_cull_bits;
+    /* C-F as one variant (name "planned"), for sv_create_shadow_volume and
+     * the *_checked entry points. */
+    sv_variant kernels;
+} sv_plan;
+
+enum { SV_PLAN_ESTIMATE = 0, SV_PLAN_MEASURE = 1 };
+
+/* The plan for a mesh of NUMTRIANGLES triangles (its size class). Never
+ * NULL. */
+const sv_plan *sv_plan_for(int numTriangles, unsigned flags);
+
+/* One variant's time in a measurement. */
+typedef struct sv_plan_timing {
+    int size_class;
+    sv_routine routine;
+    const char *variant;
+    double ticks; /* median TSC ticks per call */
+} sv_plan_timing;
+
+/* Measures size class SIZECLASS now (every variant this CPU runs, every
+ * routine, moving lights, each call checked against c_ref) and makes the
+ * winners this process's plan for the class. When TIMINGS is not NULL, up
+ * to MAXTIMINGS entries are written there. Returns the number of timings
+ * taken (which may exceed MAXTIMINGS), or -1 when SIZECLASS is out of
+ * range or a variant disagreed with c_ref (a bug: nothing is planned). */
+int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings);
+
+/* This CPU, as the wisdom file keys it: vendor, family, model, stepping,
+ * the ISA level, and the brand string ("AuthenticAMD 23/1/2 avx2 AMD
+ * EPYC"). Returns BUF. */
+const char *sv_cpu_model_key(char *buf, size_t size);
+
+/* The wisdom file: $SV_WISDOM when set, else $XDG_CACHE_HOME/shadowvol/
+ * wisdom, else $HOME/.cache/shadowvol/wisdom. Returns BUF ("" when none
+ * can be formed). */
+const char *sv_wisdom_default_path(char *buf, size_t size);
+/* Writes the measured plans of this process to PATH (creating the folder),
+ * keeping the other CPUs' sections a file already holds. 0 or -1. */
+int sv_wisdom_save(const char *path);
+/* Reads PATH; plans measured on THIS CPU model become the "wisdom" plans
+ * (classes measured in this process keep theirs). Returns the number of
+ * classes read for this CPU (0 when the file has none), or -1 when PATH
+ * cannot be read or is malformed (nothing is taken from it then). */
+int sv_wisdom_load(const char *path);
+
+/* Forgets every measured and wisdom plan (tests). */
+void sv_plan_reset(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,420 @@
+/*
+ * Dispatch by measurement (include/shadowvol_plan.h): the plans, how a
+ * class is measured, and where a plan comes from.
+ *
+ * Measuring a class: a generated height-field mesh of the class's size
+ * (a grid with bumps, so facing comes in coherent regions as on a real
+ * surface), prepared by sv::prepare_surface, lit by 8 point lights that
+ * move over it (and a light box around each for the cull bits). Every
+ * runnable variant of each routine is called on every light in turn, in
+ * rounds; each call's result is compared with c_ref's on the same light
+ * (a plan is never built from a variant that computes something else);
+ * the figure is the median over rounds of the per-call rdtsc time. The
+ * rounds shrink with the class so that a class takes roughly the same
+ * wall time.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "shadowvol_plan.h"
+
+#include <x86intrin.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "plan_internal.h"
+#include "shadowvol_mesh.h"
+
+namespace {
+
+const char *const kRoutineNames[SV_NUM_ROUTINES] = {
+    "calculate_facing",  "calculate_cull_bits",  "count_facing",
+    "count_facing_cull", "create_sil_triangles", "create_cap_triangles"};
+
+constexpr int kClassLimit[SV_NUM_SIZE_CLASSES - 1] = {4096, 65536, 524288};
+constexpr int kClassTriangles[SV_NUM_SIZE_CLASSES] = {2048, 24576, 196608, 1048576};
+constexpr int kLights = 8;
+
+bool runs(unsigned isa) { return (isa & sv_cpu_isa()) == isa; }
+
+/* ---- The plans ----------------------------------------------------------- */
+
+/* Plans are immutable once made and never freed (a few hundred bytes
+ * each, a handful per process): a pointer sv_plan_for returned stays valid
+ * and unchanged while another thread installs a newer plan. */
+struct State {
+    std::mutex lock;
+    std::deque<sv_plan> arena;
+    std::array<const sv_plan *, SV_NUM_SIZE_CLASSES> plan{};
+    std::array<int, SV_NUM_SIZE_CLASSES> kind{}; /* 0 none yet, 1 built-in, 2 wisdom, 3 measured */
+};
+State &state() {
+    static State s;
+    return s;
+}
+
+} // namespace
+
+namespace svplan {
+
+bool variant_runs_routine(const char *name, sv_routine r) {
+    if (!name) return false;
+    if (r == SV_ROUTINE_CALCULATE_FACING || r == SV_ROUTINE_CALCULATE_CULL_BITS) {
+        const sv_facing_variant *f = sv_facing_variant_by_name(name);
+        return f && runs(f->isa);
+    }
+    const sv_variant *v = sv_variant_by_name(name);
+    return v && runs(v->isa);
+}
+
+sv_plan make_plan(int sizeClass, const char *source, const char *const names[SV_NUM_ROUTINES],
+                  const double ticks[SV_NUM_ROUTINES]) {
+    sv_plan p{};
+    p.size_class = sizeClass;
+    p.source = source;
+    const sv_facing_variant *fallback_f = sv_best_facing_variant();
+    const sv_variant *fallback_v = sv_best_variant();
+    for (int r = 0; r < SV_NUM_ROUTINES; r++) {
+        const bool ok = variant_runs_routine(names[r], (sv_routine)r);
+        const bool facing_table = r <= SV_ROUTINE_CALCULATE_CULL_BITS;
+        p.variant[r] = ok ? (facing_table ? sv_facing_variant_by_name(names[r])->name
+                                          : sv_variant_by_name(names[r])->name)
+                          : (facing_table ? fallback_f->name : fallback_v->name);
+        p.ticks[r] = ticks ? ticks[r] : 0;
+    }
+    const sv_facing_variant *fa = sv_facing_variant_by_name(p.variant[SV_ROUTINE_CALCULATE_FACING]);
+    const sv_facing_variant *fb = sv_facing_variant_by_name(p.variant[SV_ROUTINE_CALCULATE_CULL_BITS]);
+    p.calculate_facing = fa->calculate_facing;
+    p.calculate_cull_bits = fb->calculate_cull_bits;
+    const sv_variant *c = sv_variant_by_name(p.variant[SV_ROUTINE_COUNT_FACING]);
+    const sv_variant *d = sv_variant_by_name(p.variant[SV_ROUTINE_COUNT_FACING_CULL]);
+    const sv_variant *e = sv_variant_by_name(p.variant[SV_ROUTINE_CREATE_SIL_TRIANGLES]);
+    const sv_variant *f = sv_variant_by_name(p.variant[SV_ROUTINE_CREATE_CAP_TRIANGLES]);
+    sv_variant &k = p.kernels;
+    k.name = "planned";
+    k.isa = c->isa | d->isa | e->isa | f->isa;
+    k.count_facing = c->count_facing;
+    k.count_facing_cull = d->count_facing_cull;
+    k.create_sil_triangles = e->create_sil_triangles;
+    k.create_cap_triangles = f->create_cap_triangles;
+    /* CountFacing reads facing; CountFacingCull writes it (sse2_paper has
+     * no alignment need there); Sil and Cap write the output; Cap reads
+     * the indices. */
+    k.align_facing = c->align_facing;
+    k.align_indices = f->align_indices;
+    k.align_shadow_indices = std::max(e->align_shadow_indices, f->align_shadow_indices);
+    return p;
+}
+
+void install(int sizeClass, const sv_plan &p, int kind) {
+    State &s = state();
+    std::lock_guard<std::mutex> g(s.lock);
+    if (kind >= s.kind[(size_t)sizeClass]) {
+        s.arena.push_back(p);
+        s.plan[(size_t)sizeClass] = &s.arena.back();
+        s.kind[(size_t)sizeClass] = kind;
+    }
+}
+
+bool measured(int sizeClass, sv_plan *out) {
+    State &s = state();
+    std::lock_guard<std::mutex> g(s.lock);
+    if (s.kind[(size_t)sizeClass] != 3) return false;
+    *out = *s.plan[(size_t)sizeClass];
+    return true;
+}
+
+} // namespace svplan
+
+/* ---- Measuring ----------------------------------------------------------- */
+
+namespace {
+
+struct Mesh {
+    sv::PreparedSurface s;
+    std::vector<Vec4> positions4;
+    Bounds bounds{};
+    std::array<Vec4, kLights> lights{};
+    std::array<std::array<Plane, SV_NUM_LIGHT_PLANES>, kLights> boxes{};
+};
+
+/* A (cols x rows) grid of quads, two triangles each, with bumps. */
+Mesh make_mesh(int triangles) {
+    const int quads = std::max(1, triangles / 2);
+    const int cols = std::max(1, (int)std::sqrt((double)quads));
+    const int rows = std::max(1, quads / cols);
+    std::vector<float> p;
+    p.reserve((size_t)(cols + 1) * (rows + 1) * 3);
+    for (int y = 0; y <= rows; y++) {
+        for (int x = 0; x <= cols; x++) {
+            const double u = (double)x / cols, v = (double)y / rows;
+            p.push_back((float)u);
+            p.push_back((float)v);
+            p.push_back((float)(0.04 * std::sin(u * 37.0) * std::cos(v * 29.0) +
+                                0.01 * std::sin(u * 311.0 + v * 173.0)));
+        }
+    }
+    std::vector<uint32_t> idx;
+    idx.reserve((size_t)cols * rows * 6);
+    for (int y = 0; y < rows; y++) {
+        for (int x = 0; x < cols; x++) {
+            const uint32_t a = (uint32_t)(y * (cols + 1) + x), b = a + 1,
+                           c = a + (uint32_t)(cols + 1), d = c + 1;
+            idx.insert(idx.end(), {a, b, d, a, d, c});
+        }
+    }
+    Mesh m;
+    m.s = sv::prepare_surface(p.data(), p.size() / 3, idx.data(), idx.size());
+    m.positions4.resize((size_t)m.s.num_vertices());
+    for (int i = 0; i < m.s.num_vertices(); i++) {
+        m.positions4[(size_t)i] = {m.s.positions[3 * (size_t)i], m.s.positions[3 * (size_t)i + 1],
+                                   m.s.positions[3 * (size_t)i + 2], 1};
+    }
+    m.bounds = sv::surface_bounds(m.s);
+    for (int l = 0; l < kLights; l++) {
+        /* Lights low over the grid, moving across it: large facing regions
+         * with borders, as a character lit from the side has. */
+        const double t = (double)l / kLights;
+        const float lx = (float)(0.5 + 0.45 * std::cos(6.2832 * t));
+        const float ly = (float)(0.5 + 0.45 * std::sin(6.2832 * t));
+        m.lights[(size_t)l] = {lx, ly, 0.08f, 1};
+        /* The light box: half the grid around the light, planes pointing in. */
+        const float r = 0.25f;
+        m.boxes[(size_t)l] = {Plane{1, 0, 0, -(lx - r)}, Plane{-1, 0, 0, lx + r},
+                              Plane{0, 1, 0, -(ly - r)}, Plane{0, -1, 0, ly + r},
+                              Plane{0, 0, 1, 1},         Plane{0, 0, -1, 1}};
+    }
+    return m;
+}
+
+inline uint64_t ticks_now() {
+    _mm_lfence();
+    const uint64_t t = __rdtsc();
+    _mm_lfence();
+    return t;
+}
+
+/* What one light's reference results are, for the checks. */
+struct Reference {
+    std::vector<uint8_t> facing, cull, culled_facing;
+    int cull_inside = 0;
+    int count = 0, count_cull = 0;
+    std::vector<int> sil, cap;
+};
+
+struct Measurer {
+    const Mesh &m;
+    int rounds;
+    std::vector<Reference> ref;
+    std::vector<uint8_t> facing;
+    sv::AlignedVector<uint8_t> facing_aligned;
+    std::vector<uint8_t> cull;
+    sv::AlignedVector<int> out;
+    bool failed = false;
+
+    explicit Measurer(const Mesh &mesh, int r) : m(mesh), rounds(r) {
+        const size_t nt = (size_t)m.s.num_triangles();
+        facing_aligned.resize(nt + 16);
+        cull.resize((size_t)m.s.num_vertices());
+        out.resize(sv_shadow_volume_capacity(m.s.num_indices(), m.s.num_sil_edges()) + 16);
+        ref.resize(kLights);
+        for (int l = 0; l < kLights; l++) {
+            Reference &x = ref[(size_t)l];
+            x.facing.resize(nt + 1);
+            sv_calculate_facing_c_ref(m.s.planes.data(), (int)nt, &m.lights[(size_t)l],
+                                      x.facing.data());
+            x.cull.resize((size_t)m.s.num_vertices());
+            x.cull_inside = sv_calculate_cull_bits_c_ref(m.positions4.data(), m.s.num_vertices(),
+                                                         &m.bounds, m.boxes[(size_t)l].data(),
+                                                         x.cull.data());
+            if (x.cull_inside) std::fill(x.cull.begin(), x.cull.end(), 0);
+            x.count = sv_count_facing_c_ref(x.facing.data(), (int)nt);
+            x.culled_facing = x.facing;
+            x.count_cull = sv_count_facing_cull_c_ref(x.culled_facing.data(), (int)nt,
+                                                      m.s.indices.data(), x.cull.data());
+            x.sil.resize(6 * (size_t)m.s.num_sil_edges() + 1);
+            x.sil.resize((size_t)sv_create_sil_triangles_c_ref(
+                x.sil.data(), x.facing.data(), m.s.sil_edges.data(), m.s.num_sil_edges()));
+            x.cap.resize(2 * (size_t)m.s.num_indices() + 1);
+            x.cap.resize((size_t)sv_create_cap_triangles_c_ref(x.cap.data(), x.facing.data(),
+                                                               m.s.indices.data(),
+                                                               m.s.num_indices()));
+        }
+    }
+
+    /* Median over rounds of one call, one light per call in turn. PREPARE
+     * sets the call's input up outside the timed region; CALL returns
+     * whether its result matched c_ref's. */
+    template <class Prepare, class Call> double time(const Prepare &prepare, const Call &call) {
+        std::vector<double> per_call;
+        per_call.reserve((size_t)rounds * kLights);
+        for (int round = 0; round < rounds; round++) {
+            for (int l = 0; l < kLights; l++) {
+                prepare(l);
+                const uint64_t t0 = ticks_now();
+                const bool ok = call(l);
+                const uint64_t t1 = ticks_now();
+                if (!ok) failed = true;
+                per_call.push_back((double)(t1 - t0));
+            }
+        }
+        std::nth_element(per_call.begin(), per_call.begin() + (long)per_call.size() / 2,
+                         per_call.end());
+        return per_call[per_call.size() / 2];
+    }
+
+    double facing_variant(const sv_facing_variant &f) {
+        const int nt = m.s.num_triangles();
+        return time([](int) {},
+                    [&](int l) {
+                        f.calculate_facing(m.s.planes.data(), nt, &m.lights[(size_t)l],
+                                           facing_aligned.data());
+                        return std::memcmp(facing_aligned.data(), ref[(size_t)l].facing.data(),
+                                           (size_t)nt + 1) == 0;
+                    });
+    }
+    double cull_variant(const sv_facing_variant &f) {
+        const int nv = m.s.num_vertices();
+        return time([](int) {},
+                    [&](int l) {
+                        const int inside = f.calculate_cull_bits(m.positions4.data(), nv, &m.bounds,
+                                                                 m.boxes[(size_t)l].data(),
+                                                                 cull.data());
+                        const Reference &x = ref[(size_t)l];
+                        return inside == x.cull_inside &&
+                               (inside || std::memcmp(cull.data(), x.cull.data(), (size_t)nv) == 0);
+                    });
+    }
+    double kernel(const sv_variant &v, sv_routine r) {
+        const int nt = m.s.num_triangles();
+        uint8_t *fa = facing_aligned.data();
+        switch (r) {
+        case SV_ROUTINE_COUNT_FACING:
+            return time([&](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
+                        [&](int l) { return v.count_facing(fa, nt) == ref[(size_t)l].count; });
+        case SV_ROUTINE_COUNT_FACING_CULL:
+            return time([&](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
+                        [&](int l) {
+                            const Reference &x = ref[(size_t)l];
+                            return v.count_facing_cull(fa, nt, m.s.indices.data(), x.cull.data()) ==
+                                       x.count_cull &&
+                                   std::memcmp(fa, x.culled_facing.data(), (size_t)nt) == 0;
+                        });
+        case SV_ROUTINE_CREATE_SIL_TRIANGLES:
+            return time([](int) {},
+                        [&](int l) {
+                            const Reference &x = ref[(size_t)l];
+                            const int n = v.create_sil_triangles(out.data(), x.facing.data(),
+                                                                 m.s.sil_edges.data(),
+                                                                 m.s.num_sil_edges());
+                            return n == (int)x.sil.size() &&
+                                   std::memcmp(out.data(), x.sil.data(), sizeof(int) * x.sil.size()) == 0;
+                        });
+        case SV_ROUTINE_CREATE_CAP_TRIANGLES:
+            return time([&](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
+                        [&](int l) {
+                            const Reference &x = ref[(size_t)l];
+                            const int n = v.create_cap_triangles(out.data(), fa, m.s.indices.data(),
+                                                                 m.s.num_indices());
+                            return n == (int)x.cap.size() &&
+                                   std::memcmp(out.data(), x.cap.data(), sizeof(int) * x.cap.size()) == 0;
+                        });
+        default: return 0;
+        }
+    }
+};
+
+} // namespace
+
+extern "C" {
+
+const char *sv_routine_name(sv_routine r) {
+    return (int)r >= 0 && r < SV_NUM_ROUTINES ? kRoutineNames[r] : nullptr;
+}
+
+int sv_size_class(int numTriangles) {
+    int c = 0;
+    while (c < SV_NUM_SIZE_CLASSES - 1 && numTriangles >= kClassLimit[c]) c++;
+    return c;
+}
+
+int sv_size_class_triangles(int sizeClass) {
+    return sizeClass >= 0 && sizeClass < SV_NUM_SIZE_CLASSES ? kClassTriangles[sizeClass] : 0;
+}
+
+int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings) {
+    if (sizeClass < 0 || sizeClass >= SV_NUM_SIZE_CLASSES) return -1;
+    const Mesh m = make_mesh(kClassTriangles[sizeClass]);
+    /* About the same work per class: 1 M triangle-calls per variant. */
+    const int rounds = std::max(3, std::min(61, (1 << 20) / (kLights * m.s.num_triangles())));
+    Measurer meas(m, rounds);
+    const char *best[SV_NUM_ROUTINES] = {};
+    double best_ticks[SV_NUM_ROUTINES];
+    int taken = 0;
+    auto record = [&](sv_routine r, const char *name, double t) {
+        if (timings && taken < maxTimings) timings[taken] = {sizeClass, r, name, t};
+        taken++;
+        if (!best[r] || t < best_ticks[r]) best[r] = name, best_ticks[r] = t;
+    };
+    int nf = 0;
+    const sv_facing_variant *fv = sv_facing_variants(&nf);
+    for (int i = 0; i < nf; i++) {
+        if (!runs(fv[i].isa)) continue;
+        record(SV_ROUTINE_CALCULATE_FACING, fv[i].name, meas.facing_variant(fv[i]));
+        record(SV_ROUTINE_CALCULATE_CULL_BITS, fv[i].name, meas.cull_variant(fv[i]));
+    }
+    int nv = 0;
+    const sv_variant *v = sv_variants(&nv);
+    for (int i = 0; i < nv; i++) {
+        if (!runs(v[i].isa)) continue;
+        for (int r = SV_ROUTINE_COUNT_FACING; r < SV_NUM_ROUTINES; r++) {
+            record((sv_routine)r, v[i].name, meas.kernel(v[i], (sv_routine)r));
+        }
+    }
+    if (meas.failed) return -1;
+    svplan::install(sizeClass, svplan::make_plan(sizeClass, "measured", best, best_ticks), 3);
+    return taken;
+}
+
+const sv_plan *sv_plan_for(int numTriangles, unsigned flags) {
+    const int c = sv_size_class(numTriangles);
+    State &s = state();
+    int kind;
+    {
+        std::lock_guard<std::mutex> g(s.lock);
+        kind = s.kind[(size_t)c];
+        /* A plan made before the ISA limit was lowered (sv_set_isa_limit)
+         * may name kernels the limit no longer allows: start the class
+         * again. */
+        const sv_plan *p = s.plan[(size_t)c];
+        if (kind && !(runs(p->kernels.isa) &&
+                      svplan::variant_runs_routine(p->variant[SV_ROUTINE_CALCULATE_FACING],
+                                                   SV_ROUTINE_CALCULATE_FACING) &&
+                      svplan::variant_runs_routine(p->variant[SV_ROUTINE_CALCULATE_CULL_BITS],
+                                                   SV_ROUTINE_CALCULATE_CULL_BITS))) {
+            s.kind[(size_t)c] = kind = 0;
+        }
+    }
+    if (kind < 2 && (flags & SV_PLAN_MEASURE)) {
+        if (sv_plan_measure(c, nullptr, 0) >= 0) kind = 3;
+    }
+    if (kind == 0) {
+        svplan::install(c, svplan::builtin_plan(c), 1);
+    }
+    std::lock_guard<std::mutex> g(s.lock);
+    return s.plan[(size_t)c];
+}
+
+void sv_plan_reset(void) {
+    State &s = state();
+    std::lock_guard<std::mutex> g(s.lock);
+    s.kind.fill(0);
+}
+
+} // extern "C"
