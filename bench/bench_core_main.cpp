@@ -15,7 +15,8 @@
  *   shadowvol bench [--quick] [--runs N] [--seed S]
  *
  * --limits is refused with a clear message: its probes are System V
- * x86-64 asm (bench/machine_limits.asm), not built here.
+ * x86-64 asm (bench/machine_limits.asm), which only the full x86-64 Linux
+ * build links.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -96,8 +97,9 @@ int bench(int argc, char **argv) {
             }
         } else if (a == "--limits") {
             std::fprintf(stderr,
-                         "shadowvol bench: --limits is not available on this platform: its "
-                         "probes (bench/machine_limits.asm) are System V x86-64 code\n");
+                         "shadowvol bench: --limits is not in this build: its probes "
+                         "(bench/machine_limits.asm) are System V x86-64 asm, built by the "
+                         "full x86-64 Linux build only\n");
             return kExitUsage;
         } else {
             std::fprintf(stderr,
