@@ -3,6 +3,8 @@
  */
 #include "cache_info.h"
 
+#include <cstdint>
+
 #include <cctype>
 #include <cstdio>
 #include <fstream>
@@ -73,26 +75,32 @@ CacheSizes detect_all() {
 } // namespace
 
 size_t parse_sysfs_size(const std::string &text) {
-    size_t i = 0, v = 0;
+    /* 64-bit arithmetic whatever size_t is (32 bits on 32-bit x86). */
+    size_t i = 0;
+    uint64_t v = 0;
     while (i < text.size() && std::isdigit((unsigned char)text[i])) {
-        if (v > ((size_t)1 << 40)) {
+        if (v > ((uint64_t)1 << 40)) {
             return 0; /* no cache is a terabyte: not a size */
         }
-        v = v * 10 + (size_t)(text[i++] - '0');
+        v = v * 10 + (uint64_t)(text[i++] - '0');
     }
     if (i == 0) {
         return 0;
     }
-    size_t unit = 1;
+    uint64_t unit = 1;
     if (i < text.size()) {
         switch (text[i++]) {
-        case 'K': unit = (size_t)1 << 10; break;
-        case 'M': unit = (size_t)1 << 20; break;
-        case 'G': unit = (size_t)1 << 30; break;
+        case 'K': unit = (uint64_t)1 << 10; break;
+        case 'M': unit = (uint64_t)1 << 20; break;
+        case 'G': unit = (uint64_t)1 << 30; break;
         default: return 0;
         }
     }
-    return i == text.size() ? v * unit : 0;
+    const uint64_t bytes = v * unit;
+    if (i != text.size() || bytes > (uint64_t)SIZE_MAX) {
+        return 0;
+    }
+    return (size_t)bytes;
 }
 
 const CacheSizes &cache_sizes() {

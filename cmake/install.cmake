@@ -21,6 +21,9 @@ include(CMakePackageConfigHelpers)
 
 get_target_property(_sv_core_sources shadowvol SOURCES)
 get_target_property(_sv_core_options shadowvol COMPILE_OPTIONS)
+# The per-platform asm definitions (SV_HAVE_ASM_*: which variants
+# src/variants.c lists), or the shared library's table would lack the asm.
+get_target_property(_sv_core_definitions shadowvol COMPILE_DEFINITIONS)
 add_library(shadowvol_shared SHARED ${_sv_core_sources})
 set_target_properties(shadowvol_shared PROPERTIES
   OUTPUT_NAME shadowvol
@@ -32,6 +35,9 @@ set_target_properties(shadowvol_shared PROPERTIES
   LINKER_LANGUAGE CXX)
 if(_sv_core_options)
   target_compile_options(shadowvol_shared PRIVATE ${_sv_core_options})
+endif()
+if(_sv_core_definitions)
+  target_compile_definitions(shadowvol_shared PRIVATE ${_sv_core_definitions})
 endif()
 target_include_directories(shadowvol_shared PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>

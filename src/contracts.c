@@ -66,6 +66,7 @@ static int check_facing_sentinel(const uint8_t *facing, int numTriangles) {
  * the triangle is not culled. Its contract is bits 0..6; a cull byte with
  * bit 7 is refused for it (the other variants honour all 8 bits). */
 static int check_cull_bits(const sv_variant *v, const uint8_t *cullBits, int numVerts) {
+#if defined(SV_HAVE_ASM_SSE2)
     int i;
     if (v->count_facing_cull != sv_count_facing_cull_sse2_paper) {
         return SV_OK;
@@ -76,6 +77,14 @@ static int check_cull_bits(const sv_variant *v, const uint8_t *cullBits, int num
         }
     }
     return SV_OK;
+#else
+    /* No sse2_paper on this platform (docs/platforms.md): every variant
+     * built honours all 8 bits. */
+    (void)v;
+    (void)cullBits;
+    (void)numVerts;
+    return SV_OK;
+#endif
 }
 
 static int check_vertex_indices(const int *indices, int numIndices, int numVerts) {

@@ -8,6 +8,11 @@
  * not enable it must not run AVX-512 code (it would fault), so both are
  * required.
  *
+ * 32-bit x86: SSE2 is not architectural there (a Pentium III or Athlon XP
+ * has none), so it is read from CPUID leaf 1 (EDX bit 26) like the rest.
+ * The 32-bit build is compiled with -msse2 -mfpmath=sse (docs/platforms.md)
+ * and needs SSE2 anyway; the bit still decides which SIMD variants run.
+ *
  * Limit: the environment variable SV_ISA (read once, on first use) or
  * sv_set_isa_limit() caps what sv_cpu_isa() reports, so tests, benchmark
  * and dispatch can be run as on an older CPU:
@@ -24,7 +29,7 @@
 
 #include "shadowvol.h"
 
-#if defined(__x86_64__)
+#if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
 
 static unsigned long long xgetbv0(void) {
@@ -34,11 +39,24 @@ static unsigned long long xgetbv0(void) {
 }
 
 static unsigned detect(void) {
+#if defined(__x86_64__)
     unsigned a, b, c, d, max_leaf, isa = SV_ISA_SSE2; /* architectural on x86-64 */
     if (!__get_cpuid(0, &max_leaf, &b, &c, &d)) {
         return isa;
     }
     __cpuid(1, a, b, c, d);
+#else
+    /* __get_cpuid checks that CPUID exists at all (EFLAGS.ID) first. */
+    unsigned a, b, c, d, max_leaf, isa = SV_ISA_NONE;
+    if (!__get_cpuid(0, &max_leaf, &b, &c, &d) || max_leaf < 1) {
+        return isa;
+    }
+    __cpuid(1, a, b, c, d);
+    if (!((d >> 26) & 1)) {
+        return isa;
+    }
+    isa = SV_ISA_SSE2;
+#endif
     const int osxsave = (c >> 27) & 1, avx = (c >> 28) & 1, fma = (c >> 12) & 1;
     const int popcnt = (c >> 23) & 1;
     if (!osxsave || !avx || max_leaf < 7) {

@@ -17,8 +17,7 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include "test_support.h"
 
-#include <sys/mman.h>
-#include <unistd.h>
+#include "mman_compat.h"
 
 #include <algorithm>
 
@@ -339,6 +338,10 @@ TEST(Avx512Kernels, CullWritesNoFacingByteThatWasOne) {
     const size_t page = (size_t)sysconf(_SC_PAGESIZE);
     for (const char *name : {"c_ref", "avx2", "avx512", "avx512vbmi"}) {
         const sv_variant *v = sv_variant_by_name(name);
+        if (!v && !variant_built_here(name)) {
+            std::printf("[  SKIPPED ] variant %s: not built on this platform\n", name);
+            continue;
+        }
         ASSERT_NE(v, nullptr) << name;
         if ((v->isa & sv_cpu_isa()) != v->isa) {
             std::printf("[  SKIPPED ] variant %s: this CPU lacks its instruction set\n", name);

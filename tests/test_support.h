@@ -62,6 +62,15 @@ public:
     HugeSilEdgeArray(const HugeSilEdgeArray &) = delete;
     HugeSilEdgeArray &operator=(const HugeSilEdgeArray &) = delete;
     bool ok() const { return ok_; }
+    // Whether this platform can make one: memfd and 2 GiB of address space
+    // (Linux x86-64). Elsewhere the tests that need it skip, by name.
+    static constexpr bool available() {
+#if defined(__linux__) && UINTPTR_MAX > 0xFFFFFFFFu
+        return true;
+#else
+        return false;
+#endif
+    }
     SilEdge *data() { return reinterpret_cast<SilEdge *>(base_); }
     size_t size() const { return edges_; }
 
@@ -102,6 +111,7 @@ private:
 
 // ---- ABI-checked calls ---------------------------------------------------
 
+#if defined(SV_HAVE_ABI_CHECKER)
 extern "C" {
 uint64_t sv_abi_checked_call(const void *fn, uint64_t a1, uint64_t a2, uint64_t a3,
                              uint64_t a4, uint64_t a5);
@@ -114,6 +124,7 @@ extern uint32_t sv_abi_failed;
 void abi_scramble(Rng &rng);
 // Names of the broken promises in a sv_abi_failed bit mask.
 std::string abi_failures(uint32_t mask);
+#endif
 
 // A 32-bit int argument as the register it travels in, with a garbage upper
 // half that is never the sign extension of the low half.
@@ -122,11 +133,31 @@ inline uint64_t ptr_arg(const void *p) { return (uint64_t)(uintptr_t)p; }
 
 // Calls fn through the trampoline with scrambled registers; the result's low
 // 32 bits are the int return value. Fails the current test if the routine
-// broke the ABI.
+// broke the ABI. (Without SV_HAVE_ABI_CHECKER, on the platforms the
+// checker is not ported to, a plain call: test_support.cpp.)
 int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3 = 0,
                  uint64_t a4 = 0, uint64_t a5 = 0);
 
 // The variants this CPU runs; the others are reported as skipped by name.
 std::vector<const sv_variant *> runnable_variants();
+
+// Whether this platform's build has the named variant at all: the asm
+// kernels exist per platform (CMake's SV_ASM_KERNELS, SV_HAVE_ASM_*,
+// docs/platforms.md). A test that names a variant fails if it is missing
+// where it is built, and skips it by name where it is not.
+bool variant_built_here(const char *name);
+
+} // namespace svtest
+
+// For a test of sse2_paper's own contract: skipped, by name and reason,
+// where the platform has no SSE2 ports.
+#if defined(SV_HAVE_ASM_SSE2)
+#define SV_REQUIRE_SSE2_PAPER() (void)0
+#else
+#define SV_REQUIRE_SSE2_PAPER() \
+    GTEST_SKIP() << "sse2_paper is not built on this platform (docs/platforms.md)"
+#endif
+
+namespace svtest {
 
 } // namespace svtest

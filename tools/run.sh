@@ -6,18 +6,24 @@
 #   tools/run.sh test                              the whole test suite (ctest)
 #   tools/run.sh fuzz [SECONDS]                    each libFuzzer target of
 #                                                  tests/fuzz for SECONDS (60)
+#   tools/run.sh cross                             the core suite for Windows x64
+#                                                  under wine64 and for 32-bit x86
+#                                                  natively and under qemu-i386
+#                                                  (docs/platforms.md)
 #
 # BUILD_DIR (default: build) chooses the build directory; FUZZ_BUILD_DIR
 # (default: build-fuzz) the fuzz build's (clang, SV_FUZZ=ON, only the fuzz
-# targets and the libraries they need). ccache is used when installed.
+# targets and the libraries they need); WIN64_BUILD_DIR (build-win64) and
+# I686_BUILD_DIR (build-i686) the cross builds' (SV_CORE_ONLY). ccache is
+# used when installed.
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
 job="${1:-}"
 [ $# -gt 0 ] && shift
 case "$job" in
-  bench|test|fuzz) ;;
-  *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS]" >&2; exit 2 ;;
+  bench|test|fuzz|cross) ;;
+  *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS] | tools/run.sh cross" >&2; exit 2 ;;
 esac
 
 # Debian packages the build and the tests need.
@@ -32,6 +38,13 @@ packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
           libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user
           libosmesa6-dev libtbb-dev)
 [ "$job" = bench ] || packages+=(clang libclang-rt-dev)
+# The cross builds (tools/run.sh cross): MinGW-w64's x86-64 compilers with
+# the posix thread model (the x86-64 half of the mingw-w64 set: the 32-bit
+# Windows compilers are not needed), wine64 to run their programs,
+# gcc/g++-multilib for 32-bit x86, and googletest's sources, which both
+# compile (Debian's libgtest-dev is native 64-bit only).
+[ "$job" = cross ] && packages+=(gcc-mingw-w64-x86-64-posix g++-mingw-w64-x86-64-posix wine64
+                                 gcc-multilib g++-multilib googletest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -97,6 +110,30 @@ if [ "$job" = fuzz ]; then
       status=1
     fi
   done
+  exit $status
+fi
+
+if [ "$job" = cross ]; then
+  # The core suite (shadowvol_tests: differential, errata, contracts,
+  # dispatch, ...) on the platforms that are not the host: Windows x64
+  # under wine64 (every test program through cmake/wine-run.sh), 32-bit x86
+  # natively (multilib) and under qemu-i386 as a Core Duo and an Atom N270,
+  # plus the 32-bit `shadowvol bench` table. Each step's seconds are
+  # printed, for the CI's budget.
+  step() { local t0=$SECONDS; "$@"; echo "tools/run.sh cross: $* took $((SECONDS - t0)) s" >&2; }
+  status=0
+  wb="${WIN64_BUILD_DIR:-build-win64}"
+  ib="${I686_BUILD_DIR:-build-i686}"
+  t_all=$SECONDS
+  step cmake -S . -B "$wb" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-mingw-w64.cmake "${launcher[@]}" >/dev/null
+  step cmake --build "$wb" --target shadowvol_tests >&2
+  step ctest --test-dir "$wb" --output-on-failure "$@" || status=1
+  step cmake -S . -B "$ib" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-i686.cmake "${launcher[@]}" >/dev/null
+  step cmake --build "$ib" --target shadowvol_tests shadowvol_bench_core >&2
+  step ctest --test-dir "$ib" --output-on-failure "$@" || status=1
+  echo "tools/run.sh cross: $((SECONDS - t_all)) s in all" >&2
   exit $status
 fi
 

@@ -181,7 +181,7 @@ constexpr std::size_t kMaxAccessorComponents = std::size_t(1) << 28;
 constexpr std::size_t kMaxUnbackedComponents = std::size_t(1) << 24;
 
 /* Indices are u32: a surface holds at most 2^32 vertices. */
-constexpr std::size_t kMaxSurfaceVertices = std::size_t(1) << 32;
+constexpr std::uint64_t kMaxSurfaceVertices = std::uint64_t(1) << 32;
 
 /* JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1: up to 8 influences a vertex. */
 constexpr int kMaxInfluenceSets = 2;
@@ -1337,7 +1337,8 @@ void Loader::append_primitive(int mesh, int primitive, bool skinned, MeshGeometr
         decode(position_it->second, kPositionFormat, label + " POSITION");
     const std::size_t vertices = positions.size() / 3;
     const std::size_t base = g.num_vertices();
-    if (vertices > kMaxSurfaceVertices - base) {
+    /* (64-bit arithmetic: on 32-bit x86 size_t holds no 2^32.) */
+    if ((std::uint64_t)vertices > kMaxSurfaceVertices - (std::uint64_t)base) {
         fail(label + ": the surface would have more than 2^32 vertices");
     }
     for (std::size_t v = 0; v < vertices; v++) {

@@ -18,6 +18,8 @@
 #include <sys/stat.h>
 #ifdef _WIN32
 #include <direct.h>
+#define WIN32_LEAN_AND_MEAN
+#include <windows.h> /* MoveFileExA */
 #endif
 
 #include <cerrno>
@@ -165,7 +167,14 @@ int sv_wisdom_save(const char *path) {
         }
         if (!out.flush()) return -1;
     }
+#ifdef _WIN32
+    /* Windows' rename() refuses an existing target: every save after the
+     * first would fail. MoveFileEx replaces it (found by the wine run of
+     * the suite, docs/platforms.md). */
+    return MoveFileExA(tmp.c_str(), path, MOVEFILE_REPLACE_EXISTING) ? 0 : -1;
+#else
     return std::rename(tmp.c_str(), path) == 0 ? 0 : -1;
+#endif
 }
 
 } // extern "C"

@@ -491,7 +491,7 @@ Point3 sample_point(const PreparedSurface &s, const SurfaceFrame &f, const Verif
     /* Half of these near a casting triangle: where the volume is, even
      * when a light box culls most of the mesh. */
     const int t = !casting.empty() && unit_random(rng) < 0.5
-                      ? casting[next_random(rng) % casting.size()]
+                      ? casting[(size_t)(next_random(rng) % casting.size())]
                       : (int)(next_random(rng) % (uint64_t)s.num_triangles());
     const int *tri = &s.indices[3 * (size_t)t];
     double u = unit_random(rng), v = unit_random(rng);
