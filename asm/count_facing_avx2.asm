@@ -50,50 +50,51 @@ align 32
 tail_mask:  times 32 db 0
             times 32 db 0xFF
 
-FUNCTION sv_count_facing_avx2
-        mov     ecx, arg2d              ; numTriangles (upper half ignored)
-        xor     eax, eax
-        test    ecx, ecx
+VEC_YMM
+FUNC sv_count_facing_avx2, 2, 4, 6, facing, numTriangles
+        mov     g3d, g1d              ; numTriangles (upper half ignored)
+        xor     rvd, rvd
+        test    g3d, g3d
         jle     .ret                    ; negative or zero: 0, nothing read
-        lea     rsi, [rdi + rcx]        ; end (ecx > 0: zero-extended is right)
-        cmp     ecx, 32
+        lea     g1q, [g0q + g3q]        ; end (ecx > 0: zero-extended is right)
+        cmp     g3d, 32
         jb      .small
 
         vpxor   xmm0, xmm0, xmm0
         vpxor   xmm1, xmm1, xmm1
         vpxor   xmm5, xmm5, xmm5
-        sub     ecx, 128                ; signed from here: n <= 2^31 - 1
+        sub     g3d, 128                ; signed from here: n <= 2^31 - 1
         jl      .run32
 
 .loop128:
-        vmovdqu ymm2, [rdi]
-        vpaddb  ymm2, ymm2, [rdi + 32]
-        vmovdqu ymm3, [rdi + 64]
-        vpaddb  ymm3, ymm3, [rdi + 96]
+        vmovdqu ymm2, [g0q]
+        vpaddb  ymm2, ymm2, [g0q + 32]
+        vmovdqu ymm3, [g0q + 64]
+        vpaddb  ymm3, ymm3, [g0q + 96]
         vpsadbw ymm2, ymm2, ymm5
         vpsadbw ymm3, ymm3, ymm5
         vpaddq  ymm0, ymm0, ymm2
         vpaddq  ymm1, ymm1, ymm3
-        add     rdi, 128
-        sub     ecx, 128
+        add     g0q, 128
+        sub     g3d, 128
         jge     .loop128
 
 .run32:
-        add     ecx, 128 - 32           ; bytes left - 32
+        add     g3d, 128 - 32           ; bytes left - 32
         jl      .last
 .loop32:
-        vpsadbw ymm2, ymm5, [rdi]
+        vpsadbw ymm2, ymm5, [g0q]
         vpaddq  ymm0, ymm0, ymm2
-        add     rdi, 32
-        sub     ecx, 32
+        add     g0q, 32
+        sub     g3d, 32
         jge     .loop32
 
 .last:
-        add     ecx, 32                 ; 0..31 bytes left
+        add     g3d, 32                 ; 0..31 bytes left
         jz      .reduce
-        lea     rdx, [tail_mask]
-        vmovdqu ymm2, [rdx + rcx]       ; keeps the last ecx bytes
-        vpand   ymm2, ymm2, [rsi - 32]  ; n >= 32: never before facing
+        lea     g2q, [tail_mask]
+        vmovdqu ymm2, [g2q + g3q]       ; keeps the last ecx bytes
+        vpand   ymm2, ymm2, [g1q - 32]  ; n >= 32: never before facing
         vpsadbw ymm2, ymm2, ymm5
         vpaddq  ymm0, ymm0, ymm2
 
@@ -103,37 +104,37 @@ FUNCTION sv_count_facing_avx2
         vpaddq  xmm0, xmm0, xmm1
         vpshufd xmm1, xmm0, SHUFFLE_D(2, 3, 0, 1)
         vpaddq  xmm0, xmm0, xmm1
-        vmovq   rax, xmm0
-        vzeroupper
+        vmovq   rvq, xmm0
+        RET
 .ret:
-        ret
+        RET clean
 
         ; 1 <= n < 32: no vector register touched, so no vzeroupper needed
 .small:
-        sub     ecx, 8
+        sub     g3d, 8
         jb      .bytes
 .qwords:                                ; n >= 8
-        popcnt  rdx, [rdi]
-        add     eax, edx
-        add     rdi, 8
-        sub     ecx, 8
+        popcnt  g2q, [g0q]
+        add     rvd, g2d
+        add     g0q, 8
+        sub     g3d, 8
         jae     .qwords
-        add     ecx, 8                  ; 0..7 bytes left
+        add     g3d, 8                  ; 0..7 bytes left
         jz      .ret
         ; the qword ending at the end holds 8 - ecx bytes already counted:
         ; shift them out (low bytes are the lower addresses)
-        mov     rdx, [rsi - 8]
-        neg     ecx
-        lea     ecx, [rcx*8 + 64]       ; 8 * (8 - left)
-        shrx    rdx, rdx, rcx
-        popcnt  rdx, rdx
-        add     eax, edx
-        ret
+        mov     g2q, [g1q - 8]
+        neg     g3d
+        lea     g3d, [g3q*8 + 64]       ; 8 * (8 - left)
+        shrx    g2q, g2q, g3q
+        popcnt  g2q, g2q
+        add     rvd, g2d
+        RET clean
 .bytes:                                 ; 1 <= n < 8
-        movzx   edx, byte [rdi]
-        add     eax, edx
-        inc     rdi
-        cmp     rdi, rsi
+        movzx   g2d, byte [g0q]
+        add     rvd, g2d
+        inc     g0q
+        cmp     g0q, g1q
         jb      .bytes
-        ret
-ENDFUNCTION
+        RET clean
+ENDFUNC

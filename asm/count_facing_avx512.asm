@@ -44,34 +44,35 @@
 
 %include "sv_abi.inc"
 
-FUNCTION sv_count_facing_avx512
-        mov     eax, arg2d                      ; numTriangles (upper half ignored)
+VEC_ZMM
+FUNC sv_count_facing_avx512, 2, 4, 7, facing, numTriangles
+        mov     rvd, g1d                      ; numTriangles (upper half ignored)
         vpxord  xmm0, xmm0, xmm0                ; zero, for vpsadbw
-        test    eax, eax
+        test    rvd, rvd
         jle     .zero                           ; negative or zero: read nothing
         vpxord  xmm1, xmm1, xmm1
         vpxord  xmm2, xmm2, xmm2
         vpxord  xmm3, xmm3, xmm3
         vpxord  xmm4, xmm4, xmm4
         vpxord  xmm6, xmm6, xmm6                ; qword totals of full chunks
-        mov     edx, eax
-        shr     edx, 8                          ; whole 256-byte blocks
+        mov     g2d, rvd
+        shr     g2d, 8                          ; whole 256-byte blocks
         jz      .vectors
 
 .chunk:                                         ; at most 62 blocks per chunk
-        mov     ecx, 62
-        cmp     edx, ecx
-        cmovb   ecx, edx
-        sub     edx, ecx
+        mov     g3d, 62
+        cmp     g2d, g3d
+        cmovb   g3d, g2d
+        sub     g2d, g3d
 .loop256:
-        vpaddb  zmm1, zmm1, [rdi+0*64]
-        vpaddb  zmm2, zmm2, [rdi+1*64]
-        vpaddb  zmm3, zmm3, [rdi+2*64]
-        vpaddb  zmm4, zmm4, [rdi+3*64]
-        add     rdi, 256
-        dec     ecx
+        vpaddb  zmm1, zmm1, [g0q+0*64]
+        vpaddb  zmm2, zmm2, [g0q+1*64]
+        vpaddb  zmm3, zmm3, [g0q+2*64]
+        vpaddb  zmm4, zmm4, [g0q+3*64]
+        add     g0q, 256
+        dec     g3d
         jnz     .loop256
-        test    edx, edx
+        test    g2d, g2d
         jz      .vectors
         ; 62 blocks: widen (4 x 62 = 248 per lane fits a byte), go on
         vpaddb  zmm1, zmm1, zmm2
@@ -86,23 +87,23 @@ FUNCTION sv_count_facing_avx512
         jmp     .chunk
 
 .vectors:                                       ; 0-3 whole vectors, then 0-63 bytes
-        test    al, 128
+        test    rvb, 128
         jz      .v1
-        vpaddb  zmm2, zmm2, [rdi+0*64]
-        vpaddb  zmm3, zmm3, [rdi+1*64]
-        add     rdi, 128
+        vpaddb  zmm2, zmm2, [g0q+0*64]
+        vpaddb  zmm3, zmm3, [g0q+1*64]
+        add     g0q, 128
 .v1:
-        test    al, 64
+        test    rvb, 64
         jz      .v0
-        vpaddb  zmm4, zmm4, [rdi]
-        add     rdi, 64
+        vpaddb  zmm4, zmm4, [g0q]
+        add     g0q, 64
 .v0:
-        and     eax, 63
+        and     rvd, 63
         jz      .sum                            ; no bytes left: no load (a
-        mov     rdx, -1                         ; masked load that reaches a
-        bzhi    rdx, rdx, rax                   ; page not mapped or not yet
-        kmovq   k1, rdx                         ; touched costs hundreds of
-        vmovdqu8 zmm5{k1}{z}, [rdi]             ; ticks on Zen 5, even fully
+        mov     g2q, -1                         ; masked load that reaches a
+        bzhi    g2q, g2q, rvq                   ; page not mapped or not yet
+        kmovq   k1, g2q                         ; touched costs hundreds of
+        vmovdqu8 zmm5{k1}{z}, [g0q]             ; ticks on Zen 5, even fully
         vpaddb  zmm1, zmm1, zmm5                ; masked); lanes now <= 63
 .sum:
         vpaddb  zmm1, zmm1, zmm2
@@ -117,12 +118,10 @@ FUNCTION sv_count_facing_avx512
         vpaddq  xmm0, xmm0, xmm1
         vpshufd xmm1, xmm0, SHUFFLE_D(2, 3, 0, 1)
         vpaddq  xmm0, xmm0, xmm1
-        vmovd   eax, xmm0
-        vzeroupper
-        ret
+        vmovd   rvd, xmm0
+        RET
 
 .zero:
-        xor     eax, eax
-        vzeroupper
-        ret
-ENDFUNCTION
+        xor     rvd, rvd
+        RET
+ENDFUNC

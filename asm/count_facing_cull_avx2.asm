@@ -75,11 +75,11 @@
 %include "sv_abi.inc"
 %include "avx2_left_pack.inc"
 
-extern sv_count_facing_avx2
+SV_EXTERN sv_count_facing_avx2
 
 %define CHUNK        992                  ; triangles per list (a multiple of 32)
 %define LIST_ENTRIES (CHUNK + 16)         ; + 8 (a block's store) + 3 (padding)
-%define FRAME        (LIST_ENTRIES*4 + 8) ; + 6 pushes + return: < 4096
+%define FRAME        (LIST_ENTRIES*4)     ; + 6 pushes + return + 8 of padding: 4096
 
 RODATA
 align 64
@@ -95,86 +95,73 @@ eight:  dd 8
 
 ; CULL1 k: list entry k of the current group of four.
 %macro CULL1 1
-        mov     eax, [rsp + rsi*4 + %1*4]      ; t
-        lea     rcx, [rax + rax*2]             ; 3t
-        mov     rdi, [r14 + rcx*4]             ; i0 | i1 << 32
-        movsxd  rcx, dword [r14 + rcx*4 + 8]   ; i2
-        movsxd  rdx, edi                       ; i0
-        sar     rdi, 32                        ; i1
-        movzx   r8d, byte [r15 + rdx]
-        and     r8b, [r15 + rdi]
-        and     r8b, [r15 + rcx]
-        setnz   r8b
-        mov     [r12 + rax], r8b
+        mov     rvd, [rsp + g1q*4 + %1*4]      ; t
+        lea     g3q, [rvq + rvq*2]             ; 3t
+        mov     g0q, [g12q + g3q*4]             ; i0 | i1 << 32
+        movsxd  g3q, dword [g12q + g3q*4 + 8]   ; i2
+        movsxd  g2q, g0d                       ; i0
+        sar     g0q, 32                        ; i1
+        movzx   g4d, byte [g13q + g2q]
+        and     g4b, [g13q + g0q]
+        and     g4b, [g13q + g3q]
+        setnz   g4b
+        mov     [g10q + rvq], g4b
 %endmacro
 
-FUNCTION sv_count_facing_cull_avx2
-        mov     eax, arg2d
-        test    eax, eax
+VEC_YMM
+FUNC sv_count_facing_cull_avx2
+        mov     rvd, g1d
+        test    rvd, rvd
         jg      .start
-        xor     eax, eax                ; negative or zero: 0, nothing touched
-        ret
+        xor     rvd, rvd                ; negative or zero: 0, nothing touched
+        RET_NOFRAME clean
 .start:
-        push    rbx
-        push    rbp
-        push    r12
-        push    r13
-        push    r14
-        push    r15
-        sub     rsp, FRAME
-        mov     r12, arg1q
-        mov     r13d, eax               ; n, zero-extended
-        mov     r14, arg3q
-        mov     r15, arg4q
-        lea     r11, [positions]
+        PROLOGUE 4, 14, 8, FRAME, facing, numTriangles, indices, cullBits
+        mov     g10q, g0q
+        mov     g11d, rvd               ; n, zero-extended
+        mov     g12q, g2q
+        mov     g13q, g3q
+        lea     g7q, [positions]
         vpxor   xmm5, xmm5, xmm5
         vpbroadcastd ymm7, [eight]
-        xor     ebx, ebx                ; chunk start
+        xor     g8d, g8d                ; chunk start
 
 .chunk:
         ; ---- pass 1: list the non-facing triangles of [rbx, rbx + len)
-        xor     ebp, ebp
-        mov     rsi, rbx
-        vmovd   xmm6, ebx
+        xor     g9d, g9d
+        mov     g1q, g8q
+        vmovd   xmm6, g8d
         vpbroadcastd ymm6, xmm6
-        lea     r9, [rbx + CHUNK]
-        cmp     r9, r13
-        cmova   r9, r13                 ; chunk end
-        LIST_NONFACING r12, r13, r9, r10, .pass2
+        lea     g5q, [g8q + CHUNK]
+        cmp     g5q, g11q
+        cmova   g5q, g11q                 ; chunk end
+        LIST_NONFACING g10q, g11q, g5q, g6q, .pass2
 
         ; ---- pass 2: the cull test for each listed triangle
 .pass2:
-        test    ebp, ebp
+        test    g9d, g9d
         jz      .next_chunk
-        mov     eax, [rsp + rbp*4 - 4]  ; pad to a multiple of 4 with the last
-        mov     [rsp + rbp*4], eax
-        mov     [rsp + rbp*4 + 4], eax
-        mov     [rsp + rbp*4 + 8], eax
-        xor     esi, esi
+        mov     rvd, [rsp + g9q*4 - 4]  ; pad to a multiple of 4 with the last
+        mov     [rsp + g9q*4], rvd
+        mov     [rsp + g9q*4 + 4], rvd
+        mov     [rsp + g9q*4 + 8], rvd
+        xor     g1d, g1d
 .cull4:
         CULL1   0
         CULL1   1
         CULL1   2
         CULL1   3
-        add     esi, 4
-        cmp     esi, ebp
+        add     g1d, 4
+        cmp     g1d, g9d
         jb      .cull4
 
 .next_chunk:
-        add     rbx, CHUNK
-        cmp     rbx, r13
+        add     g8q, CHUNK
+        cmp     g8q, g11q
         jb      .chunk
 
         ; ---- the count of facing bytes set now
-        mov     rdi, r12
-        mov     esi, r13d
-        add     rsp, FRAME
-        pop     r15
-        pop     r14
-        pop     r13
-        pop     r12
-        pop     rbp
-        pop     rbx
-        vzeroupper
-        jmp     sv_count_facing_avx2 wrt ..plt
-ENDFUNCTION
+        mov     g0q, g10q
+        mov     g1d, g11d
+        RET_VIA sv_count_facing_avx2
+ENDFUNC
