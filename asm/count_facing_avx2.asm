@@ -29,15 +29,8 @@
 ;   numTriangles >= 0 (negative returns 0 and reads nothing). Reads exactly
 ;   facing[0 .. n-1]: never a byte before or after.
 ;
-; Measured cost (`shadowvol bench`, batches of 23 calls, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 19.2-20.1 / 21.0-22.8 (sse2_paper 31.0-32.0 / 32.0-32.9,
-;   c_ref 322-323); fixed light 15.5-17.3 / 16.4-18.3 (sse2_paper
-;   27.4-30.1 / 28.3-31.0). Bound: 42 loads of 32 bytes at the 2 per cycle
-;   measured here are 21 cycles = 11.9 ticks, plus call and reduction: the
-;   256-bit loads, not the arithmetic, set the pace.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

@@ -30,15 +30,8 @@
 ;   numTriangles >= 0; a negative count returns 0 and reads nothing (the
 ;   test is on the 32-bit value: erratum C-7 does not arise).
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 15.5 min / 19.2 median per call (batches of 23; sse2_paper
-;   29.2 / 31.0, c_ref 322 / 323); fixed light 11.9 / 13.7 (sse2_paper 27.4
-;   / 28.3). In a loop over 23 copies in L1, without the bench's per-call
-;   work: 9.1 (sse2_paper 26.5). 1344 bytes are 21 zmm loads; moving, the
-;   copies come partly from L2 (64 B per cycle: about 12 ticks).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

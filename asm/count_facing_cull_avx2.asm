@@ -60,15 +60,8 @@
 ;   and cull bytes of the non-facing triangles only; writes only facing
 ;   bytes that were 0. Stack: < 4 KiB.
 ;
-; Measured cost (`shadowvol bench`, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 1197-1218 / 1260-1281 (sse2_paper 1512-1533 / 1596-1617,
-;   c_ref 1365-1407 / 1554-1596); fixed light 1134-1155 / 1155 (sse2_paper
-;   1512-1533 / 1575-1596, c_ref 1239 / 1239-1260). Pass 1 alone (with the
-;   count) ~300; with pass 2 but without its facing store ~1090: above the
-;   ~770 that twice sse2_paper's speed would need.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

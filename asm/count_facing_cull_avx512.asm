@@ -51,27 +51,8 @@
 ;   (negative or zero: returns 0, touches nothing). Reads exactly
 ;   facing[0 .. n-1]; writes only facing bytes that were 0.
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 1260 / 1302 (sse2_paper 1512 / 1596, c_ref 1386 / 1554);
-;   fixed light 1197 / 1218 (sse2_paper 1533 / 1596, c_ref 1218 / 1239: the
-;   predictor learns c_ref's branches there). About 11 instructions per
-;   non-facing triangle, 6 of them loads: the loop runs at the ~4
-;   instructions per cycle this guest sustains; the loads alone (3 per
-;   cycle) would allow about 850 ticks.
-;   Split, with a harness that times the kernel alone (lfence-fenced TSC,
-;   random facing and cull bytes, median of 4000 calls): on 1344 triangles
-;   pass 1 and the count take ~290 ticks here against ~230 for the AVX2
-;   kernel's table left-pack (vpcompressd plus kmov plus popcnt per 16
-;   costs more than two table loads per 16 on this core), pass 2 ~1060 in
-;   both. Chunks grew from 512 to 960 triangles (one list for Fox.glb's
-;   576, two for the character): Fox 586 -> 569 ticks per call. The AVX2
-;   kernel stays the faster of the two on every mesh measured, by 3-7%.
-;   `shadowvol bench --limits`: this routine's floor on the character is
-;   ~410 ticks; the distance is pass 2's chain of three dependent loads
-;   per triangle (list entry, vertex numbers, cull bytes).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

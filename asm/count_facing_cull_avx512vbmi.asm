@@ -46,7 +46,7 @@
 ;      Why so few masked loads: on the reference machine a masked load
 ;      whose masked-off part lies on a page that is unmapped or not yet
 ;      touched costs ~360 ticks, even when it reads no byte there
-;      (helper-13's measurements, arrays ending at such a page: M = 10,
+;      (timed with the arrays ending at such a page: M = 10,
 ;      84 -> 5607 ticks with a load per register; 1345 triangles, 630 ->
 ;      5502). Left: a table under 64 bytes and meshes under 64 triangles
 ;      (M = 10 there: 420 ticks against 21). The other AVX-512 kernels'
@@ -83,15 +83,8 @@
 ;   vpermi2b, vpermt2b) on top of x86-64-v4: the caller checks CPUID
 ;   (SV_ISA_AVX512_VBMI). Stack: under 1 KiB.
 ;
-; Measured cost (a harness timing the kernel alone: lfence-fenced TSC,
-;   median of 4000 calls, 1344 triangles over 674 vertices, random facing
-;   and cull bytes; AMD EPYC "Turin-like" KVM guest, Zen 5 class): 693
-;   ticks, against 1302 for the AVX2 list kernel and 1365 for the AVX-512
-;   one. `shadowvol bench --limits` (commit 384b943), the 1344-triangle
-;   character, moving light: 579 min / 585 median ticks (avx2 1218 / 1281,
-;   avx512 1281 / 1302, sse2_paper 1491 / 1596, c_ref 1386 / 1470), 0.44
-;   ticks per triangle; fixed light 576 / 582. The same for every facing
-;   and cull ratio (no lookup is skipped, none is a load).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

@@ -52,11 +52,8 @@
 ;   xmm0, xmm7 in place of pcmpgtb / pand. It is not taken here, to stay the
 ;   listing's code (issue 3 asks for the faithful behaviour, pinned).
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 1596 ticks, 1.19 ticks per triangle (c_ref
-;   6090, c_branchless 2730).
-;   The paper's Pentium 4: 10848 cycles (130 nm), 13883 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.

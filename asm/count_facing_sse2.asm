@@ -34,11 +34,8 @@
 ;   overflow and its loops read ~2^28 bytes: the port exits on <= 0;
 ;   `movzx ecx, [edi]` has no operand size (byte).
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 30 ticks for 1344 bytes, 0.02 ticks per
-;   triangle (timed in batches of 23 calls; c_ref 322, c_branchless 197).
-;   The paper's Pentium 4: 348 cycles (130 nm), 383 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.

@@ -53,13 +53,8 @@
 ;   6 * (casting triangles)). Reads nothing outside facing[0 .. n-1] and
 ;   indices[0 .. numIndices-1]. Stack: < 4 KiB (no probe needed).
 ;
-; Measured cost (`shadowvol bench`, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 693-735 / 756-798 (sse2_paper 1533-1554 / 1554-1575,
-;   c_ref 2499-2520 / 2730-2793); fixed light 651-672 / 672 (sse2_paper
-;   1554 / 1575, c_ref 2373-2394 / 2415).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

@@ -51,14 +51,8 @@
 ;   but never past 2 * numIndices. No alignment anywhere.
 ;   numIndices >= 0 (negative returns 0, touches nothing).
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 630 / 672 (sse2_paper 1533 / 1554, c_ref 2499 / 2751);
-;   fixed light 630 / 651 (sse2_paper 1533 / 1554). About 0.47 ticks per
-;   triangle; 0.4 to 0.7 on meshes of 256 to 108864 triangles
-;   (`shadowvol bench --scaling --quick`; sse2_paper 1.15 to 1.24).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

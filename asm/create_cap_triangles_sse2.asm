@@ -51,11 +51,8 @@
 ;   statement names
 ;   `shadowIndexes` and casts a pointer to int.
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 1617 ticks, 1.20 ticks per triangle (c_ref
-;   6363, c_branchless 4536).
-;   The paper's Pentium 4: 12080 cycles (130 nm), 14205 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.

@@ -56,15 +56,8 @@
 ;   the numSilEdges edges but the facing bytes they name. Stack: < 4 KiB
 ;   (no probe needed).
 ;
-; Measured cost (`shadowvol bench`, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 1869-1974 / 1911-2079 (sse2_paper 3339-3360 / 3381-3402,
-;   c_ref 2163-2247 / 3087-3549); fixed light 1911-2079 / 1932-2100
-;   (sse2_paper 3381-3402 / 3402-3423, c_ref 2058-2079 / 2079-2100); with
-;   `--timer lfence` (no VM exit per call) 1785 / 1827. Phase 1 alone:
-;   ~1200 of it.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

@@ -87,21 +87,8 @@
 ;   alignment anywhere. numSilEdges >= 0 (negative returns 0, touches
 ;   nothing). Stack: 7.6 KiB.
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 1638 / 1680 for 2016 SilEdges, 12% on the silhouette
-;   (sse2_paper 3339 / 3381, c_ref 2121 / 2226); fixed light 1596 / 1638
-;   (sse2_paper 3339 / 3360). Per SilEdge about 0.8 ticks. Commit 47e1ddb
-;   (P1 / P2 split; `bench --limits`): 1323 / 1386, 0.69 ticks per edge
-;   (sse2_paper 3360 / 3381, c_ref 2079 / 2226); fixed light 1323 / 1365;
-;   the floor of a kernel that looks facing up with loads is 716 there. Larger meshes (commit 6e7482c,
-;   `bench --scaling --routine create_sil_triangles`, median per SilEdge,
-;   avx512 / avx2 / c_ref): spot.glb 0.77 / 0.77 / 1.39, koala.glb 0.94 /
-;   0.94 / 1.52, the 979776-triangle character 0.83 / 0.89 / 0.95: above
-;   3072 SilEdges both rows run the AVX2 kernel, so their difference there
-;   is run-to-run noise, not a result.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -169,18 +156,19 @@ sil_c256: dd 256
 %define SIL_BASE    0                           ; shadowIndices
 %define SIL_WLO     8                           ; bitmap window: first byte (x 64)
 %define SIL_WEND    16                          ;   and one past its last
-%define SIL_SAVE_AFTER  24                      ; across the AVX2 call (.scalar):
+%define SIL_SAVE_AFTER  24                      ; across the AVX2 call (.chunk_via_avx2):
 %define SIL_SAVE_EDGES  32                      ;   edges after the chunk, the
 %define SIL_SAVE_FACING 40                      ;   chunk, facing, the output
 %define SIL_SAVE_OUT    48                      ;   pointer
 %define SIL_BM      64                          ; 256 bytes: 2048 facing bits
-%define SIL_PP      (SIL_BM + 256)              ; SIL_CHUNK qwords
-%define SIL_LA      (SIL_PP + SIL_CHUNK * 8)    ; (SIL_CHUNK + 16) dwords
-%define SIL_LB      (SIL_LA + (SIL_CHUNK + 16) * 4)
-%define SIL_FRAME   (SIL_LB + (SIL_CHUNK + 16) * 4)
+%define SIL_P1P2    (SIL_BM + 256)              ; SIL_CHUNK qwords: P1, P2 per block
+%define SIL_LIST_OFS (SIL_P1P2 + SIL_CHUNK * 8)  ; (SIL_CHUNK + 16) dwords: byte
+                                                ;   offsets of the silhouette edges
+%define SIL_LIST_F1 (SIL_LIST_OFS + (SIL_CHUNK + 16) * 4) ; their 64 * f1
+%define SIL_FRAME   (SIL_LIST_F1 + (SIL_CHUNK + 16) * 4)
 
 ; Pass A over one block of 16 edges at rbx (%1 = 1: the last 1-15 edges,
-; rcx = their number): P1 (p1 of edges 0-15) to [rsp+SIL_PP+r11] and P2
+; rcx = their number): P1 (p1 of edges 0-15) to [rsp+SIL_P1P2+r11] and P2
 ; (their p2) to the next 64 bytes; their minima into zmm14, zmm15 and
 ; maxima into zmm12, zmm13.
 %macro SIL_PAIRS 1
@@ -220,8 +208,8 @@ sil_c256: dd 256
         vpminud zmm14{k1}, zmm14, zmm6          ; the edges that exist
         vpminud zmm15{k1}, zmm15, zmm7
 %endif
-        vmovdqa64 [rsp+SIL_PP+g7q+0], zmm6
-        vmovdqa64 [rsp+SIL_PP+g7q+64], zmm7
+        vmovdqa64 [rsp+SIL_P1P2+g7q+0], zmm6
+        vmovdqa64 [rsp+SIL_P1P2+g7q+64], zmm7
 %endmacro
 
 ; The largest (%1 = vpmaxud) or smallest (vpminud) lane of zmm %2 | %3
@@ -262,8 +250,8 @@ sil_c256: dd 256
         vpbroadcastd zmm11{k1}{z}, [sil_c64]    ; 64 * f1
         vpcompressd zmm11{k3}{z}, zmm11
         kmovw   g6d, k3
-        vmovdqu32 [rsp+SIL_LA+g11q*4], zmm10
-        vmovdqu32 [rsp+SIL_LB+g11q*4], zmm11
+        vmovdqu32 [rsp+SIL_LIST_OFS+g11q*4], zmm10
+        vmovdqu32 [rsp+SIL_LIST_F1+g11q*4], zmm11
         popcnt  g6d, g6d
         add     g11q, g6q
         vpaddd  zmm26, zmm26, [sil_c256]{1to16}
@@ -327,7 +315,7 @@ FUNC sv_create_sil_triangles_avx512
         mov     g3d, g6d
         sub     g3d, g1d
         cmp     g3d, 2048
-        jae     .scalar                         ; too wide for the bitmap
+        jae     .chunk_via_avx2                         ; too wide for the bitmap
         lea     g7d, [g6q+1]                   ; the bytes needed end here
         mov     g3q, [rsp+SIL_WEND]
         cmp     g1q, [rsp+SIL_WLO]
@@ -378,8 +366,8 @@ FUNC sv_create_sil_triangles_avx512
         lea     g8q, [g10q+15]
         shr     g8q, 4                          ; blocks (the last may be partial)
 .b_loop:
-        vmovdqa64 zmm4, [rsp+SIL_PP+g7q+0]      ; P1
-        vmovdqa64 zmm5, [rsp+SIL_PP+g7q+64]     ; P2
+        vmovdqa64 zmm4, [rsp+SIL_P1P2+g7q+0]      ; P1
+        vmovdqa64 zmm5, [rsp+SIL_P1P2+g7q+64]     ; P2
         SIL_BITS zmm4, k1, zmm6, zmm7           ; F1: bit t = f1 of edge t
         SIL_BITS zmm5, k2, zmm8, zmm9           ; F2
         SIL_EMIT
@@ -388,7 +376,7 @@ FUNC sv_create_sil_triangles_avx512
         jnz     .b_loop
         jmp     .c
 
-.scalar:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
+.chunk_via_avx2:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
         ; (its scalar lookups, ~0.8-1.0 ticks per edge, measured faster on
         ; such chunks than sixteen lookups folded into masks here, ~1.4).
         ; An ordinary System V call: what must survive goes to the frame,
@@ -424,12 +412,12 @@ FUNC sv_create_sil_triangles_avx512
         sub     g11q, 2
         jb      .c_one
 .c_loop:
-        mov     g6d, [rsp+SIL_LA+g3q*4]        ; byte offsets of edges a, b
-        mov     g7d, [rsp+SIL_LA+g3q*4+4]
+        mov     g6d, [rsp+SIL_LIST_OFS+g3q*4]        ; byte offsets of edges a, b
+        mov     g7d, [rsp+SIL_LIST_OFS+g3q*4+4]
         vpbroadcastq zmm0, [g2q+g6q+8]          ; (v1, v2) of a, eight times
         vpbroadcastq zmm1, [g2q+g7q+8]          ; of b
-        mov     g6d, [rsp+SIL_LB+g3q*4]        ; 64 * f1 of a, b
-        mov     g7d, [rsp+SIL_LB+g3q*4+4]
+        mov     g6d, [rsp+SIL_LIST_F1+g3q*4]        ; 64 * f1 of a, b
+        mov     g7d, [rsp+SIL_LIST_F1+g3q*4+4]
         lea     g6q, [g7q+g6q*2]                ; their pattern pair
         vpermt2d zmm0, zmm25, zmm1              ; a: v1 v2 v2 v1 v1 v2, then b's
         vpxord  zmm0, zmm0, [g13q+g6q]           ; the ^1 patterns of f1a, f1b
@@ -442,8 +430,8 @@ FUNC sv_create_sil_triangles_avx512
         add     g11q, 2
         cmp     g3q, g11q
         jae     .c_done
-        mov     g6d, [rsp+SIL_LA+g3q*4]        ; an odd one left
-        mov     g7d, [rsp+SIL_LB+g3q*4]
+        mov     g6d, [rsp+SIL_LIST_OFS+g3q*4]        ; an odd one left
+        mov     g7d, [rsp+SIL_LIST_F1+g3q*4]
         vpbroadcastq zmm0, [g2q+g6q+8]
         vpermt2d zmm0, zmm25, zmm0
         vpxord  zmm0, zmm0, [g13q+g7q*2]         ; (f1, 0): lanes 0-5 are f1's

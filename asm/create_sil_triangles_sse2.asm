@@ -52,11 +52,8 @@
 ;   and casts a pointer to int; 16 * numSilEdges is computed in 32 bits
 ;   (wraps for 2^27 edges and more): the port computes it in 64.
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 3402 ticks, 1.69 ticks per SilEdge (c_ref
-;   10647, c_branchless 6825).
-;   The paper's Pentium 4: 32292 cycles (130 nm), 36901 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.
