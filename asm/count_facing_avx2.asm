@@ -18,9 +18,9 @@
 ;
 ; int sv_count_facing_avx2(const uint8_t *facing, int numTriangles)
 ;
-; Register map:
-;   rdi  facing (walks forward)      rsi  facing + n (end)
-;   ecx  bytes still to count        eax  scalar sum (popcnt tails)
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g0q  facing (walks forward)      g1q  facing + n (end)
+;   g3d  bytes still to count        rvd  scalar sum (popcnt tails)
 ;   ymm0, ymm1 qword accumulators    ymm5 zero
 ;   ymm2-ymm4 loads / byte sums
 ;

@@ -17,10 +17,10 @@
 ;
 ; int sv_count_facing_avx512(const uint8_t *facing, int numTriangles)
 ;
-; Register map:
-;   rdi  facing, advanced as bytes are added; eax numTriangles (its low
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g0q  facing, advanced as bytes are added; rvd numTriangles (its low
 ;        8 bits: the last vectors and bytes)
-;   edx  256-byte blocks not yet added; ecx blocks left in this chunk
+;   g2d  256-byte blocks not yet added; g3d blocks left in this chunk
 ;   zmm0 zero (vpsadbw), then the total; zmm1-zmm4 byte accumulators;
 ;   zmm5 the masked last bytes; zmm6 qword sums of the full chunks;
 ;   k1 the last bytes' mask

@@ -43,11 +43,11 @@
 ; int sv_count_facing_cull_avx2(uint8_t *facing, int numTriangles,
 ;                               const int *indices, const uint8_t *cullBits)
 ;
-; Register map:
-;   r12 facing       r13 numTriangles (64-bit, > 0)   r14 indices
-;   r15 cullBits     rbx first triangle of the chunk  rbp list entries
-;   rsi triangle of the current 32-block (pass 1), list index (pass 2)
-;   r11 the position table; rax, rcx, rdx, rdi, r8-r10 scratch
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q facing       g11q numTriangles (64-bit, > 0)   g12q indices
+;   g13q cullBits     g8q first triangle of the chunk  g9q list entries
+;   g1q triangle of the current 32-block (pass 1), list index (pass 2)
+;   g7q the position table; rvq, g3q, g2q, g0q, g4q-g6q scratch
 ;   ymm5 zero; ymm6 the current 8-block's first triangle, broadcast;
 ;   ymm7 eight, broadcast; ymm0, ymm1 scratch
 ;   [rsp] the list: LIST_ENTRIES dwords

@@ -31,13 +31,13 @@
 ; int sv_count_facing_cull_avx512(uint8_t *facing, int numTriangles,
 ;                                 const int *indices, const uint8_t *cullBits)
 ;
-; Register map:
-;   r12  facing, r13 numTriangles (both kept for the count's tail call)
-;   rdi  the chunk's facing, rdx its indices; rcx cullBits
-;   rsi  triangles after this chunk; rbx triangles in the chunk
-;   rbp  the frame (rsp is 64-byte aligned below it); r15 list length
-;   r14  pass 1's block counter, pass 2's list position
-;   rax, r8-r11 scratch
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q  facing, g11q numTriangles (both kept for the count's tail call)
+;   g0q  the chunk's facing, g2q its indices; g3q cullBits
+;   g1q  triangles after this chunk; g8q triangles in the chunk
+;   g9q  the frame (rsp is 64-byte aligned below it); g13q list length
+;   g12q  pass 1's block counter, pass 2's list position
+;   rvq, g4q-g7q scratch
 ;   zmm0 triangle numbers of the block (lane t: 16b + t); xmm1 sixteen
 ;   bytes of 0xFF; zmm2 the packed list entries; k1 non-facing; k2 tail
 ;   [rsp] the list: CFC_CHUNK + 16 dwords (3.8 KiB; with the pushes and

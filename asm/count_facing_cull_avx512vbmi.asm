@@ -62,11 +62,11 @@
 ; int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles,
 ;                                     const int *indices, const uint8_t *cullBits)
 ;
-; Register map:
-;   rdi  facing of the block, rdx its vertex numbers, rcx cullBits
-;   eax  numTriangles; r8 triangles left; r9-r11 scratch
-;   r12  facing, r13 numTriangles (kept for the count's tail call)
-;   rbp  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g0q  facing of the block, g2q its vertex numbers, g3q cullBits
+;   rvd  numTriangles; g4q triangles left; g5q-g7q scratch
+;   g9q  facing, g10q numTriangles (kept for the count's tail call)
+;   g8q  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
 ;   zmm16-zmm31 cullBits[0 .. 1023] (above M's register: not loaded);
 ;   zmm13 the last table register's realignment
 ;   zmm0-zmm8 group scratch; zmm9-zmm11 the block's three groups of cull

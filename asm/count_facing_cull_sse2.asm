@@ -21,14 +21,14 @@
 ; int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles,
 ;                                     const int *indices, const uint8_t *cullBits)
 ;
-; Register map (listing -> port). The listing's registers are kept so the
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port). The listing's registers are kept so the
 ; two read side by side; the System V arguments are moved into them first.
-;   eax  -(triangles left) (+4 inside loop4)  -> rax (sign-extended once, so
-;        [rbx+rax-4] addresses below the end pointer as [ebx+eax-4] did)
-;   ebx  facing + numTriangles (end pointer)  -> rbx (callee-saved: pushed)
-;   esi  indices, 12 bytes per triangle       -> rsi
-;   edi  cullBits                             -> rdi
-;   ecx  one vertex index                     -> rcx (movsxd: int index)
+;   eax  -(triangles left) (+4 inside loop4)  -> rvq (sign-extended once, so
+;        [g4q+rvq-4] addresses below the end pointer as [ebx+eax-4] did)
+;   ebx  facing + numTriangles (end pointer)  -> g4q (r8 on System V, ebx on x86-32)
+;   esi  indices, 12 bytes per triangle       -> g1q
+;   edi  cullBits                             -> g0q
+;   ecx  one vertex index                     -> g3q (movsxd: int index)
 ;   edx  dl / dh: AND of one triangle's cull bytes each
 ;   xmm0 four c bytes; xmm1 four facing bytes; xmm5 dword counters;
 ;   xmm6 zero; xmm7 sixteen bytes of 1 (SIMD_B_one)

@@ -15,10 +15,10 @@
 ;
 ; int sv_count_facing_sse2_paper(const uint8_t *facing, int numTriangles)
 ;
-; Register map (listing -> port):
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
 ;   eax  numTriangles, then the bytes still to count minus the block size
-;   edi  facing           -> rdi (already the first argument)
-;   ecx  scratch byte     -> ecx;  edx  scalar tail sum -> edx
+;   edi  facing           -> g0q (already the first argument)
+;   ecx  scratch byte     -> g3d;  edx  scalar tail sum -> g2d
 ;   xmm0 byte sums of the current block; xmm1 scratch; xmm6 dword totals;
 ;   xmm7 zero. The listing's stack array `n` is replaced by reading xmm6.
 ;

@@ -33,13 +33,13 @@
 ; int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const int *indices, int numIndices)
 ;
-; Register map:
-;   r12 output position     r13 shadowIndices    r14 indices   r15 facing
-;   r10 triangles (n)       r9  3 * (n - 3): the last first-index position
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q output position     g11q shadowIndices    g12q indices   g13q facing
+;   g6q triangles (n)       g5q  3 * (n - 3): the last first-index position
 ;                               whose 32-byte window stays inside indices
-;   rbx first triangle of the chunk    rdi end of the chunk
-;   rsi triangle of the current 32-block    rbp list entries
-;   r11 the packed-positions table; rax, rcx, rdx, r8 scratch
+;   g8q first triangle of the chunk    g0q end of the chunk
+;   g1q triangle of the current 32-block    g9q list entries
+;   g7q the packed-positions table; rvq, g3q, g2q, g4q scratch
 ;   ymm5 zero; ymm6 3 * (current 8-block's first triangle), broadcast;
 ;   ymm7 24, broadcast; ymm8 the vpermd pattern; ymm9 (0,0,0,1,1,1,0,0);
 ;   ymm0-ymm2 scratch

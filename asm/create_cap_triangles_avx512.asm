@@ -31,17 +31,17 @@
 ; int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing,
 ;                                    const int *indices, int numIndices)
 ;
-; Register map:
-;   r9   shadowIndices (for the return value); r8 output pointer
-;   rsi  facing, rdx indices: both advanced per block
-;   rax  triangles left (numIndices / 3)
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g5q   shadowIndices (for the return value); g4q output pointer
+;   g1q  facing, g2q indices: both advanced per block
+;   rvq  triangles left (numIndices / 3)
 ;   zmm0-zmm2 the 48 indices (doubled); zmm3-zmm5 I0, I1, I2 (then packed);
 ;   zmm6, zmm7 the two 32-entry tables' first halves; zmm8 facing bytes;
 ;   zmm9-zmm14 the six output vectors; xmm15 sixteen bytes of 0xFF;
 ;   zmm16-zmm18 transpose indices; zmm19-zmm21 the +1 patterns;
 ;   zmm22-zmm27 output indices
 ;   k1 back-facing triangles; k2, k3 the transpose's second-source lanes;
-;   k4-k7 tail masks; rcx, r10, r11 scratch
+;   k4-k7 tail masks; g3q, g6q, g7q scratch
 ;
 ; Contracts: facing bytes 0 or 1 (only 0 is back-facing, as the C's
 ;   `if (facing[j]) continue`); numIndices a multiple of 3 (the routine

@@ -25,12 +25,12 @@
 ; int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
 ;                                        const int *indices, int numIndices)
 ;
-; Register map (listing -> port):
-;   eax  -(triangles left) (+4 inside loop4)    -> rax (64-bit)
-;   edx  3 * eax: index offset into indices     -> rdx
-;   ebx  output pointer / 8, alternating with ecx -> rbx (pushed), rcx
-;   esi  facing + numTriangles                  -> rsi
-;   edi  indices + numIndices                   -> rdi
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
+;   eax  -(triangles left) (+4 inside loop4)    -> rvq (64-bit)
+;   edx  3 * eax: index offset into indices     -> g2q
+;   ebx  output pointer / 8, alternating with ecx -> g8q (pushed), g3q
+;   esi  facing + numTriangles                  -> g1q
+;   edi  indices + numIndices                   -> g0q
 ;   r8   shadowIndices, kept for the return value; r9 numIndices / 3 (the
 ;        listing's C `int num = numIndices / 3`)
 ;   xmm6 c0, xmm7 c1, xmm5 c2 (SIMD_DW_capTris_c0..c2)

@@ -38,16 +38,16 @@
 ; int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map:
-;   r12 output position     r13 shadowIndices     r14 silEdges
-;   r15 the packed-positions table     rsi facing
-;   rbx first edge of the chunk (pointer)   rdi end of the edges
-;   rdx current edge (phase 1)   r10 end of the chunk (less a group)
-;   rbp list entries; rax, rcx masks / list index; r8, r9 p1, p2, flags
-;   r11 xor_by_f2
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q output position     g11q shadowIndices     g12q silEdges
+;   g13q the packed-positions table     g1q facing
+;   g8q first edge of the chunk (pointer)   g0q end of the edges
+;   g2q current edge (phase 1)   g6q end of the chunk (less a group)
+;   g9q list entries; rvq, g3q masks / list index; g4q, g5q p1, p2, flags
+;   g7q xor_by_f2
 ;   ymm6 2 * (current group's first edge number), broadcast; ymm7 16,
 ;   broadcast; ymm14 idx_lo; ymm0-ymm2 scratch
-;   [rsp] the list: 2 * edge number (so that [r14 + entry*8] is the edge)
+;   [rsp] the list: 2 * edge number (so that [g12q + entry*8] is the edge)
 ;
 ; Contracts: no alignment; output room for 6 * numSilEdges ints (nothing is
 ;   written past 6 * (silhouette edges)); facing bytes 0 or 1; v1, v2 even;

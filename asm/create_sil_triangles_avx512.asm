@@ -62,13 +62,13 @@
 ; int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
 ;                                    const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map (across the AVX2 call: rax, rdx, rdi, r8 saved in the frame,
+; Register map (asm/sv_abi.inc names; rv = rax) (across the AVX2 call: rvq, g2q, g0q, g4q saved in the frame,
 ; zmm25, zmm27-zmm31 reloaded):
-;   rdi  facing; rdx the chunk's edges; rax edges after this chunk
-;   r8   output pointer; r12 edges in the chunk; r13 list length
-;   r15  the ^1 pattern table; r14, rcx, rsi, r10 scratch
-;   rbx  block counter; r11 offset of the block's P1, P2
-;   rbp  the frame: rsp 64-byte aligned below it; shadowIndices and the
+;   g0q  facing; g2q the chunk's edges; rvq edges after this chunk
+;   g4q   output pointer; g10q edges in the chunk; g11q list length
+;   g13q  the ^1 pattern table; g12q, g3q, g1q, g6q scratch
+;   g8q  block counter; g7q offset of the block's P1, P2
+;   g9q  the frame: rsp 64-byte aligned below it; shadowIndices and the
 ;        bitmap's window [lo64, end) in its first slots
 ;   zmm0-zmm3 16 edges; zmm4, zmm5 their p1 / p2 halves (pass A), then
 ;   P1, P2 (pass B); zmm6, zmm7 P1, P2 (pass A), zmm6-zmm9 lookup scratch

@@ -26,14 +26,14 @@
 ; int sv_create_sil_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
 ;                                        const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map (listing -> port):
-;   eax  negative byte offset from the end of silEdges -> rax (64-bit)
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
+;   eax  negative byte offset from the end of silEdges -> rvq (64-bit)
 ;   ebx  output pointer / 8 in the 1st and 3rd edge of loop4, scratch (f2,
-;        then the next pointer) in the 2nd and 4th  -> rbx (pushed)
-;   edx  the other way round                        -> rdx
-;   ecx  f1, then f1 ^ f2                              -> rcx
-;   esi  facing                                        -> rsi (2nd argument)
-;   edi  silEdges + numSilEdges (end pointer)          -> rdi
+;        then the next pointer) in the 2nd and 4th  -> g8q (pushed)
+;   edx  the other way round                        -> g2q
+;   ecx  f1, then f1 ^ f2                              -> g3q
+;   esi  facing                                        -> g1q (2nd argument)
+;   edi  silEdges + numSilEdges (end pointer)          -> g0q
 ;   r8   shadowIndices, kept for the return value (the listing re-reads it)
 ;   xmm2/xmm3 (f1, f2, 0, 0); xmm0 the indices; xmm1 (0, f1, f2, f2)
 ;
