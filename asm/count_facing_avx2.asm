@@ -18,9 +18,9 @@
 ;
 ; int sv_count_facing_avx2(const uint8_t *facing, int numTriangles)
 ;
-; Register map:
-;   rdi  facing (walks forward)      rsi  facing + n (end)
-;   ecx  bytes still to count        eax  scalar sum (popcnt tails)
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g0q  facing (walks forward)      g1q  facing + n (end)
+;   g3d  bytes still to count        rvd  scalar sum (popcnt tails)
 ;   ymm0, ymm1 qword accumulators    ymm5 zero
 ;   ymm2-ymm4 loads / byte sums
 ;
@@ -29,15 +29,8 @@
 ;   numTriangles >= 0 (negative returns 0 and reads nothing). Reads exactly
 ;   facing[0 .. n-1]: never a byte before or after.
 ;
-; Measured cost (`shadowvol bench`, batches of 23 calls, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 19.2-20.1 / 21.0-22.8 (sse2_paper 31.0-32.0 / 32.0-32.9,
-;   c_ref 322-323); fixed light 15.5-17.3 / 16.4-18.3 (sse2_paper
-;   27.4-30.1 / 28.3-31.0). Bound: 42 loads of 32 bytes at the 2 per cycle
-;   measured here are 21 cycles = 11.9 ticks, plus call and reduction: the
-;   256-bit loads, not the arithmetic, set the pace.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -50,50 +43,51 @@ align 32
 tail_mask:  times 32 db 0
             times 32 db 0xFF
 
-FUNCTION sv_count_facing_avx2
-        mov     ecx, arg2d              ; numTriangles (upper half ignored)
-        xor     eax, eax
-        test    ecx, ecx
+VEC_YMM
+FUNC sv_count_facing_avx2, 2, 4, 6, facing, numTriangles
+        mov     g3d, g1d              ; numTriangles (upper half ignored)
+        xor     rvd, rvd
+        test    g3d, g3d
         jle     .ret                    ; negative or zero: 0, nothing read
-        lea     rsi, [rdi + rcx]        ; end (ecx > 0: zero-extended is right)
-        cmp     ecx, 32
+        lea     g1q, [g0q + g3q]        ; end (ecx > 0: zero-extended is right)
+        cmp     g3d, 32
         jb      .small
 
         vpxor   xmm0, xmm0, xmm0
         vpxor   xmm1, xmm1, xmm1
         vpxor   xmm5, xmm5, xmm5
-        sub     ecx, 128                ; signed from here: n <= 2^31 - 1
+        sub     g3d, 128                ; signed from here: n <= 2^31 - 1
         jl      .run32
 
 .loop128:
-        vmovdqu ymm2, [rdi]
-        vpaddb  ymm2, ymm2, [rdi + 32]
-        vmovdqu ymm3, [rdi + 64]
-        vpaddb  ymm3, ymm3, [rdi + 96]
+        vmovdqu ymm2, [g0q]
+        vpaddb  ymm2, ymm2, [g0q + 32]
+        vmovdqu ymm3, [g0q + 64]
+        vpaddb  ymm3, ymm3, [g0q + 96]
         vpsadbw ymm2, ymm2, ymm5
         vpsadbw ymm3, ymm3, ymm5
         vpaddq  ymm0, ymm0, ymm2
         vpaddq  ymm1, ymm1, ymm3
-        add     rdi, 128
-        sub     ecx, 128
+        add     g0q, 128
+        sub     g3d, 128
         jge     .loop128
 
 .run32:
-        add     ecx, 128 - 32           ; bytes left - 32
+        add     g3d, 128 - 32           ; bytes left - 32
         jl      .last
 .loop32:
-        vpsadbw ymm2, ymm5, [rdi]
+        vpsadbw ymm2, ymm5, [g0q]
         vpaddq  ymm0, ymm0, ymm2
-        add     rdi, 32
-        sub     ecx, 32
+        add     g0q, 32
+        sub     g3d, 32
         jge     .loop32
 
 .last:
-        add     ecx, 32                 ; 0..31 bytes left
+        add     g3d, 32                 ; 0..31 bytes left
         jz      .reduce
-        lea     rdx, [tail_mask]
-        vmovdqu ymm2, [rdx + rcx]       ; keeps the last ecx bytes
-        vpand   ymm2, ymm2, [rsi - 32]  ; n >= 32: never before facing
+        lea     g2q, [tail_mask]
+        vmovdqu ymm2, [g2q + g3q]       ; keeps the last ecx bytes
+        vpand   ymm2, ymm2, [g1q - 32]  ; n >= 32: never before facing
         vpsadbw ymm2, ymm2, ymm5
         vpaddq  ymm0, ymm0, ymm2
 
@@ -103,37 +97,37 @@ FUNCTION sv_count_facing_avx2
         vpaddq  xmm0, xmm0, xmm1
         vpshufd xmm1, xmm0, SHUFFLE_D(2, 3, 0, 1)
         vpaddq  xmm0, xmm0, xmm1
-        vmovq   rax, xmm0
-        vzeroupper
+        vmovq   rvq, xmm0
+        RET
 .ret:
-        ret
+        RET clean
 
         ; 1 <= n < 32: no vector register touched, so no vzeroupper needed
 .small:
-        sub     ecx, 8
+        sub     g3d, 8
         jb      .bytes
 .qwords:                                ; n >= 8
-        popcnt  rdx, [rdi]
-        add     eax, edx
-        add     rdi, 8
-        sub     ecx, 8
+        popcnt  g2q, [g0q]
+        add     rvd, g2d
+        add     g0q, 8
+        sub     g3d, 8
         jae     .qwords
-        add     ecx, 8                  ; 0..7 bytes left
+        add     g3d, 8                  ; 0..7 bytes left
         jz      .ret
         ; the qword ending at the end holds 8 - ecx bytes already counted:
         ; shift them out (low bytes are the lower addresses)
-        mov     rdx, [rsi - 8]
-        neg     ecx
-        lea     ecx, [rcx*8 + 64]       ; 8 * (8 - left)
-        shrx    rdx, rdx, rcx
-        popcnt  rdx, rdx
-        add     eax, edx
-        ret
+        mov     g2q, [g1q - 8]
+        neg     g3d
+        lea     g3d, [g3q*8 + 64]       ; 8 * (8 - left)
+        shrx    g2q, g2q, g3q
+        popcnt  g2q, g2q
+        add     rvd, g2d
+        RET clean
 .bytes:                                 ; 1 <= n < 8
-        movzx   edx, byte [rdi]
-        add     eax, edx
-        inc     rdi
-        cmp     rdi, rsi
+        movzx   g2d, byte [g0q]
+        add     rvd, g2d
+        inc     g0q
+        cmp     g0q, g1q
         jb      .bytes
-        ret
-ENDFUNCTION
+        RET clean
+ENDFUNC

@@ -17,10 +17,10 @@
 ;
 ; int sv_count_facing_avx512(const uint8_t *facing, int numTriangles)
 ;
-; Register map:
-;   rdi  facing, advanced as bytes are added; eax numTriangles (its low
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g0q  facing, advanced as bytes are added; rvd numTriangles (its low
 ;        8 bits: the last vectors and bytes)
-;   edx  256-byte blocks not yet added; ecx blocks left in this chunk
+;   g2d  256-byte blocks not yet added; g3d blocks left in this chunk
 ;   zmm0 zero (vpsadbw), then the total; zmm1-zmm4 byte accumulators;
 ;   zmm5 the masked last bytes; zmm6 qword sums of the full chunks;
 ;   k1 the last bytes' mask
@@ -30,48 +30,42 @@
 ;   numTriangles >= 0; a negative count returns 0 and reads nothing (the
 ;   test is on the 32-bit value: erratum C-7 does not arise).
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 15.5 min / 19.2 median per call (batches of 23; sse2_paper
-;   29.2 / 31.0, c_ref 322 / 323); fixed light 11.9 / 13.7 (sse2_paper 27.4
-;   / 28.3). In a loop over 23 copies in L1, without the bench's per-call
-;   work: 9.1 (sse2_paper 26.5). 1344 bytes are 21 zmm loads; moving, the
-;   copies come partly from L2 (64 B per cycle: about 12 ticks).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
 
-FUNCTION sv_count_facing_avx512
-        mov     eax, arg2d                      ; numTriangles (upper half ignored)
+VEC_ZMM
+FUNC sv_count_facing_avx512, 2, 4, 7, facing, numTriangles
+        mov     rvd, g1d                      ; numTriangles (upper half ignored)
         vpxord  xmm0, xmm0, xmm0                ; zero, for vpsadbw
-        test    eax, eax
+        test    rvd, rvd
         jle     .zero                           ; negative or zero: read nothing
         vpxord  xmm1, xmm1, xmm1
         vpxord  xmm2, xmm2, xmm2
         vpxord  xmm3, xmm3, xmm3
         vpxord  xmm4, xmm4, xmm4
         vpxord  xmm6, xmm6, xmm6                ; qword totals of full chunks
-        mov     edx, eax
-        shr     edx, 8                          ; whole 256-byte blocks
+        mov     g2d, rvd
+        shr     g2d, 8                          ; whole 256-byte blocks
         jz      .vectors
 
 .chunk:                                         ; at most 62 blocks per chunk
-        mov     ecx, 62
-        cmp     edx, ecx
-        cmovb   ecx, edx
-        sub     edx, ecx
+        mov     g3d, 62
+        cmp     g2d, g3d
+        cmovb   g3d, g2d
+        sub     g2d, g3d
 .loop256:
-        vpaddb  zmm1, zmm1, [rdi+0*64]
-        vpaddb  zmm2, zmm2, [rdi+1*64]
-        vpaddb  zmm3, zmm3, [rdi+2*64]
-        vpaddb  zmm4, zmm4, [rdi+3*64]
-        add     rdi, 256
-        dec     ecx
+        vpaddb  zmm1, zmm1, [g0q+0*64]
+        vpaddb  zmm2, zmm2, [g0q+1*64]
+        vpaddb  zmm3, zmm3, [g0q+2*64]
+        vpaddb  zmm4, zmm4, [g0q+3*64]
+        add     g0q, 256
+        dec     g3d
         jnz     .loop256
-        test    edx, edx
+        test    g2d, g2d
         jz      .vectors
         ; 62 blocks: widen (4 x 62 = 248 per lane fits a byte), go on
         vpaddb  zmm1, zmm1, zmm2
@@ -86,23 +80,23 @@ FUNCTION sv_count_facing_avx512
         jmp     .chunk
 
 .vectors:                                       ; 0-3 whole vectors, then 0-63 bytes
-        test    al, 128
+        test    rvb, 128
         jz      .v1
-        vpaddb  zmm2, zmm2, [rdi+0*64]
-        vpaddb  zmm3, zmm3, [rdi+1*64]
-        add     rdi, 128
+        vpaddb  zmm2, zmm2, [g0q+0*64]
+        vpaddb  zmm3, zmm3, [g0q+1*64]
+        add     g0q, 128
 .v1:
-        test    al, 64
+        test    rvb, 64
         jz      .v0
-        vpaddb  zmm4, zmm4, [rdi]
-        add     rdi, 64
+        vpaddb  zmm4, zmm4, [g0q]
+        add     g0q, 64
 .v0:
-        and     eax, 63
+        and     rvd, 63
         jz      .sum                            ; no bytes left: no load (a
-        mov     rdx, -1                         ; masked load that reaches a
-        bzhi    rdx, rdx, rax                   ; page not mapped or not yet
-        kmovq   k1, rdx                         ; touched costs hundreds of
-        vmovdqu8 zmm5{k1}{z}, [rdi]             ; ticks on Zen 5, even fully
+        mov     g2q, -1                         ; masked load that reaches a
+        bzhi    g2q, g2q, rvq                   ; page not mapped or not yet
+        kmovq   k1, g2q                         ; touched costs hundreds of
+        vmovdqu8 zmm5{k1}{z}, [g0q]             ; ticks on Zen 5, even fully
         vpaddb  zmm1, zmm1, zmm5                ; masked); lanes now <= 63
 .sum:
         vpaddb  zmm1, zmm1, zmm2
@@ -117,12 +111,10 @@ FUNCTION sv_count_facing_avx512
         vpaddq  xmm0, xmm0, xmm1
         vpshufd xmm1, xmm0, SHUFFLE_D(2, 3, 0, 1)
         vpaddq  xmm0, xmm0, xmm1
-        vmovd   eax, xmm0
-        vzeroupper
-        ret
+        vmovd   rvd, xmm0
+        RET
 
 .zero:
-        xor     eax, eax
-        vzeroupper
-        ret
-ENDFUNCTION
+        xor     rvd, rvd
+        RET
+ENDFUNC

@@ -43,11 +43,11 @@
 ; int sv_count_facing_cull_avx2(uint8_t *facing, int numTriangles,
 ;                               const int *indices, const uint8_t *cullBits)
 ;
-; Register map:
-;   r12 facing       r13 numTriangles (64-bit, > 0)   r14 indices
-;   r15 cullBits     rbx first triangle of the chunk  rbp list entries
-;   rsi triangle of the current 32-block (pass 1), list index (pass 2)
-;   r11 the position table; rax, rcx, rdx, rdi, r8-r10 scratch
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q facing       g11q numTriangles (64-bit, > 0)   g12q indices
+;   g13q cullBits     g8q first triangle of the chunk  g9q list entries
+;   g1q triangle of the current 32-block (pass 1), list index (pass 2)
+;   g7q the position table; rvq, g3q, g2q, g0q, g4q-g6q scratch
 ;   ymm5 zero; ymm6 the current 8-block's first triangle, broadcast;
 ;   ymm7 eight, broadcast; ymm0, ymm1 scratch
 ;   [rsp] the list: LIST_ENTRIES dwords
@@ -60,26 +60,19 @@
 ;   and cull bytes of the non-facing triangles only; writes only facing
 ;   bytes that were 0. Stack: < 4 KiB.
 ;
-; Measured cost (`shadowvol bench`, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 1197-1218 / 1260-1281 (sse2_paper 1512-1533 / 1596-1617,
-;   c_ref 1365-1407 / 1554-1596); fixed light 1134-1155 / 1155 (sse2_paper
-;   1512-1533 / 1575-1596, c_ref 1239 / 1239-1260). Pass 1 alone (with the
-;   count) ~300; with pass 2 but without its facing store ~1090: above the
-;   ~770 that twice sse2_paper's speed would need.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
 %include "avx2_left_pack.inc"
 
-extern sv_count_facing_avx2
+SV_EXTERN sv_count_facing_avx2
 
 %define CHUNK        992                  ; triangles per list (a multiple of 32)
 %define LIST_ENTRIES (CHUNK + 16)         ; + 8 (a block's store) + 3 (padding)
-%define FRAME        (LIST_ENTRIES*4 + 8) ; + 6 pushes + return: < 4096
+%define FRAME        (LIST_ENTRIES*4)     ; + 6 pushes + return + 8 of padding: 4096
 
 RODATA
 align 64
@@ -95,86 +88,73 @@ eight:  dd 8
 
 ; CULL1 k: list entry k of the current group of four.
 %macro CULL1 1
-        mov     eax, [rsp + rsi*4 + %1*4]      ; t
-        lea     rcx, [rax + rax*2]             ; 3t
-        mov     rdi, [r14 + rcx*4]             ; i0 | i1 << 32
-        movsxd  rcx, dword [r14 + rcx*4 + 8]   ; i2
-        movsxd  rdx, edi                       ; i0
-        sar     rdi, 32                        ; i1
-        movzx   r8d, byte [r15 + rdx]
-        and     r8b, [r15 + rdi]
-        and     r8b, [r15 + rcx]
-        setnz   r8b
-        mov     [r12 + rax], r8b
+        mov     rvd, [rsp + g1q*4 + %1*4]      ; t
+        lea     g3q, [rvq + rvq*2]             ; 3t
+        mov     g0q, [g12q + g3q*4]             ; i0 | i1 << 32
+        movsxd  g3q, dword [g12q + g3q*4 + 8]   ; i2
+        movsxd  g2q, g0d                       ; i0
+        sar     g0q, 32                        ; i1
+        movzx   g4d, byte [g13q + g2q]
+        and     g4b, [g13q + g0q]
+        and     g4b, [g13q + g3q]
+        setnz   g4b
+        mov     [g10q + rvq], g4b
 %endmacro
 
-FUNCTION sv_count_facing_cull_avx2
-        mov     eax, arg2d
-        test    eax, eax
+VEC_YMM
+FUNC sv_count_facing_cull_avx2
+        mov     rvd, g1d
+        test    rvd, rvd
         jg      .start
-        xor     eax, eax                ; negative or zero: 0, nothing touched
-        ret
+        xor     rvd, rvd                ; negative or zero: 0, nothing touched
+        RET_NOFRAME clean
 .start:
-        push    rbx
-        push    rbp
-        push    r12
-        push    r13
-        push    r14
-        push    r15
-        sub     rsp, FRAME
-        mov     r12, arg1q
-        mov     r13d, eax               ; n, zero-extended
-        mov     r14, arg3q
-        mov     r15, arg4q
-        lea     r11, [positions]
+        PROLOGUE 4, 14, 8, FRAME, facing, numTriangles, indices, cullBits
+        mov     g10q, g0q
+        mov     g11d, rvd               ; n, zero-extended
+        mov     g12q, g2q
+        mov     g13q, g3q
+        lea     g7q, [positions]
         vpxor   xmm5, xmm5, xmm5
         vpbroadcastd ymm7, [eight]
-        xor     ebx, ebx                ; chunk start
+        xor     g8d, g8d                ; chunk start
 
 .chunk:
         ; ---- pass 1: list the non-facing triangles of [rbx, rbx + len)
-        xor     ebp, ebp
-        mov     rsi, rbx
-        vmovd   xmm6, ebx
+        xor     g9d, g9d
+        mov     g1q, g8q
+        vmovd   xmm6, g8d
         vpbroadcastd ymm6, xmm6
-        lea     r9, [rbx + CHUNK]
-        cmp     r9, r13
-        cmova   r9, r13                 ; chunk end
-        LIST_NONFACING r12, r13, r9, r10, .pass2
+        lea     g5q, [g8q + CHUNK]
+        cmp     g5q, g11q
+        cmova   g5q, g11q                 ; chunk end
+        LIST_NONFACING g10q, g11q, g5q, g6q, .pass2
 
         ; ---- pass 2: the cull test for each listed triangle
 .pass2:
-        test    ebp, ebp
+        test    g9d, g9d
         jz      .next_chunk
-        mov     eax, [rsp + rbp*4 - 4]  ; pad to a multiple of 4 with the last
-        mov     [rsp + rbp*4], eax
-        mov     [rsp + rbp*4 + 4], eax
-        mov     [rsp + rbp*4 + 8], eax
-        xor     esi, esi
+        mov     rvd, [rsp + g9q*4 - 4]  ; pad to a multiple of 4 with the last
+        mov     [rsp + g9q*4], rvd
+        mov     [rsp + g9q*4 + 4], rvd
+        mov     [rsp + g9q*4 + 8], rvd
+        xor     g1d, g1d
 .cull4:
         CULL1   0
         CULL1   1
         CULL1   2
         CULL1   3
-        add     esi, 4
-        cmp     esi, ebp
+        add     g1d, 4
+        cmp     g1d, g9d
         jb      .cull4
 
 .next_chunk:
-        add     rbx, CHUNK
-        cmp     rbx, r13
+        add     g8q, CHUNK
+        cmp     g8q, g11q
         jb      .chunk
 
         ; ---- the count of facing bytes set now
-        mov     rdi, r12
-        mov     esi, r13d
-        add     rsp, FRAME
-        pop     r15
-        pop     r14
-        pop     r13
-        pop     r12
-        pop     rbp
-        pop     rbx
-        vzeroupper
-        jmp     sv_count_facing_avx2 wrt ..plt
-ENDFUNCTION
+        mov     g0q, g10q
+        mov     g1d, g11d
+        RET_VIA sv_count_facing_avx2
+ENDFUNC

@@ -46,7 +46,7 @@
 ;      Why so few masked loads: on the reference machine a masked load
 ;      whose masked-off part lies on a page that is unmapped or not yet
 ;      touched costs ~360 ticks, even when it reads no byte there
-;      (helper-13's measurements, arrays ending at such a page: M = 10,
+;      (timed with the arrays ending at such a page: M = 10,
 ;      84 -> 5607 ticks with a load per register; 1345 triangles, 630 ->
 ;      5502). Left: a table under 64 bytes and meshes under 64 triangles
 ;      (M = 10 there: 420 ticks against 21). The other AVX-512 kernels'
@@ -62,11 +62,11 @@
 ; int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles,
 ;                                     const int *indices, const uint8_t *cullBits)
 ;
-; Register map:
-;   rdi  facing of the block, rdx its vertex numbers, rcx cullBits
-;   eax  numTriangles; r8 triangles left; r9-r11 scratch
-;   r12  facing, r13 numTriangles (kept for the count's tail call)
-;   rbp  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g0q  facing of the block, g2q its vertex numbers, g3q cullBits
+;   rvd  numTriangles; g4q triangles left; g5q-g7q scratch
+;   g9q  facing, g10q numTriangles (kept for the count's tail call)
+;   g8q  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
 ;   zmm16-zmm31 cullBits[0 .. 1023] (above M's register: not loaded);
 ;   zmm13 the last table register's realignment
 ;   zmm0-zmm8 group scratch; zmm9-zmm11 the block's three groups of cull
@@ -83,26 +83,19 @@
 ;   vpermi2b, vpermt2b) on top of x86-64-v4: the caller checks CPUID
 ;   (SV_ISA_AVX512_VBMI). Stack: under 1 KiB.
 ;
-; Measured cost (a harness timing the kernel alone: lfence-fenced TSC,
-;   median of 4000 calls, 1344 triangles over 674 vertices, random facing
-;   and cull bytes; AMD EPYC "Turin-like" KVM guest, Zen 5 class): 693
-;   ticks, against 1302 for the AVX2 list kernel and 1365 for the AVX-512
-;   one. `shadowvol bench --limits` (commit 384b943), the 1344-triangle
-;   character, moving light: 579 min / 585 median ticks (avx2 1218 / 1281,
-;   avx512 1281 / 1302, sse2_paper 1491 / 1596, c_ref 1386 / 1470), 0.44
-;   ticks per triangle; fixed light 576 / 582. The same for every facing
-;   and cull ratio (no lookup is skipped, none is a load).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
 
-extern sv_count_facing_cull_avx512
-extern sv_count_facing_avx512
+SV_EXTERN sv_count_facing_cull_avx512
+SV_EXTERN sv_count_facing_avx512
 
 %define CFV_MAX_VERTS 1024              ; 16 zmm registers of 64 cull bytes
 
-section .rodata align=64
+RODATA
 align 64
 ; vpermt2b control over (A | B), 32 dwords: bytes 0-31 the low byte of
 ; dword 0-31, bytes 32-63 its second byte.
@@ -211,17 +204,17 @@ cfv_hi_ %+ k:
 ; CFV_BLOCK: 64 triangles, vertex numbers at rdx, facing at rdi, k4 the
 ; triangles that exist.
 %macro CFV_BLOCK 0
-        CFV_GROUP rdx, zmm9
-        CFV_GROUP rdx + 256, zmm10
-        CFV_GROUP rdx + 512, zmm11
+        CFV_GROUP g2q, zmm9
+        CFV_GROUP g2q + 256, zmm10
+        CFV_GROUP g2q + 512, zmm11
         CFV_DEINTERLEAVE 0, zmm0, k5
         CFV_DEINTERLEAVE 1, zmm2, k5
         CFV_DEINTERLEAVE 2, zmm3, k6
         vpternlogd zmm0, zmm2, zmm3, 0x80       ; c = c0 & c1 & c2
-        vmovdqu8 zmm1{k4}{z}, [rdi]             ; only the bytes that exist
+        vmovdqu8 zmm1{k4}{z}, [g0q]             ; only the bytes that exist
         vptestnmb k1{k4}, zmm1, zmm1            ; facing == 0
         vptestmb k1{k1}, zmm0, zmm0             ; and c != 0
-        vmovdqu8 [rdi]{k1}, zmm15               ; facing = 1
+        vmovdqu8 [g0q]{k1}, zmm15               ; facing = 1
 %endmacro
 
 ; CFV_TABLE j: register 16 + j of the table; r10 = M + 1 bytes in all. A
@@ -233,94 +226,95 @@ cfv_hi_ %+ k:
 ; zero-masked load of the M + 1 bytes is the only way.
 %macro CFV_TABLE 1
 %assign reg 16+%1
-        mov     r11, r10
-        sub     r11, 64*%1                      ; bytes of it from 64 j on
+        mov     g7q, g6q
+        sub     g7q, 64*%1                      ; bytes of it from 64 j on
 %if %1 > 0
         jle     .tables_done                    ; none: the registers above M's
 %endif                                          ; are never picked, not loaded
-        cmp     r11, 64
+        cmp     g7q, 64
         jb      %%last
-        vmovdqu8 zmm%[reg], [rcx+64*%1]
+        vmovdqu8 zmm%[reg], [g3q+64*%1]
         jmp     %%next
 %%last:
 %if %1 == 0
-        mov     r9, -1
-        bzhi    r9, r9, r11                     ; (1-63: bzhi reads 8 bits of it)
-        kmovq   k1, r9
-        vmovdqu8 zmm%[reg]{k1}{z}, [rcx]
+        mov     g5q, -1
+        bzhi    g5q, g5q, g7q                     ; (1-63: bzhi reads 8 bits of it)
+        kmovq   k1, g5q
+        vmovdqu8 zmm%[reg]{k1}{z}, [g3q]
 %else
-        mov     r9d, 64
-        sub     r9d, r11d                       ; 64 - left
-        vpbroadcastb zmm13, r9d
+        mov     g5d, 64
+        sub     g5d, g7d                       ; 64 - left
+        vpbroadcastb zmm13, g5d
         vpaddb  zmm13, zmm13, [cfv_iota]
-        vmovdqu8 zmm%[reg], [rcx+r10-64]        ; cullBits[M - 63 .. M]
+        vmovdqu8 zmm%[reg], [g3q+g6q-64]        ; cullBits[M - 63 .. M]
         vpermb  zmm%[reg], zmm13, zmm%[reg]
 %endif
         jmp     .tables_done
 %%next:
 %endmacro
 
-FUNCTION sv_count_facing_cull_avx512vbmi
-        mov     eax, arg2d                      ; numTriangles
-        test    eax, eax
+VEC_ZMM
+FUNC sv_count_facing_cull_avx512vbmi
+        mov     rvd, g1d                      ; numTriangles
+        test    rvd, rvd
         jle     .zero                           ; negative or zero: touch nothing
 
         ; 0. M, the largest vertex number (unsigned). Every 128 numbers the
         ;    running maximum is tested against the table's size: a large
         ;    mesh leaves for the list kernel after its first vertex number
         ;    of 1024 or more, not after reading all of its indices.
-        lea     r8, [rax+rax*2]                 ; vertex numbers
-        xor     r9d, r9d
+        lea     g4q, [rvq+rvq*2]                 ; vertex numbers
+        xor     g5d, g5d
         vpxord  xmm0, xmm0, xmm0
         vpxord  xmm1, xmm1, xmm1
         vpbroadcastd zmm2, [cfv_last]           ; 1023
-        mov     r10, r8
-        sub     r10, 128
+        mov     g6q, g4q
+        sub     g6q, 128
         jb      .max_rest
 .max_loop128:
-        vpmaxud zmm0, zmm0, [rdx+r9*4]
-        vpmaxud zmm1, zmm1, [rdx+r9*4+64]
-        vpmaxud zmm0, zmm0, [rdx+r9*4+128]
-        vpmaxud zmm1, zmm1, [rdx+r9*4+192]
-        vpmaxud zmm0, zmm0, [rdx+r9*4+256]
-        vpmaxud zmm1, zmm1, [rdx+r9*4+320]
-        vpmaxud zmm0, zmm0, [rdx+r9*4+384]
-        vpmaxud zmm1, zmm1, [rdx+r9*4+448]
+        vpmaxud zmm0, zmm0, [g2q+g5q*4]
+        vpmaxud zmm1, zmm1, [g2q+g5q*4+64]
+        vpmaxud zmm0, zmm0, [g2q+g5q*4+128]
+        vpmaxud zmm1, zmm1, [g2q+g5q*4+192]
+        vpmaxud zmm0, zmm0, [g2q+g5q*4+256]
+        vpmaxud zmm1, zmm1, [g2q+g5q*4+320]
+        vpmaxud zmm0, zmm0, [g2q+g5q*4+384]
+        vpmaxud zmm1, zmm1, [g2q+g5q*4+448]
         vpmaxud zmm3, zmm0, zmm1
         vpcmpud k1, zmm3, zmm2, 6               ; > 1023
         kortestw k1, k1
         jnz     .list
-        add     r9, 128
-        sub     r10, 128
+        add     g5q, 128
+        sub     g6q, 128
         jae     .max_loop128
 .max_rest:
-        add     r10, 128                        ; 0-127 left
-        sub     r10, 32
+        add     g6q, 128                        ; 0-127 left
+        sub     g6q, 32
         jb      .max_tail
 .max_loop:
-        vpmaxud zmm0, zmm0, [rdx+r9*4]
-        vpmaxud zmm1, zmm1, [rdx+r9*4+64]
-        add     r9, 32
-        sub     r10, 32
+        vpmaxud zmm0, zmm0, [g2q+g5q*4]
+        vpmaxud zmm1, zmm1, [g2q+g5q*4+64]
+        add     g5q, 32
+        sub     g6q, 32
         jae     .max_loop
 .max_tail:
-        add     r10, 32                         ; 0-31 left
+        add     g6q, 32                         ; 0-31 left
         jz      .max_reduce                     ; none: no load at all
-        cmp     r8, 32
+        cmp     g4q, 32
         jb      .max_masked
-        vpmaxud zmm0, zmm0, [rdx+r8*4-128]      ; the last 32 numbers, some
-        vpmaxud zmm1, zmm1, [rdx+r8*4-64]       ; seen already: no mask needed
+        vpmaxud zmm0, zmm0, [g2q+g4q*4-128]      ; the last 32 numbers, some
+        vpmaxud zmm1, zmm1, [g2q+g4q*4-64]       ; seen already: no mask needed
         jmp     .max_reduce
 .max_masked:                                    ; under 32 numbers in all: (a
-        mov     r11, -1                         ; masked load over a page that
-        bzhi    r11, r11, r10                   ; is unmapped or never touched
-        kmovd   k1, r11d                        ; costs ~360 ticks here, even
-        vmovdqu32 zmm2{k1}{z}, [rdx+r9*4]       ; fully masked)
+        mov     g7q, -1                         ; masked load over a page that
+        bzhi    g7q, g7q, g6q                   ; is unmapped or never touched
+        kmovd   k1, g7d                        ; costs ~360 ticks here, even
+        vmovdqu32 zmm2{k1}{z}, [g2q+g5q*4]       ; fully masked)
         vpmaxud zmm0, zmm0, zmm2
-        cmp     r10, 16
+        cmp     g6q, 16
         jbe     .max_reduce                     ; none in the second vector
         kshiftrd k2, k1, 16
-        vmovdqu32 zmm3{k2}{z}, [rdx+r9*4+64]
+        vmovdqu32 zmm3{k2}{z}, [g2q+g5q*4+64]
         vpmaxud zmm1, zmm1, zmm3
 .max_reduce:
         vpmaxud zmm0, zmm0, zmm1
@@ -332,12 +326,12 @@ FUNCTION sv_count_facing_cull_avx512vbmi
         vpmaxud xmm0, xmm0, xmm1
         vpshufd xmm1, xmm0, SHUFFLE_D(1, 0, 3, 2)
         vpmaxud xmm0, xmm0, xmm1
-        vmovd   r9d, xmm0                       ; M
-        cmp     r9d, CFV_MAX_VERTS - 1
+        vmovd   g5d, xmm0                       ; M
+        cmp     g5d, CFV_MAX_VERTS - 1
         ja      .list                           ; beyond the registers
 
         ; 1. cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64) (CFV_TABLE)
-        lea     r10, [r9+1]                     ; bytes of the table, 1-1024
+        lea     g6q, [g5q+1]                     ; bytes of the table, 1-1024
 %assign j 0
 %rep 16
         CFV_TABLE j
@@ -345,93 +339,87 @@ FUNCTION sv_count_facing_cull_avx512vbmi
 %endrep
 .tables_done:
 
-        push    r12
-        push    r13
-        push    rbp
-        mov     rbp, rsp
+        PROLOGUE 4, 11, 32, facing, numTriangles, indices, cullBits
+        mov     g8q, rsp
         sub     rsp, 768                        ; the tail's 192 vertex numbers
         and     rsp, -64
-        mov     r12, rdi
-        mov     r13d, eax
+        mov     g9q, g0q
+        mov     g10d, rvd
         vmovdqa64 zmm12, [cfv_pick]
         vmovdqa64 zmm15, [cfv_one]
-        mov     r9, -1
-        shl     r9, 43
-        kmovq   k5, r9                          ; t >= 43: 3t + k >= 128 (k = 0, 1)
-        mov     r9, -1
-        shl     r9, 42
-        kmovq   k6, r9                          ; t >= 42 (k = 2)
+        mov     g5q, -1
+        shl     g5q, 43
+        kmovq   k5, g5q                          ; t >= 43: 3t + k >= 128 (k = 0, 1)
+        mov     g5q, -1
+        shl     g5q, 42
+        kmovq   k6, g5q                          ; t >= 42 (k = 2)
         kxnorq  k4, k0, k0                      ; every triangle of a block exists
 
         ; 2. blocks of 64 triangles
-        mov     r8, rax
-        sub     r8, 64
+        mov     g4q, rvq
+        sub     g4q, 64
         jb      .tail
 .block:
         CFV_BLOCK
-        add     rdx, 768
-        add     rdi, 64
-        sub     r8, 64
+        add     g2q, 768
+        add     g0q, 64
+        sub     g4q, 64
         jae     .block
 .tail:
-        add     r8, 64                          ; 1-63 left, or 0
+        add     g4q, 64                          ; 1-63 left, or 0
         jz      .count
-        cmp     r13d, 64
+        cmp     g10d, 64
         jb      .tail_small
         ; n >= 64: the last 64 triangles, overlapping the block before, with
         ; plain loads; k4 keeps the r that are new
-        lea     r9, [r8-64]                     ; r - 64 (< 0)
-        add     rdi, r9                         ; facing of triangle n - 64
-        lea     r9, [r9+r9*2]
-        lea     rdx, [rdx+r9*4]                 ; its vertex numbers
-        mov     r10d, 64
-        sub     r10d, r8d
-        mov     r11, -1
-        shlx    r11, r11, r10                   ; the top r bits
-        kmovq   k4, r11
+        lea     g5q, [g4q-64]                     ; r - 64 (< 0)
+        add     g0q, g5q                         ; facing of triangle n - 64
+        lea     g5q, [g5q+g5q*2]
+        lea     g2q, [g2q+g5q*4]                 ; its vertex numbers
+        mov     g6d, 64
+        sub     g6d, g4d
+        mov     g7q, -1
+        shlx    g7q, g7q, g6q                   ; the top r bits
+        kmovq   k4, g7q
         CFV_BLOCK
         jmp     .count
 .tail_small:                                    ; n < 64: through the frame
-        lea     r9, [r8+r8*2]                   ; their vertex numbers, 3-189
+        lea     g5q, [g4q+g4q*2]                   ; their vertex numbers, 3-189
 %assign q 0
 %rep 12
-        mov     r10, r9
-        sub     r10, 16*q
+        mov     g6q, g5q
+        sub     g6q, 16*q
 %if q > 0
         jle     .tail_copied                    ; (the frame's lanes past them:
 %endif                                          ;  triangles k4 leaves out)
-        mov     r11d, 16
-        cmp     r10, r11
-        cmova   r10, r11                        ; at most 16
-        mov     r11d, -1
-        bzhi    r11d, r11d, r10d
-        kmovw   k1, r11d
-        vmovdqu32 zmm0{k1}{z}, [rdx+64*q]       ; nothing past the array
+        mov     g7d, 16
+        cmp     g6q, g7q
+        cmova   g6q, g7q                        ; at most 16
+        mov     g7d, -1
+        bzhi    g7d, g7d, g6d
+        kmovw   k1, g7d
+        vmovdqu32 zmm0{k1}{z}, [g2q+64*q]       ; nothing past the array
         vmovdqa64 [rsp+64*q], zmm0
 %assign q q+1
 %endrep
 .tail_copied:
-        mov     r11, -1
-        bzhi    r11, r11, r8
-        kmovq   k4, r11                         ; the r triangles that exist
-        mov     rdx, rsp
+        mov     g7q, -1
+        bzhi    g7q, g7q, g4q
+        kmovq   k4, g7q                         ; the r triangles that exist
+        mov     g2q, rsp
         CFV_BLOCK
 
         ; 3. the count
 .count:
-        mov     rdi, r12
-        mov     esi, r13d
-        mov     rsp, rbp
-        pop     rbp
-        pop     r13
-        pop     r12
-        jmp     sv_count_facing_avx512 wrt ..plt ; (vzeroupper there)
+        mov     g0q, g9q
+        mov     g1d, g10d
+        mov     rsp, g8q
+        RET_VIA sv_count_facing_avx512, clean ; (vzeroupper there)
 
 .list:  ; same arguments, untouched
-        vzeroupper
-        jmp     sv_count_facing_cull_avx512 wrt ..plt
+        TAIL_SV sv_count_facing_cull_avx512
 
 .zero:
-        xor     eax, eax
-        ret
-ENDFUNCTION
+        xor     rvd, rvd
+        RET_NOFRAME clean
+ENDFUNC

@@ -21,14 +21,14 @@
 ; int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles,
 ;                                     const int *indices, const uint8_t *cullBits)
 ;
-; Register map (listing -> port). The listing's registers are kept so the
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port). The listing's registers are kept so the
 ; two read side by side; the System V arguments are moved into them first.
-;   eax  -(triangles left) (+4 inside loop4)  -> rax (sign-extended once, so
-;        [rbx+rax-4] addresses below the end pointer as [ebx+eax-4] did)
-;   ebx  facing + numTriangles (end pointer)  -> rbx (callee-saved: pushed)
-;   esi  indices, 12 bytes per triangle       -> rsi
-;   edi  cullBits                             -> rdi
-;   ecx  one vertex index                     -> rcx (movsxd: int index)
+;   eax  -(triangles left) (+4 inside loop4)  -> rvq (sign-extended once, so
+;        [g4q+rvq-4] addresses below the end pointer as [ebx+eax-4] did)
+;   ebx  facing + numTriangles (end pointer)  -> g4q (r8 on System V, ebx on x86-32)
+;   esi  indices, 12 bytes per triangle       -> g1q
+;   edi  cullBits                             -> g0q
+;   ecx  one vertex index                     -> g3q (movsxd: int index)
 ;   edx  dl / dh: AND of one triangle's cull bytes each
 ;   xmm0 four c bytes; xmm1 four facing bytes; xmm5 dword counters;
 ;   xmm6 zero; xmm7 sixteen bytes of 1 (SIMD_B_one)
@@ -52,11 +52,8 @@
 ;   xmm0, xmm7 in place of pcmpgtb / pand. It is not taken here, to stay the
 ;   listing's code (issue 3 asks for the faithful behaviour, pinned).
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 1596 ticks, 1.19 ticks per triangle (c_ref
-;   6090, c_branchless 2730).
-;   The paper's Pentium 4: 10848 cycles (130 nm), 13883 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.
@@ -67,68 +64,71 @@
 
 %include "sv_abi.inc"
 
+%ifdef SV_WIN64
+    %error "count_facing_cull_sse2.asm: the listing packs cull bytes in dl/dh; on win64 g2 is r8, which has no bits 8-15 register (not ported yet)"
+%endif
+
 RODATA
 SIMD_B_one: times 16 db 1
 
-FUNCTION sv_count_facing_cull_sse2_paper
-        push    rbx
-        mov     rbx, arg1q              ; facing (first: rdi becomes cullBits)
-        mov     eax, arg2d              ; numTriangles
-        mov     rsi, arg3q              ; indices
-        mov     rdi, arg4q              ; cullBits
+FUNC sv_count_facing_cull_sse2_paper, 4, 5, 8, facing, numTriangles, indices, cullBits
+        mov     g4q, g0q              ; facing (first: rdi becomes cullBits)
+        mov     rvd, g1d              ; numTriangles
+        mov     g1q, g2q              ; indices
+        mov     g0q, g3q              ; cullBits
         pxor    xmm5, xmm5              ; moved above the early exit (erratum D-3)
-        test    eax, eax
+        test    rvd, rvd
         jz      .done
-        movsxd  rax, eax                ; 64-bit index from here on (erratum D-7)
-        add     rbx, rax
-        neg     rax
+        MOVSXD_P  rvq, rvd                ; 64-bit index from here on (erratum D-7)
+        add     g4q, rvq
+        neg     rvq
 
         pxor    xmm6, xmm6
         movdqa  xmm7, [SIMD_B_one]
 
-        add     rax, 4
+        add     rvq, 4
         jg      .run1
 
 .loop4:
-        movsxd  rcx, dword [rsi+0*4]
-        movzx   edx, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+1*4]
-        and     dl, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+2*4]
-        and     dl, byte [rdi+rcx]
+        MOVSXD_P  g3q, dword [g1q+0*4]
+        movzx   g2d, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+1*4]
+        and     g2b, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+2*4]
+        and     g2b, byte [g0q+g3q]
 
-        movsxd  rcx, dword [rsi+3*4]
-        mov     dh, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+4*4]
-        and     dh, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+5*4]
-        and     dh, byte [rdi+rcx]
-        movd    xmm0, edx
+        MOVSXD_P  g3q, dword [g1q+3*4]
+        mov     g2h, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+4*4]
+        and     g2h, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+5*4]
+        and     g2h, byte [g0q+g3q]
+        movd    xmm0, g2d
 
-        movsxd  rcx, dword [rsi+6*4]
-        movzx   edx, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+7*4]
-        and     dl, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+8*4]
-        and     dl, byte [rdi+rcx]
+        MOVSXD_P  g3q, dword [g1q+6*4]
+        movzx   g2d, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+7*4]
+        and     g2b, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+8*4]
+        and     g2b, byte [g0q+g3q]
 
-        movsxd  rcx, dword [rsi+9*4]
-        mov     dh, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+10*4]
-        and     dh, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+11*4]
-        and     dh, byte [rdi+rcx]
-        pinsrw  xmm0, edx, 1
+        MOVSXD_P  g3q, dword [g1q+9*4]
+        mov     g2h, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+10*4]
+        and     g2h, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+11*4]
+        and     g2h, byte [g0q+g3q]
+        pinsrw  xmm0, g2d, 1
 
-        add     rsi, 12*4
+        add     g1q, 12*4
 
-        movd    xmm1, [rbx+rax-4]
+        movd    xmm1, [g4q+rvq-4]
         pcmpgtb xmm0, xmm6              ; SIGNED: c >= 0x80 is "not > 0" (limit D-5)
         pand    xmm0, xmm7
         por     xmm1, xmm0
-        movd    [rbx+rax-4], xmm1
+        movd    [g4q+rvq-4], xmm1
 
-        add     rax, 4                  ; flags live until jle
+        add     rvq, 4                  ; flags live until jle
 
         punpcklbw xmm1, xmm6
         punpcklwd xmm1, xmm6
@@ -137,36 +137,35 @@ FUNCTION sv_count_facing_cull_sse2_paper
         jle     .loop4
 
 .run1:
-        sub     rax, 4
+        sub     rvq, 4
         jge     .done
 
 .loop1:
-        movsxd  rcx, dword [rsi+0*4]
-        movzx   edx, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+1*4]
-        and     dl, byte [rdi+rcx]
-        movsxd  rcx, dword [rsi+2*4]
-        and     dl, byte [rdi+rcx]
+        MOVSXD_P  g3q, dword [g1q+0*4]
+        movzx   g2d, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+1*4]
+        and     g2b, byte [g0q+g3q]
+        MOVSXD_P  g3q, dword [g1q+2*4]
+        and     g2b, byte [g0q+g3q]
 
-        neg     edx
-        shr     edx, 31
-        movzx   ecx, byte [rbx+rax]
-        or      ecx, edx
-        mov     byte [rbx+rax], cl
-        movd    xmm0, ecx
+        neg     g2d
+        shr     g2d, 31
+        movzx   g3d, byte [g4q+rvq]
+        or      g3d, g2d
+        mov     byte [g4q+rvq], g3b
+        movd    xmm0, g3d
         paddd   xmm5, xmm0
 
-        add     rsi, 3*4
-        add     rax, 1
+        add     g1q, 3*4
+        add     rvq, 1
         jl      .loop1
 
 .done:
-        pop     rbx
         ; return n[0] + n[1] + n[2] + n[3]
         pshufd  xmm0, xmm5, SHUFFLE_D(2, 3, 0, 1)
         paddd   xmm5, xmm0
         pshufd  xmm0, xmm5, SHUFFLE_D(1, 0, 3, 2)
         paddd   xmm5, xmm0
-        movd    eax, xmm5
-        ret
-ENDFUNCTION
+        movd    rvd, xmm5
+        RET
+ENDFUNC

@@ -15,10 +15,10 @@
 ;
 ; int sv_count_facing_sse2_paper(const uint8_t *facing, int numTriangles)
 ;
-; Register map (listing -> port):
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
 ;   eax  numTriangles, then the bytes still to count minus the block size
-;   edi  facing           -> rdi (already the first argument)
-;   ecx  scratch byte     -> ecx;  edx  scalar tail sum -> edx
+;   edi  facing           -> g0q (already the first argument)
+;   ecx  scratch byte     -> g3d;  edx  scalar tail sum -> g2d
 ;   xmm0 byte sums of the current block; xmm1 scratch; xmm6 dword totals;
 ;   xmm7 zero. The listing's stack array `n` is replaced by reading xmm6.
 ;
@@ -34,11 +34,8 @@
 ;   overflow and its loops read ~2^28 bytes: the port exits on <= 0;
 ;   `movzx ecx, [edi]` has no operand size (byte).
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 30 ticks for 1344 bytes, 0.02 ticks per
-;   triangle (timed in batches of 23 calls; c_ref 322, c_branchless 197).
-;   The paper's Pentium 4: 348 cycles (130 nm), 383 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.
@@ -49,41 +46,41 @@
 
 %include "sv_abi.inc"
 
-FUNCTION sv_count_facing_sse2_paper
-        mov     eax, arg2d              ; numTriangles (upper half ignored)
+FUNC sv_count_facing_sse2_paper, 2, 4, 8, facing, numTriangles
+        mov     rvd, g1d              ; numTriangles (upper half ignored)
         ; edi = facing: already in rdi
         pxor    xmm6, xmm6              ; moved above the early exit (erratum C-2)
-        test    eax, eax
+        test    rvd, rvd
         jle     .done                   ; listing: jz (erratum C-7)
 
         pxor    xmm7, xmm7
 
-        sub     eax, 256
+        sub     rvd, 256
         jl      .run16
 
 .loop256:
-        movdqa  xmm0, [rdi+ 0*16]
-        movdqa  xmm1, [rdi+ 1*16]
-        movdqa  xmm2, [rdi+ 2*16]
-        movdqa  xmm3, [rdi+ 3*16]
-        paddusb xmm0, [rdi+ 4*16]
-        paddusb xmm1, [rdi+ 5*16]
-        paddusb xmm2, [rdi+ 6*16]
-        paddusb xmm3, [rdi+ 7*16]
-        paddusb xmm0, [rdi+ 8*16]
-        paddusb xmm1, [rdi+ 9*16]
-        paddusb xmm2, [rdi+10*16]
-        paddusb xmm3, [rdi+11*16]
-        paddusb xmm0, [rdi+12*16]
-        paddusb xmm1, [rdi+13*16]
-        paddusb xmm2, [rdi+14*16]
-        paddusb xmm3, [rdi+15*16]
+        movdqa  xmm0, [g0q+ 0*16]
+        movdqa  xmm1, [g0q+ 1*16]
+        movdqa  xmm2, [g0q+ 2*16]
+        movdqa  xmm3, [g0q+ 3*16]
+        paddusb xmm0, [g0q+ 4*16]
+        paddusb xmm1, [g0q+ 5*16]
+        paddusb xmm2, [g0q+ 6*16]
+        paddusb xmm3, [g0q+ 7*16]
+        paddusb xmm0, [g0q+ 8*16]
+        paddusb xmm1, [g0q+ 9*16]
+        paddusb xmm2, [g0q+10*16]
+        paddusb xmm3, [g0q+11*16]
+        paddusb xmm0, [g0q+12*16]
+        paddusb xmm1, [g0q+13*16]
+        paddusb xmm2, [g0q+14*16]
+        paddusb xmm3, [g0q+15*16]
         paddusb xmm0, xmm1
         paddusb xmm2, xmm3
         paddusb xmm0, xmm2
 
-        add     rdi, 256
-        sub     eax, 256                ; flags live until jge (SSE leaves them)
+        add     g0q, 256
+        sub     rvd, 256                ; flags live until jge (SSE leaves them)
 
         movdqa  xmm1, xmm0
         punpcklbw xmm0, xmm7
@@ -99,26 +96,26 @@ FUNCTION sv_count_facing_sse2_paper
 
 .run16:
         pxor    xmm0, xmm0
-        add     eax, 256 - 16
+        add     rvd, 256 - 16
         jl      .run4
 
 .loop16:
-        paddusb xmm0, [rdi]
-        add     rdi, 16
-        sub     eax, 16
+        paddusb xmm0, [g0q]
+        add     g0q, 16
+        sub     rvd, 16
         jge     .loop16
 
 .run4:
-        add     eax, 16 - 4
+        add     rvd, 16 - 4
         jl      .run1
 
         pxor    xmm1, xmm1
 
 .loop4:
-        movd    xmm1, [rdi]
+        movd    xmm1, [g0q]
         paddusb xmm0, xmm1
-        add     rdi, 4
-        sub     eax, 4
+        add     g0q, 4
+        sub     rvd, 4
         jge     .loop4
 
 .run1:
@@ -132,19 +129,19 @@ FUNCTION sv_count_facing_sse2_paper
         paddd   xmm0, xmm1
         paddd   xmm6, xmm0
 
-        add     eax, 4 - 1
+        add     rvd, 4 - 1
         jl      .done
 
-        movd    edx, xmm6               ; listing: movdqa n, xmm6; mov edx, n[0]
+        movd    g2d, xmm6               ; listing: movdqa n, xmm6; mov edx, n[0]
 
 .loop1:
-        movzx   ecx, byte [rdi]
-        add     edx, ecx
-        add     rdi, 1
-        sub     eax, 1
+        movzx   g3d, byte [g0q]
+        add     g2d, g3d
+        add     g0q, 1
+        sub     rvd, 1
         jge     .loop1
 
-        movd    xmm0, edx               ; listing: mov n[0], edx
+        movd    xmm0, g2d               ; listing: mov n[0], edx
         movss   xmm6, xmm0
 
 .done:
@@ -153,6 +150,6 @@ FUNCTION sv_count_facing_sse2_paper
         paddd   xmm6, xmm0
         pshufd  xmm0, xmm6, SHUFFLE_D(1, 0, 3, 2)
         paddd   xmm6, xmm0
-        movd    eax, xmm6
-        ret
-ENDFUNCTION
+        movd    rvd, xmm6
+        RET
+ENDFUNC

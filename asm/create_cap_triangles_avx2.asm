@@ -33,13 +33,13 @@
 ; int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const int *indices, int numIndices)
 ;
-; Register map:
-;   r12 output position     r13 shadowIndices    r14 indices   r15 facing
-;   r10 triangles (n)       r9  3 * (n - 3): the last first-index position
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q output position     g11q shadowIndices    g12q indices   g13q facing
+;   g6q triangles (n)       g5q  3 * (n - 3): the last first-index position
 ;                               whose 32-byte window stays inside indices
-;   rbx first triangle of the chunk    rdi end of the chunk
-;   rsi triangle of the current 32-block    rbp list entries
-;   r11 the packed-positions table; rax, rcx, rdx, r8 scratch
+;   g8q first triangle of the chunk    g0q end of the chunk
+;   g1q triangle of the current 32-block    g9q list entries
+;   g7q the packed-positions table; rvq, g3q, g2q, g4q scratch
 ;   ymm5 zero; ymm6 3 * (current 8-block's first triangle), broadcast;
 ;   ymm7 24, broadcast; ymm8 the vpermd pattern; ymm9 (0,0,0,1,1,1,0,0);
 ;   ymm0-ymm2 scratch
@@ -53,13 +53,8 @@
 ;   6 * (casting triangles)). Reads nothing outside facing[0 .. n-1] and
 ;   indices[0 .. numIndices-1]. Stack: < 4 KiB (no probe needed).
 ;
-; Measured cost (`shadowvol bench`, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 693-735 / 756-798 (sse2_paper 1533-1554 / 1554-1575,
-;   c_ref 2499-2520 / 2730-2793); fixed light 651-672 / 672 (sse2_paper
-;   1554 / 1575, c_ref 2373-2394 / 2415).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -68,7 +63,7 @@
 
 %define CHUNK        992                  ; triangles per list: a multiple of 32
 %define LIST_ENTRIES (CHUNK + 16)         ; + 8 for an 8-block's 32-byte store
-%define FRAME        (LIST_ENTRIES*4 + 8) ; + 6 pushes + return: < 4096
+%define FRAME        (LIST_ENTRIES*4)     ; + 6 pushes + return + 8 of padding: 4096
 
 RODATA
 align 32
@@ -86,122 +81,109 @@ positions3:
 ; CAP1 k, ymm: the six indices of list entry eax + k, from its 32-byte
 ; window of indices.
 %macro CAP1 2
-        mov     ecx, [rsp + rax*4 + %1*4]
-        vpermd  %2, ymm8, [r14 + rcx*4]
+        mov     g3d, [rsp + rvq*4 + %1*4]
+        vpermd  %2, ymm8, [g12q + g3q*4]
         vpaddd  %2, %2, %2
         vpxor   %2, %2, ymm9
 %endmacro
 
-FUNCTION sv_create_cap_triangles_avx2
-        mov     eax, arg4d
-        test    eax, eax
+VEC_YMM
+FUNC sv_create_cap_triangles_avx2
+        mov     rvd, g3d
+        test    rvd, rvd
         jg      .start
-        xor     eax, eax                ; negative or zero: 0, nothing touched
-        ret
+        xor     rvd, rvd                ; negative or zero: 0, nothing touched
+        RET_NOFRAME clean
 .start:
-        push    rbx
-        push    rbp
-        push    r12
-        push    r13
-        push    r14
-        push    r15
-        sub     rsp, FRAME
-        mov     r12, rdi
-        mov     r13, rdi
-        mov     r14, rdx
-        mov     r15, rsi
-        mov     r8d, 0xAAAAAAAB         ; numIndices / 3 (exact for 32-bit unsigned)
-        imul    rax, r8
-        shr     rax, 33
+        PROLOGUE 4, 14, 10, FRAME, shadowIndices, facing, indices, numIndices
+        mov     g10q, g0q
+        mov     g11q, g0q
+        mov     g12q, g2q
+        mov     g13q, g1q
+        mov     g4d, 0xAAAAAAAB         ; numIndices / 3 (exact for 32-bit unsigned)
+        imul    rvq, g4q
+        shr     rvq, 33
         jz      .done                   ; 1 or 2 indices: no whole triangle
-        mov     r10, rax
-        lea     r9, [rax + rax*2 - 9]   ; signed: negative when n < 3
-        lea     r11, [positions3]
+        mov     g6q, rvq
+        lea     g5q, [rvq + rvq*2 - 9]   ; signed: negative when n < 3
+        lea     g7q, [positions3]
         vpxor   xmm5, xmm5, xmm5
         vpbroadcastd ymm7, [step24]
         vmovdqa ymm8, [perm_cap]
         vmovdqa ymm9, [far_plus1]
-        xor     ebx, ebx
+        xor     g8d, g8d
 
 .chunk:
         ; ---- phase 1: list the casting triangles of [rbx, rdi)
-        xor     ebp, ebp
-        mov     rsi, rbx
-        lea     rax, [rbx + rbx*2]      ; < 2^31
-        vmovd   xmm6, eax
+        xor     g9d, g9d
+        mov     g1q, g8q
+        lea     rvq, [g8q + g8q*2]      ; < 2^31
+        vmovd   xmm6, rvd
         vpbroadcastd ymm6, xmm6
-        lea     rdi, [rbx + CHUNK]
-        cmp     rdi, r10
-        cmova   rdi, r10
-        LIST_NONFACING r15, r10, rdi, rax, .emit
+        lea     g0q, [g8q + CHUNK]
+        cmp     g0q, g6q
+        cmova   g0q, g6q
+        LIST_NONFACING g13q, g6q, g0q, rvq, .emit
 
         ; ---- phase 2: six indices per listed triangle, in order
 .emit:
-        mov     rbx, rdi                ; the next chunk
+        mov     g8q, g0q                ; the next chunk
         ; the listed triangles whose window stays inside indices (3t <= r9)
         ; are a prefix of the list; the rest (0..2) are among the last two
-        mov     edx, ebp
-        test    edx, edx
+        mov     g2d, g9d
+        test    g2d, g2d
         jz      .next
-        mov     eax, [rsp + rdx*4 - 4]
-        cmp     rax, r9
+        mov     rvd, [rsp + g2q*4 - 4]
+        cmp     rvq, g5q
         jle     .split
-        dec     edx
+        dec     g2d
         jz      .split
-        mov     eax, [rsp + rdx*4 - 4]
-        cmp     rax, r9
+        mov     rvd, [rsp + g2q*4 - 4]
+        cmp     rvq, g5q
         jle     .split
-        dec     edx
+        dec     g2d
 .split:
-        xor     eax, eax
+        xor     rvd, rvd
 .fast2:
-        lea     ecx, [rax + 2]
-        cmp     ecx, edx
+        lea     g3d, [rvq + 2]
+        cmp     g3d, g2d
         ja      .fast1
         CAP1    0, ymm1
         CAP1    1, ymm2
-        vmovdqu [r12], ymm1
-        vmovdqu [r12 + 24], ymm2
-        add     r12, 48
-        add     eax, 2
+        vmovdqu [g10q], ymm1
+        vmovdqu [g10q + 24], ymm2
+        add     g10q, 48
+        add     rvd, 2
         jmp     .fast2
 .fast1:
-        cmp     eax, edx
+        cmp     rvd, g2d
         jae     .slow
         CAP1    0, ymm1
-        vmovdqu [r12], ymm1
-        add     r12, 24
-        inc     eax
+        vmovdqu [g10q], ymm1
+        add     g10q, 24
+        inc     rvd
 .slow:                                  ; 12 bytes in, 24 bytes out
-        cmp     eax, ebp
+        cmp     rvd, g9d
         jae     .next
-        mov     ecx, [rsp + rax*4]
-        vmovq   xmm0, [r14 + rcx*4]
-        vpinsrd xmm0, xmm0, [r14 + rcx*4 + 8], 2
+        mov     g3d, [rsp + rvq*4]
+        vmovq   xmm0, [g12q + g3q*4]
+        vpinsrd xmm0, xmm0, [g12q + g3q*4 + 8], 2
         vpermd  ymm1, ymm8, ymm0
         vpaddd  ymm1, ymm1, ymm1
         vpxor   ymm1, ymm1, ymm9
-        vmovdqu [r12], xmm1
+        vmovdqu [g10q], xmm1
         vextracti128 xmm2, ymm1, 1
-        vmovq   [r12 + 16], xmm2
-        add     r12, 24
-        inc     eax
+        vmovq   [g10q + 16], xmm2
+        add     g10q, 24
+        inc     rvd
         jmp     .slow
 .next:
-        cmp     rbx, r10
+        cmp     g8q, g6q
         jb      .chunk
-        vzeroupper
 
 .done:
-        mov     rax, r12                ; return (end - shadowIndices) / 4
-        sub     rax, r13
-        shr     rax, 2
-        add     rsp, FRAME
-        pop     r15
-        pop     r14
-        pop     r13
-        pop     r12
-        pop     rbp
-        pop     rbx
-        ret
-ENDFUNCTION
+        mov     rvq, g10q                ; return (end - shadowIndices) / 4
+        sub     rvq, g11q
+        shr     rvq, 2
+        RET
+ENDFUNC

@@ -31,17 +31,17 @@
 ; int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing,
 ;                                    const int *indices, int numIndices)
 ;
-; Register map:
-;   r9   shadowIndices (for the return value); r8 output pointer
-;   rsi  facing, rdx indices: both advanced per block
-;   rax  triangles left (numIndices / 3)
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g5q   shadowIndices (for the return value); g4q output pointer
+;   g1q  facing, g2q indices: both advanced per block
+;   rvq  triangles left (numIndices / 3)
 ;   zmm0-zmm2 the 48 indices (doubled); zmm3-zmm5 I0, I1, I2 (then packed);
 ;   zmm6, zmm7 the two 32-entry tables' first halves; zmm8 facing bytes;
 ;   zmm9-zmm14 the six output vectors; xmm15 sixteen bytes of 0xFF;
 ;   zmm16-zmm18 transpose indices; zmm19-zmm21 the +1 patterns;
 ;   zmm22-zmm27 output indices
 ;   k1 back-facing triangles; k2, k3 the transpose's second-source lanes;
-;   k4-k7 tail masks; rcx, r10, r11 scratch
+;   k4-k7 tail masks; g3q, g6q, g7q scratch
 ;
 ; Contracts: facing bytes 0 or 1 (only 0 is back-facing, as the C's
 ;   `if (facing[j]) continue`); numIndices a multiple of 3 (the routine
@@ -51,20 +51,14 @@
 ;   but never past 2 * numIndices. No alignment anywhere.
 ;   numIndices >= 0 (negative returns 0, touches nothing).
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 630 / 672 (sse2_paper 1533 / 1554, c_ref 2499 / 2751);
-;   fixed light 630 / 651 (sse2_paper 1533 / 1554). About 0.47 ticks per
-;   triangle; 0.4 to 0.7 on meshes of 256 to 108864 triangles
-;   (`shadowvol bench --scaling --quick`; sse2_paper 1.15 to 1.24).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
 
-section .rodata align=64
+RODATA
 ; Transpose: lane t of I<c> is index 3t + c of the 48. The first vpermi2d
 ; takes lanes 3t + c < 32 from zmm0|zmm1; the masked vpermt2d (k2, k3) then
 ; takes the others from zmm2 (indices 16 + (3t + c - 32) select the second
@@ -130,25 +124,25 @@ cap_plus1:
 ; %1 = 1: the last 1-15 triangles (k4-k7 and r10 set up by the caller).
 %macro CAP_BLOCK 1
 %if %1 == 0
-        vmovdqu32 zmm0, [rdx+0*64]
-        vmovdqu32 zmm1, [rdx+1*64]
-        vmovdqu32 zmm2, [rdx+2*64]
-        vptestnmb k1, xmm15, [rsi]              ; facing == 0 (xmm15: all ones)
+        vmovdqu32 zmm0, [g2q+0*64]
+        vmovdqu32 zmm1, [g2q+1*64]
+        vmovdqu32 zmm2, [g2q+2*64]
+        vptestnmb k1, xmm15, [g1q]              ; facing == 0 (xmm15: all ones)
 %else
         ; (no load whose mask is empty: a masked load over a page that is
         ; unmapped or not yet touched costs hundreds of ticks on Zen 5
         ; even when it reads nothing; ecx = 3 * triangles left)
-        vmovdqu32 zmm0{k4}{z}, [rdx+0*64]
+        vmovdqu32 zmm0{k4}{z}, [g2q+0*64]
         vpxord  xmm1, xmm1, xmm1
         vpxord  xmm2, xmm2, xmm2
-        cmp     ecx, 16
+        cmp     g3d, 16
         jbe     %%loaded
-        vmovdqu32 zmm1{k5}{z}, [rdx+1*64]
-        cmp     ecx, 32
+        vmovdqu32 zmm1{k5}{z}, [g2q+1*64]
+        cmp     g3d, 32
         jbe     %%loaded
-        vmovdqu32 zmm2{k6}{z}, [rdx+2*64]
+        vmovdqu32 zmm2{k6}{z}, [g2q+2*64]
 %%loaded:
-        vmovdqu8 xmm8{k7}{z}, [rsi]
+        vmovdqu8 xmm8{k7}{z}, [g1q]
         vptestnmb k1{k7}, xmm8, xmm8            ; facing == 0, lanes that exist
 %endif
         vpaddd  zmm0, zmm0, zmm0                ; doubled vertex numbers
@@ -163,11 +157,11 @@ cap_plus1:
         vpermt2d zmm3{k2}, zmm16, zmm2          ; I0 lanes 11-15
         vpermt2d zmm4{k2}, zmm17, zmm2          ; I1 lanes 11-15
         vpermt2d zmm5{k3}, zmm18, zmm2          ; I2 lanes 10-15
-        kmovw   ecx, k1
+        kmovw   g3d, k1
         vpcompressd zmm3{k1}{z}, zmm3           ; back-facing triangles first
         vpcompressd zmm4{k1}{z}, zmm4
         vpcompressd zmm5{k1}{z}, zmm5
-        popcnt  ecx, ecx                        ; m
+        popcnt  g3d, g3d                        ; m
         vinserti64x4 zmm6, zmm3, ymm4, 1        ; [I0 0-7 | I1 0-7]
         vshufi64x2 zmm7, zmm3, zmm4, 0xEE       ; [I0 8-15 | I1 8-15]
         vmovdqa64 zmm9,  zmm22
@@ -188,50 +182,51 @@ cap_plus1:
         vpxord  zmm12, zmm12, zmm19
         vpxord  zmm13, zmm13, zmm20
         vpxord  zmm14, zmm14, zmm21
-        lea     ecx, [rcx+rcx*2]                ; 3m
+        lea     g3d, [g3q+g3q*2]                ; 3m
 %if %1 == 0
-        vmovdqu32 [r8+0*64], zmm9
-        vmovdqu32 [r8+1*64], zmm10
-        vmovdqu32 [r8+2*64], zmm11
-        vmovdqu32 [r8+3*64], zmm12
-        vmovdqu32 [r8+4*64], zmm13
-        vmovdqu32 [r8+5*64], zmm14
+        vmovdqu32 [g4q+0*64], zmm9
+        vmovdqu32 [g4q+1*64], zmm10
+        vmovdqu32 [g4q+2*64], zmm11
+        vmovdqu32 [g4q+3*64], zmm12
+        vmovdqu32 [g4q+4*64], zmm13
+        vmovdqu32 [g4q+5*64], zmm14
 %else
         ; exactly 6m ints: masks from the 96-bit run of 6m ones
-        lea     r10d, [rcx+rcx]                 ; 6m (<= 90)
-        mov     r11, -1
-        bzhi    r11, r11, r10                   ; ints 0-63 (all if 6m >= 64)
-        kmovq   k4, r11
-        sub     r10d, 64
-        mov     r11d, 0
-        cmovs   r10d, r11d                      ; max(6m - 64, 0)
-        mov     r11, -1
-        bzhi    r11, r11, r10                   ; ints 64-95
-        kmovq   k5, r11
-        vmovdqu32 [r8+0*64]{k4}, zmm9
+        lea     g6d, [g3q+g3q]                 ; 6m (<= 90)
+        mov     g7q, -1
+        bzhi    g7q, g7q, g6q                   ; ints 0-63 (all if 6m >= 64)
+        kmovq   k4, g7q
+        sub     g6d, 64
+        mov     g7d, 0
+        cmovs   g6d, g7d                      ; max(6m - 64, 0)
+        mov     g7q, -1
+        bzhi    g7q, g7q, g6q                   ; ints 64-95
+        kmovq   k5, g7q
+        vmovdqu32 [g4q+0*64]{k4}, zmm9
         kshiftrq k6, k4, 16
-        vmovdqu32 [r8+1*64]{k6}, zmm10
+        vmovdqu32 [g4q+1*64]{k6}, zmm10
         kshiftrq k6, k4, 32
-        vmovdqu32 [r8+2*64]{k6}, zmm11
+        vmovdqu32 [g4q+2*64]{k6}, zmm11
         kshiftrq k6, k4, 48
-        vmovdqu32 [r8+3*64]{k6}, zmm12
-        vmovdqu32 [r8+4*64]{k5}, zmm13
+        vmovdqu32 [g4q+3*64]{k6}, zmm12
+        vmovdqu32 [g4q+4*64]{k5}, zmm13
         kshiftrq k6, k5, 16
-        vmovdqu32 [r8+5*64]{k6}, zmm14
+        vmovdqu32 [g4q+5*64]{k6}, zmm14
 %endif
-        lea     r8, [r8+rcx*8]                  ; + 6m ints (24m bytes)
+        lea     g4q, [g4q+g3q*8]                  ; + 6m ints (24m bytes)
 %endmacro
 
-FUNCTION sv_create_cap_triangles_avx512
-        mov     r9, arg1q                       ; shadowIndices
-        mov     r8, arg1q
-        mov     eax, arg4d                      ; numIndices
-        test    eax, eax
+VEC_ZMM
+FUNC sv_create_cap_triangles_avx512, 4, 8, 28, shadowIndices, facing, indices, numIndices
+        mov     g5q, g0q                       ; shadowIndices
+        mov     g4q, g0q
+        mov     rvd, g3d                      ; numIndices
+        test    rvd, rvd
         jle     .zero                           ; negative or zero: touch nothing
         ; triangles = numIndices / 3 (unsigned: numIndices > 0 here)
-        mov     ecx, 0xAAAAAAAB
-        imul    rax, rcx
-        shr     rax, 33
+        mov     g3d, 0xAAAAAAAB
+        imul    rvq, g3q
+        shr     rvq, 33
 
         vmovdqa64 zmm16, [cap_tr+0*64]
         vmovdqa64 zmm17, [cap_tr+1*64]
@@ -245,43 +240,42 @@ FUNCTION sv_create_cap_triangles_avx512
         vmovdqa64 zmm25, [cap_out+3*64]
         vmovdqa64 zmm26, [cap_out+4*64]
         vmovdqa64 zmm27, [cap_out+5*64]
-        mov     ecx, 0xF800
-        kmovw   k2, ecx                         ; I0, I1 lanes 11-15 from zmm2
-        mov     ecx, 0xFC00
-        kmovw   k3, ecx                         ; I2 lanes 10-15 from zmm2
+        mov     g3d, 0xF800
+        kmovw   k2, g3d                         ; I0, I1 lanes 11-15 from zmm2
+        mov     g3d, 0xFC00
+        kmovw   k3, g3d                         ; I2 lanes 10-15 from zmm2
         vpternlogd xmm15, xmm15, xmm15, 0xFF    ; all ones
 
-        sub     rax, 16
+        sub     rvq, 16
         jb      .tail
 .loop16:
         CAP_BLOCK 0
-        add     rdx, 16*3*4
-        add     rsi, 16
-        sub     rax, 16
+        add     g2q, 16*3*4
+        add     g1q, 16
+        sub     rvq, 16
         jae     .loop16
 
 .tail:
-        add     rax, 16                         ; 0-15 triangles left
+        add     rvq, 16                         ; 0-15 triangles left
         jz      .done
-        lea     ecx, [rax+rax*2]                ; 3 * left indices (<= 45)
-        mov     r10, -1
-        bzhi    r10, r10, rcx
-        kmovq   k4, r10
+        lea     g3d, [rvq+rvq*2]                ; 3 * left indices (<= 45)
+        mov     g6q, -1
+        bzhi    g6q, g6q, g3q
+        kmovq   k4, g6q
         kshiftrq k5, k4, 16
         kshiftrq k6, k4, 32
-        mov     r10, -1
-        bzhi    r10, r10, rax
-        kmovw   k7, r10d
+        mov     g6q, -1
+        bzhi    g6q, g6q, rvq
+        kmovw   k7, g6d
         CAP_BLOCK 1
 
 .done:
-        mov     rax, r8
-        sub     rax, r9
-        shr     rax, 2                          ; ints written
-        vzeroupper
-        ret
+        mov     rvq, g4q
+        sub     rvq, g5q
+        shr     rvq, 2                          ; ints written
+        RET
 
 .zero:
-        xor     eax, eax
-        ret
-ENDFUNCTION
+        xor     rvd, rvd
+        RET clean
+ENDFUNC

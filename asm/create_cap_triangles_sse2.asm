@@ -25,12 +25,12 @@
 ; int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
 ;                                        const int *indices, int numIndices)
 ;
-; Register map (listing -> port):
-;   eax  -(triangles left) (+4 inside loop4)    -> rax (64-bit)
-;   edx  3 * eax: index offset into indices     -> rdx
-;   ebx  output pointer / 8, alternating with ecx -> rbx (pushed), rcx
-;   esi  facing + numTriangles                  -> rsi
-;   edi  indices + numIndices                   -> rdi
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
+;   eax  -(triangles left) (+4 inside loop4)    -> rvq (64-bit)
+;   edx  3 * eax: index offset into indices     -> g2q
+;   ebx  output pointer / 8, alternating with ecx -> g8q (pushed), g3q
+;   esi  facing + numTriangles                  -> g1q
+;   edi  indices + numIndices                   -> g0q
 ;   r8   shadowIndices, kept for the return value; r9 numIndices / 3 (the
 ;        listing's C `int num = numIndices / 3`)
 ;   xmm6 c0, xmm7 c1, xmm5 c2 (SIMD_DW_capTris_c0..c2)
@@ -51,11 +51,8 @@
 ;   statement names
 ;   `shadowIndexes` and casts a pointer to int.
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 1617 ticks, 1.20 ticks per triangle (c_ref
-;   6363, c_branchless 4536).
-;   The paper's Pentium 4: 12080 cycles (130 nm), 14205 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.
@@ -71,127 +68,125 @@ SIMD_DW_capTris_c0: dd 0, 0, 0, 1
 SIMD_DW_capTris_c1: dd 1, 1, 0, 0
 SIMD_DW_capTris_c2: dd 0, 1, 0, 0
 
-FUNCTION sv_create_cap_triangles_sse2_paper
-        push    rbx
-        movsxd  rax, arg4d              ; numIndices
-        mov     rbx, arg1q              ; shadowIndices
-        mov     r8, arg1q
+FUNC sv_create_cap_triangles_sse2_paper, 4, 9, 8, shadowIndices, facing, indices, numIndices
+        movsxd  rvq, g3d              ; numIndices
+        mov     g8q, g0q              ; shadowIndices
+        mov     g4q, g0q
         ; rsi = facing already
-        mov     rdi, arg3q              ; indices
+        mov     g0q, g2q              ; indices
         ; num = numIndices / 3, rounded toward zero as C does
-        imul    r9, rax, 0x55555556
-        mov     rcx, r9
-        shr     rcx, 63
-        sar     r9, 32
-        add     r9d, ecx
-        shr     rbx, 3                  ; moved above the early exit (erratum F-2)
-        shl     rax, 2
+        imul    g5q, rvq, 0x55555556
+        mov     g3q, g5q
+        shr     g3q, 63
+        sar     g5q, 32
+        add     g5d, g3d
+        shr     g8q, 3                  ; moved above the early exit (erratum F-2)
+        shl     rvq, 2
         jz      .done
-        add     rdi, rax
-        movsxd  rax, r9d                ; mov eax, num
-        add     rsi, rax
-        neg     rax
+        add     g0q, rvq
+        movsxd  rvq, g5d                ; mov eax, num
+        add     g1q, rvq
+        neg     rvq
 
         movaps  xmm6, [SIMD_DW_capTris_c0]
         movaps  xmm7, [SIMD_DW_capTris_c1]
         movaps  xmm5, [SIMD_DW_capTris_c2]
 
-        add     rax, 4
-        lea     rdx, [rax*2+rax]
+        add     rvq, 4
+        lea     g2q, [rvq*2+rvq]
         jg      .run1
 
 .loop4:
-        movdqa  xmm0, [rdi+rdx*4-4*3*4+0]            ; xmm0 = 0, 1, 2, 3
+        movdqa  xmm0, [g0q+g2q*4-4*3*4+0]            ; xmm0 = 0, 1, 2, 3
         paddd   xmm0, xmm0                           ; listing: padd (erratum F-1)
         pshufd  xmm1, xmm0, SHUFFLE_D(2, 1, 0, 0)    ; xmm1 = 2, 1, 0, 0
-        movzx   ecx, byte [rsi+rax-4]
+        movzx   g3d, byte [g1q+rvq-4]
         pshufd  xmm2, xmm0, SHUFFLE_D(1, 2, 1, 2)    ; xmm2 = 1, 2, 1, 2
-        sub     ecx, 1
+        sub     g3d, 1
         pxor    xmm1, xmm6
-        and     ecx, 3
-        movlps  qword [rbx*8+0*4], xmm1
-        add     rcx, rbx
-        movhps  qword [rbx*8+2*4], xmm1
+        and     g3d, 3
+        movlps  qword [g8q*8+0*4], xmm1
+        add     g3q, g8q
+        movhps  qword [g8q*8+2*4], xmm1
         pxor    xmm2, xmm7
-        movlps  qword [rbx*8+4*4], xmm2
+        movlps  qword [g8q*8+4*4], xmm2
 
-        movdqa  xmm3, [rdi+rdx*4-3*3*4+4]            ; xmm3 = 4, 5, 6, 7
+        movdqa  xmm3, [g0q+g2q*4-3*3*4+4]            ; xmm3 = 4, 5, 6, 7
         paddd   xmm3, xmm3
         shufps  xmm0, xmm3, SHUFFLE_D(3, 3, 1, 0)    ; xmm0 = 3, 3, 5, 4
-        movzx   ebx, byte [rsi+rax-3]
+        movzx   g8d, byte [g1q+rvq-3]
         movdqa  xmm2, xmm3                           ; xmm2 = 4, 5, 6, 7
-        sub     ebx, 1
+        sub     g8d, 1
         pxor    xmm0, xmm5
-        and     ebx, 3
-        movhps  qword [rcx*8+0*4], xmm0
-        add     rbx, rcx
-        movlps  qword [rcx*8+2*4], xmm0
+        and     g8d, 3
+        movhps  qword [g3q*8+0*4], xmm0
+        add     g8q, g3q
+        movlps  qword [g3q*8+2*4], xmm0
         pxor    xmm2, xmm7
-        movlps  qword [rcx*8+4*4], xmm2
+        movlps  qword [g3q*8+4*4], xmm2
 
-        movdqa  xmm0, [rdi+rdx*4-1*3*4-4]            ; xmm0 = 8, 9, 10, 11
+        movdqa  xmm0, [g0q+g2q*4-1*3*4-4]            ; xmm0 = 8, 9, 10, 11
         paddd   xmm0, xmm0
         shufps  xmm3, xmm0, SHUFFLE_D(2, 3, 0, 1)    ; xmm3 = 6, 7, 8, 9
         pshufd  xmm1, xmm3, SHUFFLE_D(2, 1, 0, 0)    ; xmm1 = 8, 7, 6, 6
-        movzx   ecx, byte [rsi+rax-2]
+        movzx   g3d, byte [g1q+rvq-2]
         pshufd  xmm2, xmm3, SHUFFLE_D(1, 2, 1, 2)    ; xmm2 = 7, 8, 7, 8
-        sub     ecx, 1
+        sub     g3d, 1
         pxor    xmm1, xmm6
-        and     ecx, 3
-        movlps  qword [rbx*8+0*4], xmm1
-        add     rcx, rbx
-        movhps  qword [rbx*8+2*4], xmm1
+        and     g3d, 3
+        movlps  qword [g8q*8+0*4], xmm1
+        add     g3q, g8q
+        movhps  qword [g8q*8+2*4], xmm1
         pxor    xmm2, xmm7
-        movlps  qword [rbx*8+4*4], xmm2
+        movlps  qword [g8q*8+4*4], xmm2
 
         pshufd  xmm1, xmm0, SHUFFLE_D(3, 2, 1, 1)    ; xmm1 = 11, 10, 9, 9
-        movzx   ebx, byte [rsi+rax-1]
+        movzx   g8d, byte [g1q+rvq-1]
         pshufd  xmm2, xmm0, SHUFFLE_D(2, 3, 2, 3)    ; xmm2 = 10, 11, 10, 11
-        sub     ebx, 1
+        sub     g8d, 1
         pxor    xmm1, xmm6
-        and     ebx, 3
-        movlps  qword [rcx*8+0*4], xmm1
-        add     rbx, rcx
-        movhps  qword [rcx*8+2*4], xmm1
+        and     g8d, 3
+        movlps  qword [g3q*8+0*4], xmm1
+        add     g8q, g3q
+        movhps  qword [g3q*8+2*4], xmm1
         pxor    xmm2, xmm7
-        movlps  qword [rcx*8+4*4], xmm2
+        movlps  qword [g3q*8+4*4], xmm2
 
-        add     rdx, 3*4
-        add     rax, 4
+        add     g2q, 3*4
+        add     rvq, 4
         jle     .loop4
 
 .run1:
-        sub     rax, 4
+        sub     rvq, 4
         jge     .done
 
 .loop1:
-        lea     rdx, [rax*2+rax]
+        lea     g2q, [rvq*2+rvq]
         ; listing: movdqu xmm0, [edi+edx*4+0], 16 bytes for a 12-byte
         ; triangle (erratum F-3). Lane 3 is never used, so load 8 + 4.
-        movq    xmm0, qword [rdi+rdx*4+0]
-        movd    xmm1, dword [rdi+rdx*4+8]
+        movq    xmm0, qword [g0q+g2q*4+0]
+        movd    xmm1, dword [g0q+g2q*4+8]
         punpcklqdq xmm0, xmm1
         paddd   xmm0, xmm0
         pshufd  xmm1, xmm0, SHUFFLE_D(2, 1, 0, 0)
         pshufd  xmm2, xmm0, SHUFFLE_D(1, 2, 1, 2)
         pxor    xmm1, xmm6
-        movlps  qword [rbx*8+0*4], xmm1
+        movlps  qword [g8q*8+0*4], xmm1
         pxor    xmm2, xmm7
-        movhps  qword [rbx*8+2*4], xmm1
-        movzx   ecx, byte [rsi+rax]
-        movlps  qword [rbx*8+4*4], xmm2
-        sub     ecx, 1
-        and     ecx, 3
-        add     rbx, rcx
+        movhps  qword [g8q*8+2*4], xmm1
+        movzx   g3d, byte [g1q+rvq]
+        movlps  qword [g8q*8+4*4], xmm2
+        sub     g3d, 1
+        and     g3d, 3
+        add     g8q, g3q
 
-        add     rax, 1
+        add     rvq, 1
         jl      .loop1
 
 .done:
-        shl     rbx, 3
-        mov     rax, rbx                ; return (end - shadowIndices) / 4
-        sub     rax, r8
-        sar     rax, 2
-        pop     rbx
-        ret
-ENDFUNCTION
+        shl     g8q, 3
+        mov     rvq, g8q                ; return (end - shadowIndices) / 4
+        sub     rvq, g4q
+        sar     rvq, 2
+        RET
+ENDFUNC

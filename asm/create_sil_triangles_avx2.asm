@@ -38,16 +38,16 @@
 ; int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map:
-;   r12 output position     r13 shadowIndices     r14 silEdges
-;   r15 the packed-positions table     rsi facing
-;   rbx first edge of the chunk (pointer)   rdi end of the edges
-;   rdx current edge (phase 1)   r10 end of the chunk (less a group)
-;   rbp list entries; rax, rcx masks / list index; r8, r9 p1, p2, flags
-;   r11 xor_by_f2
+; Register map (asm/sv_abi.inc names; rv = rax):
+;   g10q output position     g11q shadowIndices     g12q silEdges
+;   g13q the packed-positions table     g1q facing
+;   g8q first edge of the chunk (pointer)   g0q end of the edges
+;   g2q current edge (phase 1)   g6q end of the chunk (less a group)
+;   g9q list entries; rvq, g3q masks / list index; g4q, g5q p1, p2, flags
+;   g7q xor_by_f2
 ;   ymm6 2 * (current group's first edge number), broadcast; ymm7 16,
 ;   broadcast; ymm14 idx_lo; ymm0-ymm2 scratch
-;   [rsp] the list: 2 * edge number (so that [r14 + entry*8] is the edge)
+;   [rsp] the list: 2 * edge number (so that [g12q + entry*8] is the edge)
 ;
 ; Contracts: no alignment; output room for 6 * numSilEdges ints (nothing is
 ;   written past 6 * (silhouette edges)); facing bytes 0 or 1; v1, v2 even;
@@ -56,15 +56,8 @@
 ;   the numSilEdges edges but the facing bytes they name. Stack: < 4 KiB
 ;   (no probe needed).
 ;
-; Measured cost (`shadowvol bench`, the
-;   1344-triangle / 2016-edge character; AMD EPYC "Turin-like" KVM guest,
-;   TSC 2.097 GHz (core ~3.7 GHz), cpuid-serialised rdtsc; min / median
-;   ticks, range over three runs on a busy 2-core VM; base commit 5430ca6):
-;   moving light 1869-1974 / 1911-2079 (sse2_paper 3339-3360 / 3381-3402,
-;   c_ref 2163-2247 / 3087-3549); fixed light 1911-2079 / 1932-2100
-;   (sse2_paper 3381-3402 / 3402-3423, c_ref 2058-2079 / 2079-2100); with
-;   `--timer lfence` (no VM exit per call) 1785 / 1827. Phase 1 alone:
-;   ~1200 of it.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -73,7 +66,7 @@
 
 %define CHUNK        992                  ; edges per list: a multiple of 16
 %define LIST_ENTRIES (CHUNK + 16)         ; + 8 for a group's 32-byte store
-%define FRAME        (LIST_ENTRIES*4 + 8) ; + 6 pushes + return: < 4096
+%define FRAME        (LIST_ENTRIES*4)     ; + 6 pushes + return + 8 of padding: 4096
 
 RODATA
 align 32
@@ -89,20 +82,20 @@ positions:
 
 ; FIRST off: starts a mask in eax with the flag of the edge at rdx + off.
 %macro FIRST 1
-        mov     r9, [rdx + %1]                 ; p1 | p2 << 32
-        movsxd  r8, r9d
-        sar     r9, 32
-        movzx   eax, byte [rsi + r8]
-        xor     al, [rsi + r9]                 ; f1 ^ f2
+        mov     g5q, [g2q + %1]                 ; p1 | p2 << 32
+        movsxd  g4q, g5d
+        sar     g5q, 32
+        movzx   rvd, byte [g1q + g4q]
+        xor     rvb, [g1q + g5q]                 ; f1 ^ f2
 %endmacro
 ; NEXT off: appends the flag of the edge at rdx + off to the mask in rax.
 %macro NEXT 1
-        mov     r9, [rdx + %1]
-        movsxd  r8, r9d
-        sar     r9, 32
-        movzx   r8d, byte [rsi + r8]
-        xor     r8b, [rsi + r9]
-        lea     rax, [r8 + rax*2]
+        mov     g5q, [g2q + %1]
+        movsxd  g4q, g5d
+        sar     g5q, 32
+        movzx   g4d, byte [g1q + g4q]
+        xor     g4b, [g1q + g5q]
+        lea     rvq, [g4q + rvq*2]
 %endmacro
 ; MASK8 off: the mask of the 8 edges at rdx + off, in eax.
 %macro MASK8 1
@@ -117,144 +110,131 @@ positions:
 %endmacro
 ; PACK8 mask, ymm: appends the group's silhouette edges to the list.
 %macro PACK8 2
-        vpmovzxbd %2, [r15 + %1*8]
+        vpmovzxbd %2, [g13q + %1*8]
         popcnt  %1, %1
         vpaddd  %2, %2, ymm6
         vpaddd  ymm6, ymm6, ymm7
-        vmovdqu [rsp + rbp*4], %2
-        add     rbp, %1
+        vmovdqu [rsp + g9q*4], %2
+        add     g9q, %1
 %endmacro
 ; EMIT1 k, src, out: list entry eax + k (its edge: edx) into ymm out. src:
 ; the edge's 32-byte window (memory; never for the last edge of the
 ; array) or ymm0 after a 16-byte load.
 %macro EMIT1 3
-        mov     edx, [rsp + rax*4 + %1*4]      ; 2 * edge number
-        movsxd  r9, dword [r14 + rdx*8 + 4]
-        movzx   r9d, byte [rsi + r9]           ; f2
+        mov     g2d, [rsp + rvq*4 + %1*4]      ; 2 * edge number
+        movsxd  g5q, dword [g12q + g2q*8 + 4]
+        movzx   g5d, byte [g1q + g5q]           ; f2
         vpermd  %3, ymm14, %2                  ; v1 v2 v2 v1 v1 v2 - -
-        vpxor   %3, %3, [r11 + r9*8]
+        vpxor   %3, %3, [g7q + g5q*8]
 %endmacro
 
-FUNCTION sv_create_sil_triangles_avx2
-        movsxd  rcx, arg4d
-        test    rcx, rcx
+VEC_YMM
+FUNC sv_create_sil_triangles_avx2
+        movsxd  g3q, g3d
+        test    g3q, g3q
         jg      .start
-        xor     eax, eax                ; negative or zero: 0, nothing touched
-        ret
+        xor     rvd, rvd                ; negative or zero: 0, nothing touched
+        RET_NOFRAME clean
 .start:
-        push    rbx
-        push    rbp
-        push    r12
-        push    r13
-        push    r14
-        push    r15
-        sub     rsp, FRAME
-        mov     r12, rdi
-        mov     r13, rdi
-        mov     r14, rdx
-        lea     r15, [positions]
-        lea     r11, [xor_by_f2]
+        PROLOGUE 4, 14, 15, FRAME, shadowIndices, facing, silEdges, numSilEdges
+        mov     g10q, g0q
+        mov     g11q, g0q
+        mov     g12q, g2q
+        lea     g13q, [positions]
+        lea     g7q, [xor_by_f2]
         vpbroadcastd ymm7, [step16]
         vmovdqa ymm14, [idx_lo]
-        mov     rbx, rdx
-        shl     rcx, 4
-        lea     rdi, [rdx + rcx]        ; end of the edges
+        mov     g8q, g2q
+        shl     g3q, 4
+        lea     g0q, [g2q + g3q]        ; end of the edges
 
 .chunk:
         ; ---- phase 1: list the silhouette edges of [rbx, chunk end)
-        xor     ebp, ebp
-        lea     r10, [rbx + CHUNK*16]
-        cmp     r10, rdi
-        cmova   r10, rdi
-        mov     rdx, rbx
-        mov     rax, rbx
-        sub     rax, r14
-        shr     rax, 3                  ; 2 * first edge number (< 2^32)
-        vmovd   xmm6, eax
+        xor     g9d, g9d
+        lea     g6q, [g8q + CHUNK*16]
+        cmp     g6q, g0q
+        cmova   g6q, g0q
+        mov     g2q, g8q
+        mov     rvq, g8q
+        sub     rvq, g12q
+        shr     rvq, 3                  ; 2 * first edge number (< 2^32)
+        vmovd   xmm6, rvd
         vpbroadcastd ymm6, xmm6
-        sub     r10, 256
-        cmp     rdx, r10
+        sub     g6q, 256
+        cmp     g2q, g6q
         ja      .group8
 .group16:
         MASK8   0
-        mov     ecx, eax
+        mov     g3d, rvd
         MASK8   128
-        PACK8   rcx, ymm1
-        PACK8   rax, ymm2
-        add     rdx, 256
-        cmp     rdx, r10
+        PACK8   g3q, ymm1
+        PACK8   rvq, ymm2
+        add     g2q, 256
+        cmp     g2q, g6q
         jbe     .group16
 .group8:
-        add     r10, 128
-        cmp     rdx, r10
+        add     g6q, 128
+        cmp     g2q, g6q
         ja      .rest
         MASK8   0
-        PACK8   rax, ymm1
-        add     rdx, 128
+        PACK8   rvq, ymm1
+        add     g2q, 128
 .rest:                                  ; the last 0..7 edges (of the array)
-        add     r10, 128
-        cmp     rdx, r10
+        add     g6q, 128
+        cmp     g2q, g6q
         jae     .emit
 .rest1:
-        movsxd  r8, dword [rdx]
-        movsxd  r9, dword [rdx + 4]
-        movzx   r8d, byte [rsi + r8]
-        xor     r8b, [rsi + r9]
-        mov     rax, rdx
-        sub     rax, r14
-        shr     rax, 3
-        mov     [rsp + rbp*4], eax
-        add     rbp, r8
-        add     rdx, 16
-        cmp     rdx, r10
+        movsxd  g4q, dword [g2q]
+        movsxd  g5q, dword [g2q + 4]
+        movzx   g4d, byte [g1q + g4q]
+        xor     g4b, [g1q + g5q]
+        mov     rvq, g2q
+        sub     rvq, g12q
+        shr     rvq, 3
+        mov     [rsp + g9q*4], rvd
+        add     g9q, g4q
+        add     g2q, 16
+        cmp     g2q, g6q
         jb      .rest1
 
         ; ---- phase 2: six indices per listed edge, in order
 .emit:
-        mov     rbx, rdx                ; the next chunk
-        sub     ebp, 1                  ; index of the last entry
+        mov     g8q, g2q                ; the next chunk
+        sub     g9d, 1                  ; index of the last entry
         jb      .next                   ; none
-        xor     eax, eax
+        xor     rvd, rvd
 .emit2:                                 ; all but the last: 32-byte stores
-        lea     ecx, [rax + 2]
-        cmp     ecx, ebp
+        lea     g3d, [rvq + 2]
+        cmp     g3d, g9d
         ja      .emit1
-        EMIT1   0, [r14 + rdx*8], ymm1  ; (never the array's last edge)
-        EMIT1   1, [r14 + rdx*8], ymm2
-        vmovdqu [r12], ymm1
-        vmovdqu [r12 + 24], ymm2
-        add     r12, 48
-        add     eax, 2
+        EMIT1   0, [g12q + g2q*8], ymm1  ; (never the array's last edge)
+        EMIT1   1, [g12q + g2q*8], ymm2
+        vmovdqu [g10q], ymm1
+        vmovdqu [g10q + 24], ymm2
+        add     g10q, 48
+        add     rvd, 2
         jmp     .emit2
 .emit1:
-        cmp     eax, ebp
+        cmp     rvd, g9d
         jae     .emitlast
-        EMIT1   0, [r14 + rdx*8], ymm1
-        vmovdqu [r12], ymm1
-        add     r12, 24
-        inc     eax
+        EMIT1   0, [g12q + g2q*8], ymm1
+        vmovdqu [g10q], ymm1
+        add     g10q, 24
+        inc     rvd
 .emitlast:                              ; 16 bytes in; exactly six ints out
-        mov     edx, [rsp + rax*4]
-        vmovdqu xmm0, [r14 + rdx*8]     ; p1 p2 v1 v2
+        mov     g2d, [rsp + rvq*4]
+        vmovdqu xmm0, [g12q + g2q*8]     ; p1 p2 v1 v2
         EMIT1   0, ymm0, ymm1
-        vmovdqu [r12], xmm1
+        vmovdqu [g10q], xmm1
         vextracti128 xmm2, ymm1, 1
-        vmovq   [r12 + 16], xmm2
-        add     r12, 24
+        vmovq   [g10q + 16], xmm2
+        add     g10q, 24
 .next:
-        cmp     rbx, rdi
+        cmp     g8q, g0q
         jb      .chunk
 
-        mov     rax, r12                ; return (end - shadowIndices) / 4
-        sub     rax, r13
-        shr     rax, 2
-        add     rsp, FRAME
-        pop     r15
-        pop     r14
-        pop     r13
-        pop     r12
-        pop     rbp
-        pop     rbx
-        vzeroupper
-        ret
-ENDFUNCTION
+        mov     rvq, g10q                ; return (end - shadowIndices) / 4
+        sub     rvq, g11q
+        shr     rvq, 2
+        RET
+ENDFUNC

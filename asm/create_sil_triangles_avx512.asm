@@ -62,13 +62,13 @@
 ; int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
 ;                                    const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map (across the AVX2 call: rax, rdx, rdi, r8 saved in the frame,
+; Register map (asm/sv_abi.inc names; rv = rax) (across the AVX2 call: rvq, g2q, g0q, g4q saved in the frame,
 ; zmm25, zmm27-zmm31 reloaded):
-;   rdi  facing; rdx the chunk's edges; rax edges after this chunk
-;   r8   output pointer; r12 edges in the chunk; r13 list length
-;   r15  the ^1 pattern table; r14, rcx, rsi, r10 scratch
-;   rbx  block counter; r11 offset of the block's P1, P2
-;   rbp  the frame: rsp 64-byte aligned below it; shadowIndices and the
+;   g0q  facing; g2q the chunk's edges; rvq edges after this chunk
+;   g4q   output pointer; g10q edges in the chunk; g11q list length
+;   g13q  the ^1 pattern table; g12q, g3q, g1q, g6q scratch
+;   g8q  block counter; g7q offset of the block's P1, P2
+;   g9q  the frame: rsp 64-byte aligned below it; shadowIndices and the
 ;        bitmap's window [lo64, end) in its first slots
 ;   zmm0-zmm3 16 edges; zmm4, zmm5 their p1 / p2 halves (pass A), then
 ;   P1, P2 (pass B); zmm6, zmm7 P1, P2 (pass A), zmm6-zmm9 lookup scratch
@@ -87,29 +87,16 @@
 ;   alignment anywhere. numSilEdges >= 0 (negative returns 0, touches
 ;   nothing). Stack: 7.6 KiB.
 ;
-; Measured cost (`shadowvol bench --variant c_ref --variant sse2_paper
-;   --variant avx512`, the 1344-triangle character, 4 runs, the lowest min
-;   and lowest median of the runs; AMD EPYC "Turin-like" KVM guest (Zen 5
-;   class), TSC 2.097 GHz, ticks):
-;   moving light 1638 / 1680 for 2016 SilEdges, 12% on the silhouette
-;   (sse2_paper 3339 / 3381, c_ref 2121 / 2226); fixed light 1596 / 1638
-;   (sse2_paper 3339 / 3360). Per SilEdge about 0.8 ticks. Commit 47e1ddb
-;   (P1 / P2 split; `bench --limits`): 1323 / 1386, 0.69 ticks per edge
-;   (sse2_paper 3360 / 3381, c_ref 2079 / 2226); fixed light 1323 / 1365;
-;   the floor of a kernel that looks facing up with loads is 716 there. Larger meshes (commit 6e7482c,
-;   `bench --scaling --routine create_sil_triangles`, median per SilEdge,
-;   avx512 / avx2 / c_ref): spot.glb 0.77 / 0.77 / 1.39, koala.glb 0.94 /
-;   0.94 / 1.52, the 979776-triangle character 0.83 / 0.89 / 0.95: above
-;   3072 SilEdges both rows run the AVX2 kernel, so their difference there
-;   is run-to-run noise, not a result.
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
 %include "sv_abi.inc"
 
-extern sv_create_sil_triangles_avx2
+SV_EXTERN sv_create_sil_triangles_avx2
 
-section .rodata align=64
+RODATA
 align 64
 sil_pick_p:                             ; over 2 zmm of 8 edges: their p1, then p2
 %assign j 0
@@ -169,41 +156,42 @@ sil_c256: dd 256
 %define SIL_BASE    0                           ; shadowIndices
 %define SIL_WLO     8                           ; bitmap window: first byte (x 64)
 %define SIL_WEND    16                          ;   and one past its last
-%define SIL_SAVE_AFTER  24                      ; across the AVX2 call (.scalar):
+%define SIL_SAVE_AFTER  24                      ; across the AVX2 call (.chunk_via_avx2):
 %define SIL_SAVE_EDGES  32                      ;   edges after the chunk, the
 %define SIL_SAVE_FACING 40                      ;   chunk, facing, the output
 %define SIL_SAVE_OUT    48                      ;   pointer
 %define SIL_BM      64                          ; 256 bytes: 2048 facing bits
-%define SIL_PP      (SIL_BM + 256)              ; SIL_CHUNK qwords
-%define SIL_LA      (SIL_PP + SIL_CHUNK * 8)    ; (SIL_CHUNK + 16) dwords
-%define SIL_LB      (SIL_LA + (SIL_CHUNK + 16) * 4)
-%define SIL_FRAME   (SIL_LB + (SIL_CHUNK + 16) * 4)
+%define SIL_P1P2    (SIL_BM + 256)              ; SIL_CHUNK qwords: P1, P2 per block
+%define SIL_LIST_OFS (SIL_P1P2 + SIL_CHUNK * 8)  ; (SIL_CHUNK + 16) dwords: byte
+                                                ;   offsets of the silhouette edges
+%define SIL_LIST_F1 (SIL_LIST_OFS + (SIL_CHUNK + 16) * 4) ; their 64 * f1
+%define SIL_FRAME   (SIL_LIST_F1 + (SIL_CHUNK + 16) * 4)
 
 ; Pass A over one block of 16 edges at rbx (%1 = 1: the last 1-15 edges,
-; rcx = their number): P1 (p1 of edges 0-15) to [rsp+SIL_PP+r11] and P2
+; rcx = their number): P1 (p1 of edges 0-15) to [rsp+SIL_P1P2+r11] and P2
 ; (their p2) to the next 64 bytes; their minima into zmm14, zmm15 and
 ; maxima into zmm12, zmm13.
 %macro SIL_PAIRS 1
 %if %1 == 0
-        vmovdqu32 zmm0, [rbx+0*64]
-        vmovdqu32 zmm1, [rbx+1*64]
-        vmovdqu32 zmm2, [rbx+2*64]
-        vmovdqu32 zmm3, [rbx+3*64]
+        vmovdqu32 zmm0, [g8q+0*64]
+        vmovdqu32 zmm1, [g8q+1*64]
+        vmovdqu32 zmm2, [g8q+2*64]
+        vmovdqu32 zmm3, [g8q+3*64]
 %else
-        lea     r10d, [rcx*4]                   ; dwords left (<= 60)
-        mov     r14, -1
-        bzhi    r14, r14, r10
-        kmovq   k1, r14
+        lea     g6d, [g3q*4]                   ; dwords left (<= 60)
+        mov     g12q, -1
+        bzhi    g12q, g12q, g6q
+        kmovq   k1, g12q
         kshiftrq k2, k1, 16
         kshiftrq k3, k1, 32
         kshiftrq k4, k1, 48
-        vmovdqu32 zmm0{k1}{z}, [rbx+0*64]       ; missing edges: all zero, p1 = p2
-        vmovdqu32 zmm1{k2}{z}, [rbx+1*64]
-        vmovdqu32 zmm2{k3}{z}, [rbx+2*64]
-        vmovdqu32 zmm3{k4}{z}, [rbx+3*64]
-        mov     r10d, -1
-        bzhi    r10d, r10d, ecx
-        kmovw   k1, r10d                        ; the edges that exist
+        vmovdqu32 zmm0{k1}{z}, [g8q+0*64]       ; missing edges: all zero, p1 = p2
+        vmovdqu32 zmm1{k2}{z}, [g8q+1*64]
+        vmovdqu32 zmm2{k3}{z}, [g8q+2*64]
+        vmovdqu32 zmm3{k4}{z}, [g8q+3*64]
+        mov     g6d, -1
+        bzhi    g6d, g6d, g3d
+        kmovw   k1, g6d                        ; the edges that exist
 %endif
         vmovdqa64 zmm4, zmm27
         vmovdqa64 zmm5, zmm27
@@ -220,8 +208,8 @@ sil_c256: dd 256
         vpminud zmm14{k1}, zmm14, zmm6          ; the edges that exist
         vpminud zmm15{k1}, zmm15, zmm7
 %endif
-        vmovdqa64 [rsp+SIL_PP+r11+0], zmm6
-        vmovdqa64 [rsp+SIL_PP+r11+64], zmm7
+        vmovdqa64 [rsp+SIL_P1P2+g7q+0], zmm6
+        vmovdqa64 [rsp+SIL_P1P2+g7q+64], zmm7
 %endmacro
 
 ; The largest (%1 = vpmaxud) or smallest (vpminud) lane of zmm %2 | %3
@@ -261,114 +249,110 @@ sil_c256: dd 256
         vpcompressd zmm10{k3}{z}, zmm26         ; offsets of the silhouette edges
         vpbroadcastd zmm11{k1}{z}, [sil_c64]    ; 64 * f1
         vpcompressd zmm11{k3}{z}, zmm11
-        kmovw   r10d, k3
-        vmovdqu32 [rsp+SIL_LA+r13*4], zmm10
-        vmovdqu32 [rsp+SIL_LB+r13*4], zmm11
-        popcnt  r10d, r10d
-        add     r13, r10
+        kmovw   g6d, k3
+        vmovdqu32 [rsp+SIL_LIST_OFS+g11q*4], zmm10
+        vmovdqu32 [rsp+SIL_LIST_F1+g11q*4], zmm11
+        popcnt  g6d, g6d
+        add     g11q, g6q
         vpaddd  zmm26, zmm26, [sil_c256]{1to16}
 %endmacro
 
-FUNCTION sv_create_sil_triangles_avx512
-        mov     r8, arg1q                       ; output pointer
-        mov     eax, arg4d                      ; numSilEdges
-        test    eax, eax
+VEC_ZMM
+FUNC sv_create_sil_triangles_avx512
+        mov     g4q, g0q                       ; output pointer
+        mov     rvd, g3d                      ; numSilEdges
+        test    rvd, rvd
         jle     .zero                           ; negative or zero: touch nothing
-        cmp     eax, SIL_AVX2_ABOVE
+        cmp     rvd, SIL_AVX2_ABOVE
         jg      .avx2                           ; a large mesh: the AVX2 kernel
 
-        push    rbx
-        push    rbp
-        push    r12
-        push    r13
-        push    r14
-        push    r15
-        mov     rbp, rsp
+        PROLOGUE 4, 14, 32, shadowIndices, facing, silEdges, numSilEdges
+        mov     g9q, rsp
         sub     rsp, 4096
         or      qword [rsp], 0                  ; probe the first page
         sub     rsp, SIL_FRAME - 4096
         and     rsp, -64
-        mov     [rsp+SIL_BASE], r8              ; (the second page)
-        mov     rdi, rsi                        ; facing
-        xor     ecx, ecx
-        mov     [rsp+SIL_WLO], rcx              ; no window yet
-        mov     [rsp+SIL_WEND], rcx
+        mov     [rsp+SIL_BASE], g4q              ; (the second page)
+        mov     g0q, g1q                        ; facing
+        xor     g3d, g3d
+        mov     [rsp+SIL_WLO], g3q              ; no window yet
+        mov     [rsp+SIL_WEND], g3q
         vmovdqa64 zmm27, [sil_pick_p]
         vmovdqa64 zmm25, [sil_pair]
-        lea     r15, [sil_pat2]
+        lea     g13q, [sil_pat2]
 
 .chunk:                                         ; rdx: the chunk's edges
-        mov     r12, rax
-        mov     ecx, SIL_CHUNK
-        cmp     r12, rcx
-        cmova   r12, rcx                        ; edges in this chunk
-        sub     rax, r12                        ; edges after it
+        mov     g10q, rvq
+        mov     g3d, SIL_CHUNK
+        cmp     g10q, g3q
+        cmova   g10q, g3q                        ; edges in this chunk
+        sub     rvq, g10q                        ; edges after it
 
         ; Pass A: pairs, their minimum and maximum.
         vpxord  xmm12, xmm12, xmm12
         vpxord  xmm13, xmm13, xmm13
         vpternlogd zmm14, zmm14, zmm14, 0xFF
         vpternlogd zmm15, zmm15, zmm15, 0xFF
-        mov     rbx, rdx
-        xor     r11d, r11d                      ; pairs offset
-        mov     rcx, r12
-        sub     rcx, 16
+        mov     g8q, g2q
+        xor     g7d, g7d                      ; pairs offset
+        mov     g3q, g10q
+        sub     g3q, 16
         jb      .a_tail
 .a_loop:
         SIL_PAIRS 0
-        add     rbx, 256
-        add     r11, 128
-        sub     rcx, 16
+        add     g8q, 256
+        add     g7q, 128
+        sub     g3q, 16
         jae     .a_loop
 .a_tail:
-        add     rcx, 16                         ; 0-15 (only in the last chunk)
+        add     g3q, 16                         ; 0-15 (only in the last chunk)
         jz      .a_done
         SIL_PAIRS 1
 .a_done:
-        SIL_REDUCE vpmaxud, 12, 13, r10d        ; hi
-        SIL_REDUCE vpminud, 14, 15, esi         ; lo
-        and     esi, -64                        ; lo64
-        mov     ecx, r10d
-        sub     ecx, esi
-        cmp     ecx, 2048
-        jae     .scalar                         ; too wide for the bitmap
-        lea     r11d, [r10+1]                   ; the bytes needed end here
-        mov     rcx, [rsp+SIL_WEND]
-        cmp     rsi, [rsp+SIL_WLO]
+        SIL_REDUCE vpmaxud, 12, 13, g6d        ; hi
+        SIL_REDUCE vpminud, 14, 15, g1d         ; lo
+        and     g1d, -64                        ; lo64
+        mov     g3d, g6d
+        sub     g3d, g1d
+        cmp     g3d, 2048
+        jae     .chunk_via_avx2                         ; too wide for the bitmap
+        lea     g7d, [g6q+1]                   ; the bytes needed end here
+        mov     g3q, [rsp+SIL_WEND]
+        cmp     g1q, [rsp+SIL_WLO]
         jb      .window                         ; below the window: a new one
-        cmp     rsi, rcx
+        cmp     g1q, g3q
         jae     .window                         ; above it: a new one
-        mov     [rsp+SIL_WLO], rsi              ; lo64 .. old end: still there
-        cmp     r11, rcx
+        mov     [rsp+SIL_WLO], g1q              ; lo64 .. old end: still there
+        cmp     g7q, g3q
         jbe     .b                              ; the window covers lo .. hi
-        mov     rsi, rcx                        ; extend it: from the 64 bytes
-        and     esi, -64                        ; that hold its last byte
+        mov     g1q, g3q                        ; extend it: from the 64 bytes
+        and     g1d, -64                        ; that hold its last byte
         jmp     .fill
 .window:
-        mov     [rsp+SIL_WLO], rsi              ; a new window at lo64
+        mov     [rsp+SIL_WLO], g1q              ; a new window at lo64
 .fill:  ; the bits of facing[rsi .. r11) (rsi a multiple of 64) into the
         ; circular bitmap: byte p at bit p mod 2048, 64 bytes per vptestmb;
         ; the last load masked: nothing past facing[hi] is read. What it
         ; overwrites lies below lo64 (hi + 1 - lo64 <= 2048).
-        mov     [rsp+SIL_WEND], r11
-        sub     r11d, esi                       ; bytes, 1 .. 2048
-        mov     ecx, esi
-        shr     ecx, 3                          ; its bitmap qword, times 8
-        add     rsi, rdi
+        mov     [rsp+SIL_WEND], g7q
+        sub     g7d, g1d                       ; bytes, 1 .. 2048
+        mov     g3d, g1d
+        shr     g3d, 3                          ; its bitmap qword, times 8
+        add     g1q, g0q
 .fill64:
-        mov     ebx, 64
-        cmp     r11d, ebx
-        cmovb   ebx, r11d                       ; min(bytes left, 64)
-        mov     r10, -1
-        bzhi    r10, r10, rbx                   ; (bzhi reads 8 bits of the count)
-        kmovq   k1, r10
-        vmovdqu8 zmm0{k1}{z}, [rsi]
+        mov     g8d, 64
+        cmp     g7d, g8d
+        cmovb   g8d, g7d                       ; min(bytes left, 64)
+        mov     g6q, -1
+        bzhi    g6q, g6q, g8q                   ; (bzhi reads 8 bits of the count)
+        kmovq   k1, g6q
+        vmovdqu8 zmm0{k1}{z}, [g1q]
         vptestmb k1, zmm0, zmm0
-        and     ecx, 255
-        kmovq   [rsp+SIL_BM+rcx], k1
-        add     ecx, 8
-        add     rsi, 64
-        sub     r11d, 64
+        and     g3d, 255
+        kmovq   [rsp+SIL_BM+g3q], k1
+        add     g3d, 8
+        add     g1q, 64
+        sub     g7d, 64
         jg      .fill64
         vmovdqa64 zmm28, [rsp+SIL_BM+0*64]      ; (bits outside lo64 .. hi: never
         vmovdqa64 zmm29, [rsp+SIL_BM+1*64]      ;  looked up)
@@ -376,41 +360,41 @@ FUNCTION sv_create_sil_triangles_avx512
         vmovdqa64 zmm31, [rsp+SIL_BM+3*64]
 
 .b:     ; Pass B with the bitmap.
-        xor     r13d, r13d                      ; list length
+        xor     g11d, g11d                      ; list length
         vmovdqa64 zmm26, [sil_off]              ; 16 * t
-        xor     r11d, r11d
-        lea     rbx, [r12+15]
-        shr     rbx, 4                          ; blocks (the last may be partial)
+        xor     g7d, g7d
+        lea     g8q, [g10q+15]
+        shr     g8q, 4                          ; blocks (the last may be partial)
 .b_loop:
-        vmovdqa64 zmm4, [rsp+SIL_PP+r11+0]      ; P1
-        vmovdqa64 zmm5, [rsp+SIL_PP+r11+64]     ; P2
+        vmovdqa64 zmm4, [rsp+SIL_P1P2+g7q+0]      ; P1
+        vmovdqa64 zmm5, [rsp+SIL_P1P2+g7q+64]     ; P2
         SIL_BITS zmm4, k1, zmm6, zmm7           ; F1: bit t = f1 of edge t
         SIL_BITS zmm5, k2, zmm8, zmm9           ; F2
         SIL_EMIT
-        add     r11, 128
-        sub     rbx, 1
+        add     g7q, 128
+        sub     g8q, 1
         jnz     .b_loop
         jmp     .c
 
-.scalar:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
+.chunk_via_avx2:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
         ; (its scalar lookups, ~0.8-1.0 ticks per edge, measured faster on
         ; such chunks than sixteen lookups folded into masks here, ~1.4).
         ; An ordinary System V call: what must survive goes to the frame,
         ; and the vector registers kept across chunks are reloaded after.
-        mov     [rsp+SIL_SAVE_AFTER], rax
-        mov     [rsp+SIL_SAVE_EDGES], rdx
-        mov     [rsp+SIL_SAVE_FACING], rdi
-        mov     [rsp+SIL_SAVE_OUT], r8
-        mov     rsi, rdi                        ; facing
-        mov     rdi, r8                         ; output
-        mov     ecx, r12d                       ; edges in the chunk (<= 448)
-        call    sv_create_sil_triangles_avx2 wrt ..plt
-        mov     r8, [rsp+SIL_SAVE_OUT]
-        mov     eax, eax                        ; an int: its upper half is undefined
-        lea     r8, [r8+rax*4]                  ; past the ints it wrote (>= 0)
-        mov     rax, [rsp+SIL_SAVE_AFTER]
-        mov     rdx, [rsp+SIL_SAVE_EDGES]
-        mov     rdi, [rsp+SIL_SAVE_FACING]
+        mov     [rsp+SIL_SAVE_AFTER], rvq
+        mov     [rsp+SIL_SAVE_EDGES], g2q
+        mov     [rsp+SIL_SAVE_FACING], g0q
+        mov     [rsp+SIL_SAVE_OUT], g4q
+        mov     g1q, g0q                        ; facing
+        mov     g0q, g4q                         ; output
+        mov     g3d, g10d                       ; edges in the chunk (<= 448)
+        CALL_SV    sv_create_sil_triangles_avx2
+        mov     g4q, [rsp+SIL_SAVE_OUT]
+        mov     rvd, rvd                        ; an int: its upper half is undefined
+        lea     g4q, [g4q+rvq*4]                  ; past the ints it wrote (>= 0)
+        mov     rvq, [rsp+SIL_SAVE_AFTER]
+        mov     g2q, [rsp+SIL_SAVE_EDGES]
+        mov     g0q, [rsp+SIL_SAVE_FACING]
         vmovdqa64 zmm27, [sil_pick_p]
         vmovdqa64 zmm25, [sil_pair]
         vmovdqa64 zmm28, [rsp+SIL_BM+0*64]      ; the window, as it was
@@ -420,61 +404,54 @@ FUNCTION sv_create_sil_triangles_avx512
         jmp     .c_done
 
 .c:     ; Pass C: the six ints of each listed edge, two edges at a time
-        mov     ecx, 0xFFF
-        kmovw   k6, ecx                         ; twelve ints
-        mov     ecx, 0x3F
-        kmovw   k7, ecx                         ; six ints
-        xor     ecx, ecx
-        sub     r13, 2
+        mov     g3d, 0xFFF
+        kmovw   k6, g3d                         ; twelve ints
+        mov     g3d, 0x3F
+        kmovw   k7, g3d                         ; six ints
+        xor     g3d, g3d
+        sub     g11q, 2
         jb      .c_one
 .c_loop:
-        mov     r10d, [rsp+SIL_LA+rcx*4]        ; byte offsets of edges a, b
-        mov     r11d, [rsp+SIL_LA+rcx*4+4]
-        vpbroadcastq zmm0, [rdx+r10+8]          ; (v1, v2) of a, eight times
-        vpbroadcastq zmm1, [rdx+r11+8]          ; of b
-        mov     r10d, [rsp+SIL_LB+rcx*4]        ; 64 * f1 of a, b
-        mov     r11d, [rsp+SIL_LB+rcx*4+4]
-        lea     r10, [r11+r10*2]                ; their pattern pair
+        mov     g6d, [rsp+SIL_LIST_OFS+g3q*4]        ; byte offsets of edges a, b
+        mov     g7d, [rsp+SIL_LIST_OFS+g3q*4+4]
+        vpbroadcastq zmm0, [g2q+g6q+8]          ; (v1, v2) of a, eight times
+        vpbroadcastq zmm1, [g2q+g7q+8]          ; of b
+        mov     g6d, [rsp+SIL_LIST_F1+g3q*4]        ; 64 * f1 of a, b
+        mov     g7d, [rsp+SIL_LIST_F1+g3q*4+4]
+        lea     g6q, [g7q+g6q*2]                ; their pattern pair
         vpermt2d zmm0, zmm25, zmm1              ; a: v1 v2 v2 v1 v1 v2, then b's
-        vpxord  zmm0, zmm0, [r15+r10]           ; the ^1 patterns of f1a, f1b
-        vmovdqu32 [r8]{k6}, zmm0                ; twelve ints
-        add     r8, 48
-        add     rcx, 2
-        cmp     rcx, r13
+        vpxord  zmm0, zmm0, [g13q+g6q]           ; the ^1 patterns of f1a, f1b
+        vmovdqu32 [g4q]{k6}, zmm0                ; twelve ints
+        add     g4q, 48
+        add     g3q, 2
+        cmp     g3q, g11q
         jbe     .c_loop
 .c_one:
-        add     r13, 2
-        cmp     rcx, r13
+        add     g11q, 2
+        cmp     g3q, g11q
         jae     .c_done
-        mov     r10d, [rsp+SIL_LA+rcx*4]        ; an odd one left
-        mov     r11d, [rsp+SIL_LB+rcx*4]
-        vpbroadcastq zmm0, [rdx+r10+8]
+        mov     g6d, [rsp+SIL_LIST_OFS+g3q*4]        ; an odd one left
+        mov     g7d, [rsp+SIL_LIST_F1+g3q*4]
+        vpbroadcastq zmm0, [g2q+g6q+8]
         vpermt2d zmm0, zmm25, zmm0
-        vpxord  zmm0, zmm0, [r15+r11*2]         ; (f1, 0): lanes 0-5 are f1's
-        vmovdqu32 [r8]{k7}, zmm0                ; six ints
-        add     r8, 24
+        vpxord  zmm0, zmm0, [g13q+g7q*2]         ; (f1, 0): lanes 0-5 are f1's
+        vmovdqu32 [g4q]{k7}, zmm0                ; six ints
+        add     g4q, 24
 .c_done:
-        shl     r12, 4
-        add     rdx, r12                        ; next chunk
-        test    rax, rax
+        shl     g10q, 4
+        add     g2q, g10q                        ; next chunk
+        test    rvq, rvq
         jnz     .chunk
 
-        mov     rax, r8
-        sub     rax, [rsp+SIL_BASE]
-        shr     rax, 2                          ; ints written
-        mov     rsp, rbp
-        pop     r15
-        pop     r14
-        pop     r13
-        pop     r12
-        pop     rbp
-        pop     rbx
-        vzeroupper
-        ret
+        mov     rvq, g4q
+        sub     rvq, [rsp+SIL_BASE]
+        shr     rvq, 2                          ; ints written
+        mov     rsp, g9q
+        RET
 
 .zero:
-        xor     eax, eax
-        ret
+        xor     rvd, rvd
+        RET_NOFRAME clean
 .avx2:  ; same arguments, same registers: a tail call
-        jmp     sv_create_sil_triangles_avx2 wrt ..plt
-ENDFUNCTION
+        TAIL_SV sv_create_sil_triangles_avx2, clean
+ENDFUNC

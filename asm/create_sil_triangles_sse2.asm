@@ -26,14 +26,14 @@
 ; int sv_create_sil_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
 ;                                        const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map (listing -> port):
-;   eax  negative byte offset from the end of silEdges -> rax (64-bit)
+; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
+;   eax  negative byte offset from the end of silEdges -> rvq (64-bit)
 ;   ebx  output pointer / 8 in the 1st and 3rd edge of loop4, scratch (f2,
-;        then the next pointer) in the 2nd and 4th  -> rbx (pushed)
-;   edx  the other way round                        -> rdx
-;   ecx  f1, then f1 ^ f2                              -> rcx
-;   esi  facing                                        -> rsi (2nd argument)
-;   edi  silEdges + numSilEdges (end pointer)          -> rdi
+;        then the next pointer) in the 2nd and 4th  -> g8q (pushed)
+;   edx  the other way round                        -> g2q
+;   ecx  f1, then f1 ^ f2                              -> g3q
+;   esi  facing                                        -> g1q (2nd argument)
+;   edi  silEdges + numSilEdges (end pointer)          -> g0q
 ;   r8   shadowIndices, kept for the return value (the listing re-reads it)
 ;   xmm2/xmm3 (f1, f2, 0, 0); xmm0 the indices; xmm1 (0, f1, f2, f2)
 ;
@@ -52,11 +52,8 @@
 ;   and casts a pointer to int; 16 * numSilEdges is computed in 32 bits
 ;   (wraps for 2^27 edges and more): the port computes it in 64.
 ;
-; Measured cost (`shadowvol bench`, commit c8ba0ec, moving light, the
-;   1344-triangle / 2016-edge workload; AMD EPYC "Turin-like" KVM guest, TSC
-;   2.097 GHz, cpuid-serialised rdtsc, medians): 3402 ticks, 1.69 ticks per SilEdge (c_ref
-;   10647, c_branchless 6825).
-;   The paper's Pentium 4: 32292 cycles (130 nm), 36901 (90 nm).
+; Cost: not kept here (figures go stale); `shadowvol bench` measures it
+;   on the machine at hand and docs/benchmark.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.
@@ -73,87 +70,82 @@
 ; Written out as a macro only to keep the four copies identical; the
 ; expansion is instruction for instruction the listing's.
 %macro SIL_EDGE 4
-        movsxd  rcx, dword [rdi+rax-%1*16+0]        ; p1
-        movzx   ecx, byte [rsi+rcx]                  ; f1
-        movd    %2, ecx
-        movsxd  %4, dword [rdi+rax-%1*16+4]         ; p2
-        movzx   %4d, byte [rsi+%4]                   ; f2
+        movsxd  g3q, dword [g0q+rvq-%1*16+0]        ; p1
+        movzx   g3d, byte [g1q+g3q]                  ; f1
+        movd    %2, g3d
+        movsxd  %4q, dword [g0q+rvq-%1*16+4]         ; p2
+        movzx   %4d, byte [g1q+%4q]                   ; f2
         pinsrw  %2, %4d, 2                           ; (f1, f2, 0, 0)
-        movq    xmm0, qword [rdi+rax-%1*16+8]       ; (v1, v2, 0, 0)
+        movq    xmm0, qword [g0q+rvq-%1*16+8]       ; (v1, v2, 0, 0)
         pshufd  xmm1, %2, SHUFFLE_D(2, 0, 1, 1)      ; (0, f1, f2, f2)
-        xor     ecx, %4d                             ; f1 ^ f2
+        xor     g3d, %4d                             ; f1 ^ f2
         pshufd  xmm0, xmm0, SHUFFLE_D(0, 1, 1, 0)    ; (v1, v2, v2, v1)
-        lea     %4d, [rcx*2+rcx]                     ; 3 * (f1 ^ f2)
+        lea     %4d, [g3q*2+g3q]                     ; 3 * (f1 ^ f2)
         pxor    xmm0, xmm1                           ; (v1, v2^f1, v2^f2, v1^f2)
-        add     %4, %3                               ; next pointer / 8
-        movlps  qword [%3*8+0*4], xmm0
+        add     %4q, %3q                               ; next pointer / 8
+        movlps  qword [%3q*8+0*4], xmm0
         pxor    %2, xmm0                             ; (v1^f1, v2^f2^f1, ..)
-        movhps  qword [%3*8+2*4], xmm0
+        movhps  qword [%3q*8+2*4], xmm0
 %endmacro
 
-%define rbxd ebx
-%define rdxd edx
-
-FUNCTION sv_create_sil_triangles_sse2_paper
-        push    rbx
-        movsxd  rax, arg4d              ; numSilEdges
-        mov     rbx, arg1q              ; shadowIndices
-        mov     r8, arg1q
+FUNC sv_create_sil_triangles_sse2_paper, 4, 9, 4, shadowIndices, facing, silEdges, numSilEdges
+        movsxd  rvq, g3d              ; numSilEdges
+        mov     g8q, g0q              ; shadowIndices
+        mov     g4q, g0q
         ; rsi = facing already
-        mov     rdi, arg3q              ; silEdges
-        shr     rbx, 3                  ; moved above the early exit (erratum E-1)
-        shl     rax, 4                  ; 64-bit: no wrap (erratum E-3)
+        mov     g0q, g2q              ; silEdges
+        shr     g8q, 3                  ; moved above the early exit (erratum E-1)
+        shl     rvq, 4                  ; 64-bit: no wrap (erratum E-3)
         jz      .done
-        add     rdi, rax
-        neg     rax
+        add     g0q, rvq
+        neg     rvq
 
-        add     rax, 4*16
+        add     rvq, 4*16
         jg      .run1
 
 .loop4:
-        SIL_EDGE 4, xmm2, rbx, rdx
-        movlps  qword [rbx*8+4*4], xmm2
-        SIL_EDGE 3, xmm3, rdx, rbx
-        movlps  qword [rdx*8+4*4], xmm3
-        SIL_EDGE 2, xmm2, rbx, rdx
-        movlps  qword [rbx*8+4*4], xmm2
-        SIL_EDGE 1, xmm3, rdx, rbx
-        add     rax, 4*16               ; the listing moves this above the last store
-        movlps  qword [rdx*8+4*4], xmm3
+        SIL_EDGE 4, xmm2, g8, g2
+        movlps  qword [g8q*8+4*4], xmm2
+        SIL_EDGE 3, xmm3, g2, g8
+        movlps  qword [g2q*8+4*4], xmm3
+        SIL_EDGE 2, xmm2, g8, g2
+        movlps  qword [g8q*8+4*4], xmm2
+        SIL_EDGE 1, xmm3, g2, g8
+        add     rvq, 4*16               ; the listing moves this above the last store
+        movlps  qword [g2q*8+4*4], xmm3
 
         jle     .loop4
 
 .run1:
-        sub     rax, 4*16
+        sub     rvq, 4*16
         jge     .done
 
 .loop1:
-        movsxd  rcx, dword [rdi+rax+0]
-        movzx   ecx, byte [rsi+rcx]
-        movd    xmm2, ecx
-        movsxd  rdx, dword [rdi+rax+4]
-        movzx   edx, byte [rsi+rdx]
-        pinsrw  xmm2, edx, 2
-        movq    xmm0, qword [rdi+rax+8]
+        movsxd  g3q, dword [g0q+rvq+0]
+        movzx   g3d, byte [g1q+g3q]
+        movd    xmm2, g3d
+        movsxd  g2q, dword [g0q+rvq+4]
+        movzx   g2d, byte [g1q+g2q]
+        pinsrw  xmm2, g2d, 2
+        movq    xmm0, qword [g0q+rvq+8]
         pshufd  xmm1, xmm2, SHUFFLE_D(2, 0, 1, 1)
         pshufd  xmm0, xmm0, SHUFFLE_D(0, 1, 1, 0)
         pxor    xmm0, xmm1
-        movlps  qword [rbx*8+0*4], xmm0
-        movhps  qword [rbx*8+2*4], xmm0
+        movlps  qword [g8q*8+0*4], xmm0
+        movhps  qword [g8q*8+2*4], xmm0
         pxor    xmm2, xmm0
-        movlps  qword [rbx*8+4*4], xmm2
-        xor     ecx, edx
-        lea     edx, [rcx*2+rcx]
-        add     rbx, rdx
+        movlps  qword [g8q*8+4*4], xmm2
+        xor     g3d, g2d
+        lea     g2d, [g3q*2+g3q]
+        add     g8q, g2q
 
-        add     rax, 16
+        add     rvq, 16
         jl      .loop1
 
 .done:
-        shl     rbx, 3
-        mov     rax, rbx                ; return (end - shadowIndices) / 4
-        sub     rax, r8
-        sar     rax, 2
-        pop     rbx
-        ret
-ENDFUNCTION
+        shl     g8q, 3
+        mov     rvq, g8q                ; return (end - shadowIndices) / 4
+        sub     rvq, g4q
+        sar     rvq, 2
+        RET
+ENDFUNC

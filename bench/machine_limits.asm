@@ -42,7 +42,7 @@
 
 %include "sv_abi.inc"
 
-section .rodata align=64
+RODATA
 align 64
 svb_gather_offsets:                     ; lane i: byte 64 * i (dwords)
 %assign i 0
@@ -51,84 +51,88 @@ svb_gather_offsets:                     ; lane i: byte 64 * i (dwords)
 %assign i i+1
 %endrep
 
-FUNCTION svb_scalar_loads
-        test    rsi, rsi
+VEC_XMM
+FUNC svb_scalar_loads, 2, 2, 0
+        test    g1q, g1q
         jle     .done
 .loop:
 %assign j 0
 %rep 32
-        movzx   eax, byte [rdi + 64*j + 4*(j % 16)]
+        movzx   rvd, byte [g0q + 64*j + 4*(j % 16)]
 %assign j j+1
 %endrep
-        dec     rsi
+        dec     g1q
         jnz     .loop
 .done:
-        ret
-ENDFUNCTION
+        RET
+ENDFUNC
 
 ; VECTOR_LOADS mov, reg, bytes: 8 loads of BYTES each per iteration with
 ; MOV (vmovdqu64 for zmm; vmovdqu for ymm, which needs no AVX-512VL),
 ; walking the buffer and wrapping at rdx bytes.
 %macro VECTOR_LOADS 3
-        test    rsi, rsi
+        test    g1q, g1q
         jle     %%done
-        xor     ecx, ecx                ; offset in the buffer
+        xor     g3d, g3d                ; offset in the buffer
 %%loop:
 %assign k 0
 %rep 8
-        %1      %2%[k], [rdi + rcx + k*%3]
+        %1      %2%[k], [g0q + g3q + k*%3]
 %assign k k+1
 %endrep
-        add     rcx, 8*%3
-        cmp     rcx, rdx
+        add     g3q, 8*%3
+        cmp     g3q, g2q
         jb      %%next
-        xor     ecx, ecx                ; wrap (a predictable branch)
+        xor     g3d, g3d                ; wrap (a predictable branch)
 %%next:
-        dec     rsi
+        dec     g1q
         jnz     %%loop
 %%done:
-        vzeroupper
-        ret
+        RET
 %endmacro
 
 ; VECTOR_STORES mov, reg, bytes: 8 stores of BYTES each per iteration, to
 ; the first 8 x BYTES of the buffer (zeros: the register is cleared with
 ; its xmm form).
 %macro VECTOR_STORES 3
-        test    rsi, rsi
+        test    g1q, g1q
         jle     %%done
         vpxor   xmm0, xmm0, xmm0
 %%loop:
 %assign k 0
 %rep 8
-        %1      [rdi + k*%3], %2 %+ 0
+        %1      [g0q + k*%3], %2 %+ 0
 %assign k k+1
 %endrep
-        dec     rsi
+        dec     g1q
         jnz     %%loop
 %%done:
-        vzeroupper
-        ret
+        RET
 %endmacro
 
-FUNCTION svb_vector_loads_zmm
+VEC_ZMM
+FUNC svb_vector_loads_zmm, 3, 4, 8
         VECTOR_LOADS vmovdqu64, zmm, 64
-ENDFUNCTION
+ENDFUNC
 
-FUNCTION svb_vector_loads_ymm
+VEC_YMM
+FUNC svb_vector_loads_ymm, 3, 4, 8
         VECTOR_LOADS vmovdqu, ymm, 32
-ENDFUNCTION
+ENDFUNC
 
-FUNCTION svb_vector_stores_zmm
+VEC_ZMM
+FUNC svb_vector_stores_zmm, 2, 2, 1
         VECTOR_STORES vmovdqu64, zmm, 64
-ENDFUNCTION
+ENDFUNC
 
-FUNCTION svb_vector_stores_ymm
+VEC_YMM
+FUNC svb_vector_stores_ymm, 2, 2, 1
         VECTOR_STORES vmovdqu, ymm, 32
-ENDFUNCTION
+ENDFUNC
 
-FUNCTION svb_gather_lanes_zmm
-        test    rsi, rsi
+VEC_ZMM
+FUNC svb_gather_lanes_zmm, 2, 2, 16
+        test    g1q, g1q
         jle     .done
         vmovdqa64 zmm15, [svb_gather_offsets]
 .loop:                                  ; the mask is consumed: set it each time
@@ -137,18 +141,18 @@ FUNCTION svb_gather_lanes_zmm
 %assign m (k % 7) + 1                   ; k1-k7: no chain through one mask
         kxnorw  k%[m], k0, k0           ; all ones
         vpxord  xmm%[k], xmm%[k], xmm%[k]  ; no merge with the last iteration
-        vpgatherdd zmm%[k]{k%[m]}, [rdi + zmm15]
+        vpgatherdd zmm%[k]{k%[m]}, [g0q + zmm15]
 %assign k k+1
 %endrep
-        dec     rsi
+        dec     g1q
         jnz     .loop
 .done:
-        vzeroupper
-        ret
-ENDFUNCTION
+        RET
+ENDFUNC
 
-FUNCTION svb_gather_lanes_ymm
-        test    rsi, rsi
+VEC_YMM
+FUNC svb_gather_lanes_ymm, 2, 2, 16
+        test    g1q, g1q
         jle     .done
         vmovdqa ymm15, [svb_gather_offsets]
 .loop:                                  ; the mask register is cleared: refill it
@@ -156,12 +160,11 @@ FUNCTION svb_gather_lanes_ymm
 %rep 8
         vpcmpeqd ymm8, ymm8, ymm8
         vpxor   xmm%[k], xmm%[k], xmm%[k]   ; no merge with the last iteration
-        vpgatherdd ymm%[k], [rdi + ymm15], ymm8
+        vpgatherdd ymm%[k], [g0q + ymm15], ymm8
 %assign k k+1
 %endrep
-        dec     rsi
+        dec     g1q
         jnz     .loop
 .done:
-        vzeroupper
-        ret
-ENDFUNCTION
+        RET
+ENDFUNC
