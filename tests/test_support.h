@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "shadowvol.h"
+#include "checked_call.h"
 
 namespace svtest {
 
@@ -102,14 +103,6 @@ private:
 
 // ---- ABI-checked calls ---------------------------------------------------
 
-extern "C" {
-uint64_t sv_abi_checked_call(const void *fn, uint64_t a1, uint64_t a2, uint64_t a3,
-                             uint64_t a4, uint64_t a5);
-extern uint64_t sv_abi_canary[6];
-extern uint8_t sv_abi_xmm_garbage[256];
-extern uint32_t sv_abi_failed;
-}
-
 // Fresh random callee-saved canaries and xmm garbage for the next call.
 void abi_scramble(Rng &rng);
 // Names of the broken promises in a sv_abi_failed bit mask.
@@ -120,9 +113,23 @@ std::string abi_failures(uint32_t mask);
 uint64_t int_arg(int v, Rng &rng);
 inline uint64_t ptr_arg(const void *p) { return (uint64_t)(uintptr_t)p; }
 
-// Calls fn through the trampoline with scrambled registers; the result's low
-// 32 bits are the int return value. Fails the current test if the routine
-// broke the ABI.
+// Calls fn through the trampoline with scrambled registers, the argument
+// words built from fn's prototype (svcheck::checked_call: every 32-bit int
+// parameter gets a garbage upper half; no test can forget one). Fails the
+// current test if the routine broke the ABI.
+template <class Fn, class... A, class = std::enable_if_t<svcheck::is_fn_ptr_v<Fn>>>
+typename svcheck::fn_traits<Fn>::ret checked_call(Rng &rng, Fn fn, A... args) {
+    uint32_t failed = 0;
+    struct Fail {
+        uint32_t *f;
+        ~Fail() { EXPECT_EQ(*f, 0u) << "ABI broken: " << abi_failures(*f); }
+    } check{&failed};
+    return svcheck::checked_call(rng, &failed, fn, args...);
+}
+
+// The same for a routine known only by address (test_errata.cpp and
+// test_machine_limits.cpp): the caller builds the words, int_arg() for an
+// int. Prefer the typed form above.
 int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3 = 0,
                  uint64_t a4 = 0, uint64_t a5 = 0);
 
