@@ -503,10 +503,10 @@ GLOBAL_FUNC sv_abi_checked_call
         mov     dword [G(ecx, sv_abi_xinuse_after)], 0
         test    dword [G(ecx, sv_abi_flags)], F_XGETBV1
         jz      .xinuse_done
-        mov     edx, ecx                ; xgetbv takes ecx
+        push    ecx                     ; xgetbv takes ecx and writes edx:eax
         mov     ecx, 1
         xgetbv
-        mov     ecx, edx
+        pop     ecx
         mov     [G(ecx, sv_abi_xinuse_after)], eax
         test    eax, 1 << 2
         jz      .ymm_clean
