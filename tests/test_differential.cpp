@@ -70,8 +70,7 @@ TEST(Differential, CountFacing) {
                 for (size_t off : offsets_for(v->align_facing, 1)) {
                     GuardedBuffer buf((size_t)n, off);
                     std::copy(facing.begin(), facing.end(), buf.data());
-                    int got = checked_call(rng, (const void *)v->count_facing,
-                                           ptr_arg(buf.data()), int_arg(n, rng));
+                    int got = checked_call(rng, v->count_facing, buf.data(), n);
                     ASSERT_EQ(got, expected) << v->name << " n=" << n << " density "
                                              << density_name(density) << " offset " << off;
                     ASSERT_TRUE(buf.guards_intact()) << v->name << " n=" << n;
@@ -108,9 +107,8 @@ TEST(Differential, CountFacingCull) {
                     std::copy(facing.begin(), facing.end(), fbuf.data());
                     std::copy(indices.begin(), indices.end(), ibuf.as<int>());
                     std::copy(cull.begin(), cull.end(), cbuf.data());
-                    int got = checked_call(rng, (const void *)v->count_facing_cull,
-                                           ptr_arg(fbuf.data()), int_arg(n, rng),
-                                           ptr_arg(ibuf.data()), ptr_arg(cbuf.data()));
+                    int got = checked_call(rng, v->count_facing_cull, fbuf.data(), n,
+                                           ibuf.as<int>(), cbuf.data());
                     ASSERT_EQ(got, expected) << v->name << " n=" << n << " density "
                                              << density_name(density) << " offset " << off;
                     ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(),
@@ -152,9 +150,8 @@ TEST(Differential, CreateSilTriangles) {
                     GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
                     GuardedBuffer ebuf(edges.size() * sizeof(SilEdge), (out_off * 3) % 16);
                     std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
-                    int got = checked_call(rng, (const void *)v->create_sil_triangles,
-                                           ptr_arg(out.data()), ptr_arg(facing.data()),
-                                           ptr_arg(ebuf.data()), int_arg(n, rng));
+                    int got = checked_call(rng, v->create_sil_triangles, out.as<int>(),
+                                           facing.data(), ebuf.as<SilEdge>(), n);
                     ASSERT_EQ(got, expected_count) << v->name << " n=" << n << " density "
                                                    << density_name(density);
                     ASSERT_TRUE(std::equal(expected.begin(), expected.begin() + expected_count,
@@ -189,9 +186,8 @@ TEST(Differential, CreateCapTriangles) {
                     GuardedBuffer ibuf(indices.size() * sizeof(int), in_off);
                     GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
                     std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-                    int got = checked_call(rng, (const void *)v->create_cap_triangles,
-                                           ptr_arg(out.data()), ptr_arg(facing.data()),
-                                           ptr_arg(ibuf.data()), int_arg(3 * n, rng));
+                    int got = checked_call(rng, v->create_cap_triangles, out.as<int>(),
+                                           facing.data(), ibuf.as<int>(), 3 * n);
                     ASSERT_EQ(got, expected_count) << v->name << " n=" << n << " density "
                                                    << density_name(density);
                     ASSERT_TRUE(std::equal(expected.begin(), expected.begin() + expected_count,

@@ -97,25 +97,11 @@ bool GuardedBuffer::guards_intact() const {
 }
 
 #if defined(SV_HAVE_ABI_CHECKER)
-void abi_scramble(Rng &rng) {
-    for (auto &c : sv_abi_canary) c = rng.next();
-    for (size_t i = 0; i < sizeof sv_abi_xmm_garbage; i += 8) {
-        uint64_t w = rng.next();
-        std::memcpy(&sv_abi_xmm_garbage[i], &w, 8);
-    }
-}
+void abi_scramble(Rng &rng) { svcheck::scramble(rng); }
 
 std::string abi_failures(uint32_t mask) {
-    static const char *names[] = {"rbx", "rbp", "r12", "r13", "r14", "r15",
-                                  "rsp", "direction flag"};
-    std::string s;
-    for (int i = 0; i < 8; i++) {
-        if (mask & (1u << i)) {
-            if (!s.empty()) s += ", ";
-            s += names[i];
-        }
-    }
-    return s;
+    char buf[512];
+    return sv_abi_failure_names(mask, buf, sizeof buf);
 }
 
 #endif
@@ -130,9 +116,12 @@ uint64_t int_arg(int v, Rng &rng) {
 #if defined(SV_HAVE_ABI_CHECKER)
 int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3, uint64_t a4,
                  uint64_t a5) {
+    svcheck::detect_once();
+    uintptr_t words[SV_ABI_ARGS] = {a1, a2, a3, a4, a5};
+    for (int i = 5; i < SV_ABI_ARGS; i++) words[i] = rng.next();
     abi_scramble(rng);
     sv_abi_failed = 0;
-    uint64_t r = sv_abi_checked_call(fn, a1, a2, a3, a4, a5);
+    uint64_t r = sv_abi_checked_call(fn, words);
     EXPECT_EQ(sv_abi_failed, 0u) << "ABI broken: " << abi_failures(sv_abi_failed);
     return (int)(uint32_t)r;
 }

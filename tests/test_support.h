@@ -13,6 +13,9 @@
 #include <vector>
 
 #include "shadowvol.h"
+#if defined(SV_HAVE_ABI_CHECKER)
+#include "checked_call.h"
+#endif
 
 namespace svtest {
 
@@ -112,14 +115,6 @@ private:
 // ---- ABI-checked calls ---------------------------------------------------
 
 #if defined(SV_HAVE_ABI_CHECKER)
-extern "C" {
-uint64_t sv_abi_checked_call(const void *fn, uint64_t a1, uint64_t a2, uint64_t a3,
-                             uint64_t a4, uint64_t a5);
-extern uint64_t sv_abi_canary[6];
-extern uint8_t sv_abi_xmm_garbage[256];
-extern uint32_t sv_abi_failed;
-}
-
 // Fresh random callee-saved canaries and xmm garbage for the next call.
 void abi_scramble(Rng &rng);
 // Names of the broken promises in a sv_abi_failed bit mask.
@@ -131,10 +126,34 @@ std::string abi_failures(uint32_t mask);
 uint64_t int_arg(int v, Rng &rng);
 inline uint64_t ptr_arg(const void *p) { return (uint64_t)(uintptr_t)p; }
 
-// Calls fn through the trampoline with scrambled registers; the result's low
-// 32 bits are the int return value. Fails the current test if the routine
-// broke the ABI. (Without SV_HAVE_ABI_CHECKER, on the platforms the
-// checker is not ported to, a plain call: test_support.cpp.)
+#if defined(SV_HAVE_ABI_CHECKER)
+// Calls fn through the trampoline with scrambled registers, the argument
+// words built from fn's prototype (svcheck::checked_call: every 32-bit int
+// parameter gets a garbage upper half; no test can forget one). Fails the
+// current test if the routine broke the ABI.
+template <class Fn, class... A, class = std::enable_if_t<svcheck::is_fn_ptr_v<Fn>>>
+typename svcheck::fn_traits<Fn>::ret checked_call(Rng &rng, Fn fn, A... args) {
+    uint32_t failed = 0;
+    struct Fail {
+        uint32_t *f;
+        ~Fail() { EXPECT_EQ(*f, 0u) << "ABI broken: " << abi_failures(*f); }
+    } check{&failed};
+    return svcheck::checked_call(rng, &failed, fn, args...);
+}
+
+#else
+// No checker on this platform (docs/platforms.md): the routine is called
+// directly with its own prototype, so results are still compared.
+template <class R, class... P, class... A>
+R checked_call(Rng &, R (*fn)(P...), A... args) {
+    static_assert(sizeof...(P) == sizeof...(A), "checked_call: wrong number of arguments");
+    return fn(static_cast<P>(args)...);
+}
+#endif
+
+// The same for a routine known only by address (test_errata.cpp and
+// test_machine_limits.cpp): the caller builds the words, int_arg() for an
+// int. Prefer the typed form above.
 int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3 = 0,
                  uint64_t a4 = 0, uint64_t a5 = 0);
 
