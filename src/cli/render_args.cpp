@@ -26,6 +26,24 @@ void parse_frame_size(const std::string &s, int &w, int &h) {
     w = (int)a, h = (int)b;
 }
 
+bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &adds, bool &ground,
+                                std::vector<sv::SceneLight> &lights, sv::Camera &camera,
+                                bool &has_camera) {
+    if (a.is("--add")) {
+        adds.push_back(sv::parse_model_placement(a.value()));
+    } else if (a.is_flag("--ground")) {
+        ground = true;
+    } else if (a.is("--light")) {
+        lights.push_back(sv::parse_light(a.value()));
+    } else if (a.is("--camera")) {
+        camera = sv::parse_camera(a.value());
+        has_camera = true;
+    } else {
+        return false;
+    }
+    return true;
+}
+
 RenderArgs parse_render_args(int argc, char **argv, bool &help) {
     RenderArgs r;
     ArgReader a(argc, argv);
@@ -33,15 +51,9 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
         if (a.is_flag("--help") || a.is_flag("-h")) {
             help = true;
             return r;
-        } else if (a.is("--add")) {
-            r.models.push_back(sv::parse_model_placement(a.value()));
-        } else if (a.is_flag("--ground")) {
-            r.ground = true;
-        } else if (a.is("--light")) {
-            r.lights.push_back(sv::parse_light(a.value()));
-        } else if (a.is("--camera")) {
-            r.camera = sv::parse_camera(a.value());
-            r.has_camera = true;
+        } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
+                                              r.has_camera)) {
+            /* --add, --ground, --light, --camera */
         } else if (a.is("--size")) {
             parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--mode")) {

@@ -37,6 +37,16 @@ struct RenderArgs {
  * --light, --camera, --add) with a message naming the argument. */
 RenderArgs parse_render_args(int argc, char **argv, bool &help);
 
+class ArgReader;
+
+/* The options render and scene share for what the scene holds: --add,
+ * --ground, --light, --camera. Consumes A's value and returns true when A
+ * is one of them; false (nothing consumed) otherwise. Throws as the
+ * parsers do. */
+bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &adds, bool &ground,
+                                std::vector<sv::SceneLight> &lights, sv::Camera &camera,
+                                bool &has_camera);
+
 /* "WxH" -> width, height, each 1..kMaxFrameSide and at most kMaxFramePixels
  * in all; UsageError otherwise. */
 void parse_frame_size(const std::string &text, int &width, int &height);

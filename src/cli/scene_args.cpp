@@ -28,15 +28,9 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
         if (a.is_flag("--help") || a.is_flag("-h")) {
             help = true;
             return r;
-        } else if (a.is("--add")) {
-            r.seq.adds.push_back(sv::parse_model_placement(a.value()));
-        } else if (a.is_flag("--ground")) {
-            r.seq.ground = true;
-        } else if (a.is("--light")) {
-            r.seq.lights.push_back(sv::parse_light(a.value()));
-        } else if (a.is("--camera")) {
-            r.seq.camera = sv::parse_camera(a.value());
-            r.seq.has_camera = true;
+        } else if (parse_scene_content_option(a, r.seq.adds, r.seq.ground, r.seq.lights,
+                                              r.seq.camera, r.seq.has_camera)) {
+            /* --add, --ground, --light, --camera */
         } else if (a.is("--animation")) {
             r.seq.animation = a.value();
             if (r.seq.animation.empty()) usage_error("--animation needs a name or an index");
