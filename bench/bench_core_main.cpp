@@ -164,13 +164,7 @@ int bench(int argc, char **argv) {
         std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());
         return kExitCheckFailed;
     }
-    const int failed = failed_rows(run);
-    if (failed) {
-        std::fprintf(stderr, "shadowvol bench: %d row%s failed the check against the reference\n",
-                     failed, failed == 1 ? "" : "s");
-        return kExitCheckFailed;
-    }
-    return 0;
+    return check_failed_status(run);
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #ifndef SV_BENCH_BENCH_RUN_H
 #define SV_BENCH_BENCH_RUN_H
 
+#include <cstdio>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +52,18 @@ inline int failed_rows(const BenchRun &run) {
         }
     }
     return n;
+}
+
+/* The run's exit status after its table: 1 with a message on stderr when a
+ * row failed its check, else 0 (shadowvol bench, and the 32-bit bench). */
+inline int check_failed_status(const BenchRun &run) {
+    const int failed = failed_rows(run);
+    if (failed) {
+        std::fprintf(stderr, "shadowvol bench: %d row%s failed the check against the reference\n",
+                     failed, failed == 1 ? "" : "s");
+        return 1;
+    }
+    return 0;
 }
 
 } // namespace svbench

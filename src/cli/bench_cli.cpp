@@ -699,13 +699,7 @@ int bench_main(int argc, char **argv) {
         return kExitCheckFailed;
     }
 
-    const int failed = failed_rows(run);
-    if (failed) {
-        std::fprintf(stderr, "shadowvol bench: %d row%s failed the check against the reference\n",
-                     failed, failed == 1 ? "" : "s");
-        return kExitCheckFailed;
-    }
-    return 0;
+    return check_failed_status(run);
 }
 
 } // namespace svbench
