@@ -136,6 +136,14 @@ template <bool kCull> struct PipelineCall {
     const BenchVariant *bv;
     const Workload *w;
     int operator()(const CallArgs &a) const {
+        if (bv->plan) { /* the planned row: the public one-call entry point */
+            const sv_surface s{w->planes.data(), w->indices.data(), w->numIndices,
+                               w->silEdges.data(), w->numSilEdges, w->positions.data(),
+                               w->numVerts, w->bounds};
+            return sv_shadow_volume_for_light(
+                bv->plan, &s, a.light, kCull ? a.lightPlanes : nullptr, a.out,
+                sv_shadow_volume_capacity(w->numIndices, w->numSilEdges), a.facing, a.cull);
+        }
         bv->pipeline_facing(w->planes.data(), w->numTriangles, a.light, a.facing);
         const uint8_t *cull = nullptr;
         if (kCull && bv->pipeline_cull_bits(w->positions.data(), w->numVerts, &w->bounds,

@@ -172,6 +172,7 @@ const BenchVariant *resolve_planned(const BenchVariant *v, int numTriangles) {
     const sv_plan *p = sv_plan_for(numTriangles, SV_PLAN_MEASURE);
     BenchVariant b = *v;
     b.origin = v;
+    b.plan = p;
     b.kernels = &p->kernels;
     b.calculate_facing = b.pipeline_facing = p->calculate_facing;
     b.calculate_cull_bits = b.pipeline_cull_bits = p->calculate_cull_bits;

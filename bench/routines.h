@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "shadowvol.h"
+#include "shadowvol_plan.h"
 
 namespace svbench {
 
@@ -89,8 +90,11 @@ struct BenchVariant {
     /* "planned": the planner's choice (include/shadowvol_plan.h) for the
      * workload's size, resolved per workload by resolve_planned(). */
     bool planned = false;
-    /* A resolved planned variant: the table's entry it was made from. */
+    /* A resolved planned variant: the table's entry it was made from, and
+     * the plan (its pipeline rows call sv_shadow_volume_for_light with it:
+     * the fused facing and count, what a user of the one-call entry gets). */
     const BenchVariant *origin = nullptr;
+    const sv_plan *plan = nullptr;
 };
 
 /* For the planned variant: a variant with the kernels and A/B of the plan

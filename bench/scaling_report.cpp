@@ -38,6 +38,64 @@ std::vector<const BenchVariant *> columns(const ScalingRun &run, Routine routine
     return v;
 }
 
+bool is_papers_own(const BenchVariant *v) {
+    return std::strcmp(v->name, "c_ref") == 0 || std::strcmp(v->name, "c_branchless") == 0 ||
+           std::strcmp(v->name, "sse2_paper") == 0;
+}
+
+/* Issue 15's two goals that one scaling run can decide, by medians of this
+ * run: the planner's choice within 5% of the fastest variant on every mesh,
+ * and no variant but the paper's own (c_ref, c_branchless, sse2_paper)
+ * slower than c_ref. */
+void print_goal_checks(FILE *out, const ScalingRun &run, Routine routine,
+                       const std::vector<const BenchVariant *> &vars) {
+    double worst = 0;
+    std::string worstAt, over, slower;
+    for (const ScalingMesh &m : run.meshes) {
+        const Row *ref = nullptr, *planned = nullptr, *fastest = nullptr;
+        const BenchVariant *fastestVar = nullptr;
+        for (const BenchVariant *v : vars) {
+            const Row *r = scaling_row(m, routine, v);
+            if (!r || !r->ok) continue;
+            if (v->planned) {
+                planned = r;
+                continue;
+            }
+            if (std::strcmp(v->name, "c_ref") == 0) ref = r;
+            if (!fastest || r->median < fastest->median) fastest = r, fastestVar = v;
+        }
+        if (planned && fastest) {
+            const double ratio = planned->median / fastest->median;
+            if (ratio > worst) worst = ratio, worstAt = m.spec.name;
+            if (ratio > 1.05) {
+                char s[160];
+                std::snprintf(s, sizeof s, "%s%s (%.0f%% slower than %s)", over.empty() ? "" : ", ",
+                              m.spec.name.c_str(), 100.0 * (ratio - 1), fastestVar->name);
+                over += s;
+            }
+        }
+        for (const BenchVariant *v : vars) {
+            const Row *r = scaling_row(m, routine, v);
+            if (!ref || !r || !r->ok || is_papers_own(v) || r->median <= ref->median) continue;
+            char s[160];
+            std::snprintf(s, sizeof s, "%s%s on %s (%.2fx c_ref)", slower.empty() ? "" : ", ",
+                          v->name, m.spec.name.c_str(), ref->median / r->median);
+            slower += s;
+        }
+    }
+    if (worst > 0) {
+        std::fprintf(out, "  planned vs the fastest variant (medians): %s; worst %+.1f%% on %s\n",
+                     over.empty() ? "within 5% on every mesh" : ("MORE than 5% slower on " + over).c_str(),
+                     100.0 * (worst - 1), worstAt.c_str());
+    }
+    if (std::find_if(vars.begin(), vars.end(), [](const BenchVariant *v) {
+            return std::strcmp(v->name, "c_ref") == 0;
+        }) != vars.end()) {
+        std::fprintf(out, "  slower than c_ref (variants other than the paper's own): %s\n",
+                     slower.empty() ? "none" : slower.c_str());
+    }
+}
+
 void print_table(FILE *out, const ScalingRun &run, Routine routine) {
     const std::vector<const BenchVariant *> vars = columns(run, routine);
     if (vars.empty()) {
@@ -78,6 +136,7 @@ void print_table(FILE *out, const ScalingRun &run, Routine routine) {
         }
         std::fprintf(out, "  %s\n", !any ? "-" : allOk ? "ok" : "FAILED");
     }
+    print_goal_checks(out, run, routine, vars);
 }
 
 } // namespace

@@ -114,6 +114,21 @@ void sv_calculate_facing_avx2(const Plane *planes, int numTriangles, const Vec4 
                               uint8_t *facing);
 void sv_calculate_facing_avx512(const Plane *planes, int numTriangles, const Vec4 *light,
                                 uint8_t *facing);
+/* CalculateFacing fused with CountFacing (issue 15): writes exactly what
+ * the routine of the same variant writes and returns the number of facing
+ * triangles (what CountFacing would return on the result), counted from
+ * the compare masks while they are still in registers: no second pass
+ * over the facing bytes. A negative count writes nothing and returns 0. */
+typedef int (*sv_calculate_facing_count_fn)(const Plane *planes, int numTriangles,
+                                            const Vec4 *light, uint8_t *facing);
+int sv_calculate_facing_count_c(const Plane *planes, int numTriangles, const Vec4 *light,
+                                uint8_t *facing);
+int sv_calculate_facing_count_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
+                                   uint8_t *facing);
+int sv_calculate_facing_count_avx2(const Plane *planes, int numTriangles, const Vec4 *light,
+                                   uint8_t *facing);
+int sv_calculate_facing_count_avx512(const Plane *planes, int numTriangles, const Vec4 *light,
+                                     uint8_t *facing);
 int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
@@ -131,6 +146,7 @@ typedef struct sv_facing_variant {
     unsigned isa; /* SV_ISA_* bits the CPU must have */
     sv_calculate_facing_fn calculate_facing;
     sv_calculate_cull_bits_fn calculate_cull_bits;
+    sv_calculate_facing_count_fn calculate_facing_count; /* the fused A + C */
 } sv_facing_variant;
 
 const sv_facing_variant *sv_facing_variants(int *count);

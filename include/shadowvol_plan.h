@@ -68,6 +68,10 @@ typedef struct sv_plan {
      * mesh, where measured (0 for built-in plans). */
     double ticks[SV_NUM_ROUTINES];
     sv_calculate_facing_fn calculate_facing;
+    /* The same variant's CalculateFacing fused with the count
+     * (sv_calculate_facing_count_fn): what sv_shadow_volume_for_light
+     * calls instead of calculate_facing + kernels.count_facing. */
+    sv_calculate_facing_count_fn calculate_facing_count;
     sv_calculate_cull_bits_fn calculate_cull_bits;
     /* C-F as one variant (name "planned"), for sv_create_shadow_volume and
      * the *_checked entry points. */
@@ -90,7 +94,9 @@ typedef struct sv_plan_timing {
 
 /* Measures size class SIZECLASS now (every variant this CPU runs, every
  * routine, moving lights, each call checked against c_ref) and makes the
- * winners this process's plan for the class. When TIMINGS is not NULL, up
+ * winners this process's plan for the class (a routine keeps its static
+ * choice unless another variant is more than 3% faster: closer timings are
+ * noise). When TIMINGS is not NULL, up
  * to MAXTIMINGS entries are written there. Returns the number of timings
  * taken (which may exceed MAXTIMINGS), or -1 when SIZECLASS is out of
  * range or a variant disagreed with c_ref (a bug: nothing is planned). */
@@ -113,6 +119,50 @@ int sv_wisdom_save(const char *path);
  * classes read for this CPU (0 when the file has none), or -1 when PATH
  * cannot be read or is malformed (nothing is taken from it then). */
 int sv_wisdom_load(const char *path);
+
+/* ---- One call per light ------------------------------------------------
+ * A surface prepared for shadow volumes (what sv_prepare_* or the caller's
+ * own code made): the arrays every light's volume reads. */
+typedef struct sv_surface {
+    const Plane *planes;     /* numIndices / 3 triangle planes (appendix A) */
+    const int *indices;      /* numIndices vertex numbers, 3 per triangle */
+    int numIndices;          /* a multiple of 3, >= 0 */
+    const SilEdge *silEdges; /* numSilEdges edges */
+    int numSilEdges;
+    const Vec4 *positions;   /* numVerts vertices; read only with light planes */
+    int numVerts;
+    Bounds bounds;           /* contains every position (appendix B's box test) */
+} sv_surface;
+
+/* The shadow volume of SURFACE for LIGHT in one call: CalculateFacing and
+ * the count fused (no second pass over the facing bytes), then, with
+ * LIGHTPLANES (the light volume's SV_NUM_LIGHT_PLANES planes; NULL: no
+ * light volume), CalculateCullBits and its decision: a surface inside the
+ * light volume takes the path without culling, any other goes through
+ * CountFacingCull; then the silhouette quads and the caps, into
+ * SHADOWINDICES. Every kernel is PLAN's (NULL: sv_plan_for(numTriangles,
+ * SV_PLAN_ESTIMATE)); a kernel whose alignment need a buffer does not meet
+ * is replaced, for that call, by the same routine of the fastest variant
+ * this CPU runs that has no such need. The indices written and the count
+ * returned are exactly those of sv_create_shadow_volume with the reference
+ * kernels (c_ref) after the reference's A and B.
+ *   shadowIndices  capacity ints, capacity >= sv_shadow_volume_capacity(
+ *                  numIndices, numSilEdges) (SV_E_CAPACITY otherwise); the
+ *                  ints past the returned count are scratch.
+ *   facing         numIndices / 3 + 1 bytes of scratch; on return the
+ *                  facing bytes (1 for culled triangles, with light planes
+ *                  and a surface not wholly inside the light volume).
+ *   cullBits       numVerts bytes of scratch; needed (non-NULL) only with
+ *                  LIGHTPLANES.
+ * Returns the number of indices (0: the surface casts no shadow), or a
+ * negative SV_E_* code for NULL pointers, bad counts, output room below
+ * the bound, or a count whose output does not fit in an int (nothing is
+ * then written). The contents (vertex numbers, SilEdges) are trusted as
+ * sv_create_shadow_volume trusts them: sv_create_shadow_volume_checked
+ * validates them. Thread-safe (the plan is immutable). */
+int sv_shadow_volume_for_light(const sv_plan *plan, const sv_surface *surface, const Vec4 *light,
+                               const Plane *lightPlanes, int *shadowIndices, size_t capacity,
+                               uint8_t *facing, uint8_t *cullBits);
 
 /* Forgets every measured and wisdom plan (tests). */
 void sv_plan_reset(void);

@@ -79,6 +79,20 @@ static int cull_setup(const Bounds *surfaceBounds, const Plane lightPlanes[SV_NU
     return 0;
 }
 
+/* ---- C: the reference's expression, counted in the same loop ---------- */
+
+int sv_calculate_facing_count_c(const Plane *planes, int numTriangles, const Vec4 *light,
+                                uint8_t *facing) {
+    if (numTriangles < 0) return 0;
+    int count = 0;
+    for (int i = 0; i < numTriangles; i++) {
+        facing[i] = facing_one(&planes[i], light);
+        count += facing[i];
+    }
+    facing[numTriangles] = 1;
+    return count;
+}
+
 /* ---- SSE2 ---------------------------------------------------------------- */
 
 /* Four 16-byte rows -> columns (the classic 4x4 transpose). */
@@ -104,9 +118,14 @@ static inline __m128i facing4_sse2(const float *p, __m128 lx, __m128 ly, __m128 
     return _mm_castps_si128(_mm_cmpgt_ps(s, _mm_setzero_ps()));
 }
 
-void sv_calculate_facing_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
-                              uint8_t *facing) {
-    if (numTriangles < 0) return;
+/* The body of sv_calculate_facing_sse2 and of its fused twin, which also
+ * returns the number of facing triangles (WANT_COUNT: a constant in each
+ * caller, so the compiler drops the counting where it is not wanted). */
+static inline int facing_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
+                              uint8_t *facing, int wantCount) {
+    if (numTriangles < 0) return 0;
+    __m128i sums = _mm_setzero_si128(); /* psadbw: two 64-bit byte sums */
+    int count = 0;
     const __m128 lx = _mm_set1_ps(light->x), ly = _mm_set1_ps(light->y);
     const __m128 lz = _mm_set1_ps(light->z), lw = _mm_set1_ps(light->w);
     const __m128i one = _mm_set1_epi8(1);
@@ -126,16 +145,34 @@ void sv_calculate_facing_sse2(const Plane *planes, int numTriangles, const Vec4 
         const __m128i m3 = facing4_sse2(p + 48, lx, ly, lz, lw);
         const __m128i bytes =
             _mm_packs_epi16(_mm_packs_epi32(m0, m1), _mm_packs_epi32(m2, m3));
-        _mm_storeu_si128((__m128i *)(facing + i), _mm_and_si128(bytes, one));
+        const __m128i b01 = _mm_and_si128(bytes, one);
+        _mm_storeu_si128((__m128i *)(facing + i), b01);
+        if (wantCount) sums = _mm_add_epi64(sums, _mm_sad_epu8(b01, _mm_setzero_si128()));
     }
     for (; i <= numTriangles - 4; i += 4, p += 16) {
         const __m128i m = facing4_sse2(p, lx, ly, lz, lw);
         const __m128i words = _mm_packs_epi32(m, m);
         const int bytes = _mm_cvtsi128_si32(_mm_and_si128(_mm_packs_epi16(words, words), one));
         memcpy(facing + i, &bytes, 4);
+        if (wantCount) count += (int)(((uint32_t)bytes * 0x01010101u) >> 24);
     }
-    for (; i < numTriangles; i++) facing[i] = facing_one(&planes[i], light);
+    for (; i < numTriangles; i++) {
+        facing[i] = facing_one(&planes[i], light);
+        if (wantCount) count += facing[i];
+    }
     facing[numTriangles] = 1; /* for dangling edges to reference */
+    if (!wantCount) return 0;
+    return count + _mm_cvtsi128_si32(sums) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(sums, sums));
+}
+
+void sv_calculate_facing_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
+                              uint8_t *facing) {
+    (void)facing_sse2(planes, numTriangles, light, facing, 0);
+}
+
+int sv_calculate_facing_count_sse2(const Plane *planes, int numTriangles, const Vec4 *light,
+                                   uint8_t *facing) {
+    return facing_sse2(planes, numTriangles, light, facing, 1);
 }
 
 int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
@@ -225,9 +262,11 @@ SV_TARGET_AVX2 static inline __m256i facing8_avx2(const float *p, __m256 lx, __m
     return _mm256_castps_si256(_mm256_cmp_ps(s, _mm256_setzero_ps(), _CMP_GT_OQ));
 }
 
-SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangles,
-                                             const Vec4 *light, uint8_t *facing) {
-    if (numTriangles < 0) return;
+SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangles,
+                                             const Vec4 *light, uint8_t *facing, int wantCount) {
+    if (numTriangles < 0) return 0;
+    __m256i sums = _mm256_setzero_si256(); /* vpsadbw: four 64-bit byte sums */
+    int count = 0;
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
     const __m256i one = _mm256_set1_epi8(1);
@@ -247,17 +286,35 @@ SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangl
         const __m256i m3 = facing8_avx2(p + 96, lx, ly, lz, lw);
         const __m256i bytes =
             _mm256_packs_epi16(_mm256_packs_epi32(m0, m1), _mm256_packs_epi32(m2, m3));
-        _mm256_storeu_si256((__m256i *)(facing + i),
-                            _mm256_and_si256(_mm256_permutevar8x32_epi32(bytes, order), one));
+        const __m256i b01 = _mm256_and_si256(_mm256_permutevar8x32_epi32(bytes, order), one);
+        _mm256_storeu_si256((__m256i *)(facing + i), b01);
+        if (wantCount) sums = _mm256_add_epi64(sums, _mm256_sad_epu8(b01, _mm256_setzero_si256()));
     }
     for (; i <= numTriangles - 8; i += 8, p += 32) {
         const unsigned m = (unsigned)_mm256_movemask_ps(
             _mm256_castsi256_ps(facing8_avx2(p, lx, ly, lz, lw)));
         /* Eight mask bits -> eight 0/1 bytes (mask_bytes.h: not pdep). */
         memcpy(facing + i, &kMaskBytes[m], 8);
+        if (wantCount) count += __builtin_popcount(m);
     }
-    for (; i < numTriangles; i++) facing[i] = facing_one(&planes[i], light);
+    for (; i < numTriangles; i++) {
+        facing[i] = facing_one(&planes[i], light);
+        if (wantCount) count += facing[i];
+    }
     facing[numTriangles] = 1;
+    if (!wantCount) return 0;
+    const __m128i s2 = _mm_add_epi64(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
+    return count + _mm_cvtsi128_si32(s2) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(s2, s2));
+}
+
+SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangles,
+                                             const Vec4 *light, uint8_t *facing) {
+    (void)facing_avx2(planes, numTriangles, light, facing, 0);
+}
+
+SV_TARGET_AVX2 int sv_calculate_facing_count_avx2(const Plane *planes, int numTriangles,
+                                                  const Vec4 *light, uint8_t *facing) {
+    return facing_avx2(planes, numTriangles, light, facing, 1);
 }
 
 SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVerts,
@@ -330,9 +387,11 @@ SV_TARGET_AVX512 static inline void load16(const float *p, int n, __m512 r[4]) {
     }
 }
 
-SV_TARGET_AVX512 void sv_calculate_facing_avx512(const Plane *planes, int numTriangles,
-                                                 const Vec4 *light, uint8_t *facing) {
-    if (numTriangles < 0) return;
+SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTriangles,
+                                                 const Vec4 *light, uint8_t *facing,
+                                                 int wantCount) {
+    if (numTriangles < 0) return 0;
+    int count = 0;
     const __m512 lx = _mm512_set1_ps(light->x), ly = _mm512_set1_ps(light->y);
     const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
     const __m512 zero = _mm512_setzero_ps();
@@ -352,8 +411,22 @@ SV_TARGET_AVX512 void sv_calculate_facing_avx512(const Plane *planes, int numTri
         const __mmask16 gt = _mm512_cmp_ps_mask(s, zero, _CMP_GT_OQ);
         _mm_mask_storeu_epi8(facing + i, (__mmask16)((1u << n) - 1),
                              _mm_maskz_mov_epi8(gt, one));
+        /* The masked-off lanes loaded zero planes: 0 > 0 is false, so gt
+         * holds the real triangles' decisions only. */
+        if (wantCount) count += __builtin_popcount((unsigned)gt & ((1u << n) - 1));
     }
     facing[numTriangles] = 1;
+    return count;
+}
+
+SV_TARGET_AVX512 void sv_calculate_facing_avx512(const Plane *planes, int numTriangles,
+                                                 const Vec4 *light, uint8_t *facing) {
+    (void)facing_avx512(planes, numTriangles, light, facing, 0);
+}
+
+SV_TARGET_AVX512 int sv_calculate_facing_count_avx512(const Plane *planes, int numTriangles,
+                                                      const Vec4 *light, uint8_t *facing) {
+    return facing_avx512(planes, numTriangles, light, facing, 1);
 }
 
 SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int numVerts,
@@ -396,11 +469,14 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
 /* ---- The table ----------------------------------------------------------- */
 
 static const sv_facing_variant facing_variants[] = {
-    {"c_ref", SV_ISA_NONE, sv_calculate_facing_c_ref, sv_calculate_cull_bits_c_ref},
-    {"sse2", SV_ISA_SSE2, sv_calculate_facing_sse2, sv_calculate_cull_bits_sse2},
-    {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2, sv_calculate_facing_avx2, sv_calculate_cull_bits_avx2},
+    {"c_ref", SV_ISA_NONE, sv_calculate_facing_c_ref, sv_calculate_cull_bits_c_ref,
+     sv_calculate_facing_count_c},
+    {"sse2", SV_ISA_SSE2, sv_calculate_facing_sse2, sv_calculate_cull_bits_sse2,
+     sv_calculate_facing_count_sse2},
+    {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2, sv_calculate_facing_avx2, sv_calculate_cull_bits_avx2,
+     sv_calculate_facing_count_avx2},
     {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, sv_calculate_facing_avx512,
-     sv_calculate_cull_bits_avx512},
+     sv_calculate_cull_bits_avx512, sv_calculate_facing_count_avx512},
 };
 
 const sv_facing_variant *sv_facing_variants(int *count) {

@@ -140,7 +140,26 @@ TEST_F(PlanTest, MeasuredPlanTakesTheFastestOfItsTimingsAndComputesCRef) {
             if (best < 0 || x.ticks < best) best = x.ticks;
         }
         EXPECT_GE(timed, 1) << sv_routine_name((sv_routine)r);
-        EXPECT_EQ(p->ticks[r], best) << sv_routine_name((sv_routine)r) << ": the plan is not the fastest";
+        // The fastest, or the static choice when it is within 3% of it
+        // (the planner's margin against noise), with its own timing.
+        const char *stat = r <= SV_ROUTINE_CALCULATE_CULL_BITS ? sv_best_facing_variant()->name
+                                                               : sv_best_variant()->name;
+        double stat_ticks = -1;
+        for (const sv_plan_timing &x : t) {
+            if (x.routine == r && std::strcmp(x.variant, stat) == 0) stat_ticks = x.ticks;
+        }
+        if (std::strcmp(p->variant[r], stat) == 0 && p->ticks[r] != best) {
+            EXPECT_EQ(p->ticks[r], stat_ticks) << sv_routine_name((sv_routine)r);
+            EXPECT_LE(stat_ticks, best * 1.03) << sv_routine_name((sv_routine)r)
+                                               << ": the static choice kept beyond the margin";
+        } else {
+            EXPECT_EQ(p->ticks[r], best) << sv_routine_name((sv_routine)r)
+                                         << ": the plan is not the fastest";
+            if (std::strcmp(p->variant[r], stat) != 0 && stat_ticks > 0) {
+                EXPECT_GT(stat_ticks, best * 1.03) << sv_routine_name((sv_routine)r)
+                                                   << ": replaced the static choice within the margin";
+            }
+        }
     }
     expect_plan_computes_c_ref(*p);
     // Other classes were not measured.
