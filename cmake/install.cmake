@@ -42,6 +42,8 @@ endif()
 target_include_directories(shadowvol_shared PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+# The planner's generated character (src/plan/planner.cpp).
+target_include_directories(shadowvol_shared PRIVATE ${PROJECT_SOURCE_DIR}/tools/generate_models)
 # The object-level link check: a shared library must have no undefined
 # symbol that the libraries it names do not provide.
 target_link_options(shadowvol_shared PRIVATE -Wl,--no-undefined)
