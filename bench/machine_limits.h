@@ -61,6 +61,13 @@ struct MachineLimits {
  * limit (sv_cpu_isa(): --isa, SV_ISA): zmm, ymm, or none without AVX2. */
 MachineLimits measure_machine_limits();
 
+/* This core's rate of streaming reads from memory, in bytes per TSC tick:
+ * 16-byte loads over a BYTES buffer (a multiple of 64; several times any
+ * L3 a core of this kind has, 256 MiB by default), the best of three
+ * passes. The bound of a mesh whose working set no cache holds (the
+ * scaling run's large-mesh check). 0 when the buffer cannot be had. */
+double measure_memory_load_rate(size_t bytes = (size_t)256 << 20);
+
 struct RoutineFloor {
     Routine routine;
     double loadPorts = 0; /* loads + lookups: they share the load ports */

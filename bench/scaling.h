@@ -114,6 +114,10 @@ struct ScalingRun {
     std::string realModels;    /* where the real characters are, whether they run */
     std::vector<std::string> leftOut; /* meshes above --max-triangles, with their sizes */
     std::vector<ScalingMesh> meshes;  /* in order of triangles */
+    /* Streaming reads from memory, bytes per tick (measure_memory_load_rate),
+     * measured when the largest mesh's pipeline working set is beyond 32
+     * MiB; 0 otherwise. */
+    double memoryLoadBytes = 0;
 };
 
 /* Lights and runs for a mesh of TRIANGLES (see above). */

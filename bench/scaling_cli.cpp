@@ -9,11 +9,13 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "machine_limits.h"
 #include "model_list.h"
 #include "output_file.h"
 #include "scaling_json.h"
 #include "scaling_plot.h"
 #include "scaling_report.h"
+#include "working_set.h"
 
 namespace svbench {
 
@@ -105,6 +107,10 @@ int run_scaling(const ScalingCommand &cmd) {
             m.seconds = monotonic_seconds() - t0;
             measure_scaling_mesh(run, m);
             print_scaling_mesh(out, m, i == 0);
+        }
+        if (!run.meshes.empty() &&
+            working_set_bytes(Routine::pipeline, run.meshes.back().workload) > 32.0 * 1048576) {
+            run.memoryLoadBytes = measure_memory_load_rate();
         }
         print_scaling_tables(out, run);
 
