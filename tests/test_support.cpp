@@ -198,7 +198,8 @@ bool stop_after_failures(int limit) {
     const ::testing::TestResult *r =
         ::testing::UnitTest::GetInstance()->current_test_info()->result();
     if (r->total_part_count() < limit) return false;
-    ADD_FAILURE() << "stopped after " << limit << " failures; the remaining cases did not run";
+    ADD_FAILURE() << "stopped at " << r->total_part_count() << " failures (the limit is " << limit
+                  << "): the remaining cases did not run";
     return true;
 }
 
