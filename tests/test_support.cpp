@@ -140,21 +140,17 @@ std::vector<const sv_variant *> runnable_variants() {
     return out;
 }
 
-std::vector<std::string> variant_names() {
+// The names of a table of variants (sv_variants, sv_facing_variants).
+template <class T> static std::vector<std::string> names_of(const T *(*table)(int *)) {
     int n = 0;
-    const sv_variant *all = sv_variants(&n);
+    const T *all = table(&n);
     std::vector<std::string> out;
     for (int i = 0; i < n; i++) out.push_back(all[i].name);
     return out;
 }
 
-std::vector<std::string> facing_variant_names() {
-    int n = 0;
-    const sv_facing_variant *all = sv_facing_variants(&n);
-    std::vector<std::string> out;
-    for (int i = 0; i < n; i++) out.push_back(all[i].name);
-    return out;
-}
+std::vector<std::string> variant_names() { return names_of(sv_variants); }
+std::vector<std::string> facing_variant_names() { return names_of(sv_facing_variants); }
 
 std::string param_name(const ::testing::TestParamInfo<std::string> &info) { return info.param; }
 
