@@ -95,8 +95,8 @@ FUNC sv_count_facing_avx512, 2, 4, 7, facing, numTriangles
         jz      .sum                            ; no bytes left: no load (a
         mov     g2q, -1                         ; masked load that reaches a
         bzhi    g2q, g2q, rvq                   ; page not mapped or not yet
-        kmovq   k1, g2q                         ; touched costs hundreds of
-        vmovdqu8 zmm5{k1}{z}, [g0q]             ; ticks on Zen 5, even fully
+        kmovq   k1, g2q                         ; touched is very slow on
+        vmovdqu8 zmm5{k1}{z}, [g0q]             ; Zen 5, even fully
         vpaddb  zmm1, zmm1, zmm5                ; masked); lanes now <= 63
 .sum:
         vpaddb  zmm1, zmm1, zmm2

@@ -24,18 +24,17 @@
 ;      with setnz. Four per iteration; the list is padded with copies of
 ;      its last entry, which are harmless (the same byte is stored again
 ;      with the same value).
-;   Gathers were measured first: vpgatherdd costs ~1.2-1.5 cycles per
-;   element on this Zen 5-class core, scalar byte loads 0.25 (4 loads per
-;   cycle), so the lookups stay scalar; the work saved is that of the
-;   facing triangles (about half of them). Pass 2 is the cost: a chain of
-;   three dependent loads (list entry, vertex numbers, cull bytes) and ~11
-;   instructions per non-facing triangle, ~2.3 cycles each here.
-;   Two other forms of CULL1's index loads, timed alone on 1344 random
-;   triangles (lfence-fenced TSC, median of 4000 calls; this form 1302
-;   ticks): three movsxd loads instead of the split qword, 1386 (the load
-;   ports are what it is short of); one 16-byte vmovdqu with vmovq and
-;   vpextrd into GPRs, 1470 (and it would read 4 bytes past the last
-;   triangle).
+;   Gathers were measured first and lost: on the Zen 5-class core this
+;   was written on, a vpgatherdd lane costs several scalar byte loads, so
+;   the lookups stay scalar; the work saved is that of the facing
+;   triangles (about half of them). Pass 2 is the cost: a chain of three
+;   dependent loads (list entry, vertex numbers, cull bytes) and ~11
+;   instructions per non-facing triangle.
+;   Two other forms of CULL1's index loads were timed alone and were
+;   slower: three movsxd loads instead of the split qword (the load ports
+;   are what it is short of), and one 16-byte vmovdqu with vmovq and
+;   vpextrd into GPRs (which would also read 4 bytes past the last
+;   triangle). The figures: docs/benchmark.md, "Design measurements".
 ;   The count is that of facing afterwards: a tail call of
 ;   sv_count_facing_avx2 (which is cheaper than keeping it exact across the
 ;   padded list).

@@ -23,9 +23,9 @@
 ;      (limit D-5), c = 0x80 culls.
 ;   3. The count: the facing bytes afterwards, summed by a tail call of
 ;      sv_count_facing_avx512.
-;   The lookups stay scalar: on the reference machine (AMD Zen 5 class)
-;   vpgatherdd zmm costs about 13 cycles for 16 lanes, whatever the mask,
-;   and blocks the load ports meanwhile. The only data-dependent branch is
+;   The lookups stay scalar: on the reference machine (AMD Zen 5 class) a
+;   vpgatherdd zmm costs more than its 16 lanes as scalar loads, whatever
+;   the mask, and blocks the load ports meanwhile (docs/benchmark.md, "Design measurements"). The only data-dependent branch is
 ;   the exit of pass 2's loop, once per chunk.
 ;
 ; int sv_count_facing_cull_avx512(uint8_t *facing, int numTriangles,

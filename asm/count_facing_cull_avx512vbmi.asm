@@ -15,8 +15,8 @@
 ;   0. The largest vertex number, M (vpmaxud over the 3n indices, the tail
 ;      masked). M >= 1024: the call goes to sv_count_facing_cull_avx512 (a
 ;      tail call; same arguments), as soon as a block of 128 numbers shows
-;      it (a full scan first cost large meshes 0.1-0.3 ticks per triangle
-;      and made this variant slower than c_ref at 108k triangles and up).
+;      it (a full scan first made this variant slower than c_ref on the
+;      large meshes: docs/benchmark.md, "Design measurements").
 ;   1. The table: cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), plain
 ;      loads; the last, partial register is the 64 bytes ending at
 ;      cullBits[M] moved into place by vpermb (a masked load only when the
@@ -45,12 +45,11 @@
 ;      the array, read again.
 ;      Why so few masked loads: on the reference machine a masked load
 ;      whose masked-off part lies on a page that is unmapped or not yet
-;      touched costs ~360 ticks, even when it reads no byte there
-;      (timed with the arrays ending at such a page: M = 10,
-;      84 -> 5607 ticks with a load per register; 1345 triangles, 630 ->
-;      5502). Left: a table under 64 bytes and meshes under 64 triangles
-;      (M = 10 there: 420 ticks against 21). The other AVX-512 kernels'
-;      masked tails still pay it.
+;      touched costs several times a whole small call, even when it reads
+;      no byte there (timed with the arrays ending at such a page; the
+;      figures: docs/benchmark.md, "Design measurements"). Left: a table
+;      under 64 bytes and meshes under 64 triangles. The other AVX-512
+;      kernels' masked tails still pay it.
 ;   3. The count: a tail call of sv_count_facing_avx512.
 ;   No branch on the facing or cull data: the work is the same for every
 ;   pattern (all triangles are looked up, facing or not). The only branch
@@ -308,7 +307,7 @@ FUNC sv_count_facing_cull_avx512vbmi
 .max_masked:                                    ; under 32 numbers in all: (a
         mov     g7q, -1                         ; masked load over a page that
         bzhi    g7q, g7q, g6q                   ; is unmapped or never touched
-        kmovd   k1, g7d                        ; costs ~360 ticks here, even
+        kmovd   k1, g7d                        ; is very slow here, even
         vmovdqu32 zmm2{k1}{z}, [g2q+g5q*4]       ; fully masked)
         vpmaxud zmm0, zmm0, zmm2
         cmp     g6q, 16

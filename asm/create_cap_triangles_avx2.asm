@@ -25,10 +25,10 @@
 ;   past the indices: the (at most two) listed triangles among the last two
 ;   are loaded as 8 + 4 bytes and stored as 16 + 8 bytes, so nothing is read
 ;   past the indices nor written past the count returned.
-;   Measured on the way (ticks for the 1344-triangle character, moving
-;   light, this Zen 5-class core): appendix F's scheme with one vpermd and
-;   one 32-byte store per triangle, offsets from a prefix-sum multiply,
-;   ~880; this, ~690.
+;   Why a list: appendix F's scheme with one vpermd and one 32-byte store
+;   per triangle, its offsets from a prefix-sum multiply, was measured
+;   first (the 1344-triangle character, moving light, the Zen 5-class core
+;   this was written on) and was slower than this one (docs/benchmark.md, "Design measurements").
 ;
 ; int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const int *indices, int numIndices)

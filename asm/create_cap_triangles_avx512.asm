@@ -130,7 +130,7 @@ cap_plus1:
         vptestnmb k1, xmm15, [g1q]              ; facing == 0 (xmm15: all ones)
 %else
         ; (no load whose mask is empty: a masked load over a page that is
-        ; unmapped or not yet touched costs hundreds of ticks on Zen 5
+        ; unmapped or not yet touched is very slow on Zen 5
         ; even when it reads nothing; ecx = 3 * triangles left)
         vmovdqu32 zmm0{k4}{z}, [g2q+0*64]
         vpxord  xmm1, xmm1, xmm1

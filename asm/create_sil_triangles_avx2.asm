@@ -27,13 +27,13 @@
 ;      +1). The output advances 24 bytes per edge, so no store waits on a
 ;      pointer chain; each store is 32 bytes but the list's last, which is
 ;      16 + 8, so nothing lands past the count returned.
-;   Measured on the way (this Zen 5-class core; ticks for the 2016-edge
-;   character, moving light): one 32-byte store per edge with a
-;   conditionally advanced pointer (the C's scheme in AVX2) 2900;
-;   vpgatherdd for the facing bytes costs ~1.2-1.5 cycles per element
-;   against 0.25 for a scalar byte load; phase 1 alone runs at ~1.1
-;   cycles per edge (about 7 instructions per edge at ~6 per cycle): the
-;   two look-ups per edge are the floor of this routine.
+;   Why (measured on the Zen 5-class core this was written on, the
+;   2016-edge character, moving light): one 32-byte store per edge with a
+;   conditionally advanced pointer (the C's scheme in AVX2) was slower; a
+;   vpgatherdd lane for the facing bytes costs several scalar byte loads;
+;   phase 1 alone (about 7 instructions per edge) runs near the issue
+;   width, so its two look-ups per edge are the floor of this routine.
+;   The figures: docs/benchmark.md, "Design measurements".
 ;
 ; int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const SilEdge *silEdges, int numSilEdges)

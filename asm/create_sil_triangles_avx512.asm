@@ -25,32 +25,29 @@
 ;      numbers p is eight instructions: vpsrld p by 5 (the bitmap dword,
 ;      mod 64), two masked vpermi2d (dwords 0-31 and 32-63), vprorvd by p
 ;      (the bit to bit 0; the rotate takes the count mod 32), vptestmd.
-;      On the reference machine (AMD Zen 5 class) this is the cheap way:
-;      vpgatherdd zmm costs about 13 cycles for 16 lanes whatever the mask,
-;      and blocks the load ports meanwhile. The lookups of P1 and P2 are
+;      On the reference machine (AMD Zen 5 class) this is the cheap way: a
+;      vpgatherdd zmm costs more than its 16 lanes as scalar loads whatever
+;      the mask, and blocks the load ports meanwhile. The lookups of P1 and P2 are
 ;      the masks F1, F2 (bit t: f1, f2 of edge t) and S = F1 ^ F2 is one
 ;      kxorw (splitting one interleaved mask with pext, as before, cost six
-;      instructions and two mask-GPR trips more per 16 edges:
-;      ~1680 -> ~1600 ticks on the character); vpcompressd (to a register:
+;      instructions and two mask-GPR trips more per 16 edges, and was
+;      slower on the character); vpcompressd (to a register:
 ;      the memory form is several times slower on Zen) packs the byte
 ;      offsets of the silhouette edges and 64 * f1 into two lists on the
 ;      stack; popcnt advances them.
 ;      A chunk spanning more triangles (large meshes, whose SilEdges,
 ;      sorted by p1, meet far-away p2) is handed whole to
 ;      sv_create_sil_triangles_avx2 (scalar lookups), an ordinary call:
-;      scalar lookups folded sixteen at a time into masks here cost ~1.4
-;      ticks per edge on koala.glb (99994 triangles), the AVX2 kernel's
-;      ~0.95, and on the 980k-triangle character this variant then lost
-;      to c_ref's volume (5.13 against 5.12 ticks per triangle).
+;      scalar lookups folded sixteen at a time into masks here were
+;      slower than the AVX2 kernel's on koala.glb (99994 triangles), and
+;      on the 980k-triangle character this variant then lost to c_ref's
+;      volume.
 ;   Whole calls of more than 3072 SilEdges (SIL_AVX2_ABOVE: a closed mesh
 ;   of more than 2048 triangles) go to the AVX2 kernel at entry, a tail
 ;   call: there its scalar lookups beat the window, which slides and
-;   refills (`shadowvol bench --scaling --quick`, ticks per edge, avx2 /
-;   this path: RobotExpressive 4967 edges 1.04 / 1.10, CesiumMan 7008
-;   0.83 / 1.03, the 12096-triangle character 0.79 / 0.90, spot.glb 0.76 /
-;   0.86, koala.glb 0.94 / 1.28), while on the smaller meshes this path
-;   wins (RiggedFigure 0.98 / 0.88, Fox 0.95 / 0.88, the character 0.93 /
-;   0.84, spot_lowres 2481 edges 0.91 / 0.91).
+;   refills, on every such mesh measured (`shadowvol bench --scaling`),
+;   while on the smaller meshes this path wins or ties. The figures per
+;   model: docs/benchmark.md, "Design measurements".
 ;   C. Output: per listed pair of edges, vpbroadcastq of each (v1, v2),
 ;      one vpermt2d into (v1 v2 v2 v1 v1 v2) twice, a vpxord of the ^1
 ;      patterns of their f1 (a 4-entry table), one masked store of twelve
@@ -85,7 +82,9 @@
 ;   give or take the 64-byte rounding down of the smallest). Output room
 ;   for 6 * numSilEdges ints; exactly the returned count is written. No
 ;   alignment anywhere. numSilEdges >= 0 (negative returns 0, touches
-;   nothing). Stack: 7.6 KiB.
+;   nothing). Stack: the 7616-byte frame (SIL_FRAME), its 64-byte
+;   alignment and the saved registers, under 7.6 KiB; plus the AVX2
+;   kernel's (< 4 KiB) while a wide chunk is handed to it.
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
 ;   on the machine at hand and docs/benchmark.md has the current table.
@@ -145,7 +144,7 @@ sil_c64:  dd 64
 sil_c256: dd 256
 
 ; Frame (below rbp, rsp 64-byte aligned): a few slots, the bitmap, the
-; (p1, p2) pairs of one chunk and its two lists: 7.5 KiB, so its two pages
+; (p1, p2) pairs of one chunk and its two lists: 7616 bytes, so its two pages
 ; are touched in order (a stack probe, as compilers do for frames over a
 ; page: a thread's guard page is not skipped).
 %define SIL_CHUNK   448                         ; edges per chunk (x 16)
@@ -377,8 +376,8 @@ FUNC sv_create_sil_triangles_avx512
         jmp     .c
 
 .chunk_via_avx2:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
-        ; (its scalar lookups, ~0.8-1.0 ticks per edge, measured faster on
-        ; such chunks than sixteen lookups folded into masks here, ~1.4).
+        ; (its scalar lookups measured faster on such chunks than sixteen
+        ; lookups folded into masks here: docs/benchmark.md).
         ; An ordinary System V call: what must survive goes to the frame,
         ; and the vector registers kept across chunks are reloaded after.
         mov     [rsp+SIL_SAVE_AFTER], rvq

@@ -93,7 +93,7 @@ std::vector<SilEdge> random_edges(Rng &rng, int n, int numTriangles, int numVert
 // V's CreateSilTriangles on FACING and EDGES, through the ABI-checking
 // trampoline into a guarded output, against c_ref's: count, indices and
 // the guards after the output.
-::testing::AssertionResult sil_matches_reference(Rng &rng, const sv_variant *v,
+::testing::AssertionResult sil_matches_reference(Rng &abi, const sv_variant *v,
                                                  const uint8_t *facing,
                                                  const std::vector<SilEdge> &edges) {
     const int n = (int)edges.size();
@@ -101,8 +101,8 @@ std::vector<SilEdge> random_edges(Rng &rng, int n, int numTriangles, int numVert
     const int expected =
         sv_create_sil_triangles_c_ref(expected_out.data(), facing, edges.data(), n);
     GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-    const int got = checked_call(rng, (const void *)v->create_sil_triangles, ptr_arg(out.data()),
-                                 ptr_arg(facing), ptr_arg(edges.data()), int_arg(n, rng));
+    const int got =
+        checked_call(abi, v->create_sil_triangles, out.as<int>(), facing, edges.data(), n);
     if (got != expected) {
         return ::testing::AssertionFailure() << "returned " << got << ", c_ref " << expected;
     }
@@ -115,19 +115,28 @@ std::vector<SilEdge> random_edges(Rng &rng, int n, int numTriangles, int numVert
     return ::testing::AssertionSuccess();
 }
 
-int check_count_facing(Rng &rng, const sv_variant *v, const std::vector<uint8_t> &facing,
+int check_count_facing(Rng &abi, const sv_variant *v, const std::vector<uint8_t> &facing,
                        uint8_t *buf) {
     std::copy(facing.begin(), facing.end(), buf);
-    return checked_call(rng, (const void *)v->count_facing, ptr_arg(buf),
-                        int_arg((int)facing.size(), rng));
+    return checked_call(abi, v->count_facing, buf, (int)facing.size());
 }
 
 } // namespace
 
-TEST(Avx512Kernels, CullOnAnySharedBitBit7Included) {
+// One instance per variant of sv_variants() (a test that holds for only some
+// of them skips the others and says why).
+class Avx512Kernels : public VariantTest {};
+
+INSTANTIATE_TEST_SUITE_P(Variants, Avx512Kernels, ::testing::ValuesIn(variant_names()), param_name);
+
+TEST_P(Avx512Kernels, CullOnAnySharedBitBit7Included) {
+    if (std::string(v->name) == "sse2_paper")
+        GTEST_SKIP() << "sse2_paper keeps limit D-5 (bit 7 alone is not culled in its "
+                        "four-triangle loop): pinned by Errata.D5_*";
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.CullBit7");
     for (int n = 0; n <= 300; n++) {
+        if (stop_after_failures()) return;
         std::vector<uint8_t> facing = random_facing(rng, n);
         const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n + 1));
         std::vector<int> indices((size_t)3 * n);
@@ -136,84 +145,77 @@ TEST(Avx512Kernels, CullOnAnySharedBitBit7Included) {
         std::vector<uint8_t> expected_facing = facing;
         const int expected =
             sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
-        for (const sv_variant *v : runnable_variants()) {
-            if (std::string(v->name) == "sse2_paper") continue; // limit D-5, pinned in test_errata
-            GuardedBuffer fbuf((size_t)n, 0);
-            std::copy(facing.begin(), facing.end(), fbuf.data());
-            int got = checked_call(rng, (const void *)v->count_facing_cull, ptr_arg(fbuf.data()),
-                                   int_arg(n, rng), ptr_arg(indices.data()), ptr_arg(cull.data()));
-            ASSERT_EQ(got, expected) << v->name << " n=" << n;
-            ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
-                << v->name << ": facing differs, n=" << n;
-            ASSERT_TRUE(fbuf.guards_intact()) << v->name << " n=" << n;
-        }
+        GuardedBuffer fbuf((size_t)n, 0);
+        std::copy(facing.begin(), facing.end(), fbuf.data());
+        int got =
+            checked_call(abi, v->count_facing_cull, fbuf.data(), n, indices.data(), cull.data());
+        EXPECT_EQ(got, expected) << v->name << " n=" << n;
+        EXPECT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
+            << v->name << ": facing differs, n=" << n;
+        EXPECT_TRUE(fbuf.guards_intact()) << v->name << " n=" << n;
     }
 }
 
-TEST(Avx512Kernels, LargeCounts) {
+TEST_P(Avx512Kernels, LargeCounts) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.LargeCounts");
-    for (const sv_variant *v : runnable_variants()) {
-        // CountFacing: around one and two full chunks of 62 x 256 bytes,
-        // and all ones (the largest lane sums).
-        for (int n : {15871, 15872, 15873, 31744, 31745, 40000}) {
-            for (bool all_ones : {false, true}) {
-                std::vector<uint8_t> facing = random_facing(rng, n);
-                if (all_ones) std::fill(facing.begin(), facing.end(), 1);
-                GuardedBuffer buf((size_t)n, 0);
-                ASSERT_EQ(check_count_facing(rng, v, facing, buf.data()),
-                          sv_count_facing_c_ref(facing.data(), n))
-                    << v->name << " n=" << n;
-            }
-        }
-        // CountFacingCull over several lists of 960; CapTriangles and
-        // SilTriangles over many blocks and chunks.
-        for (int n : {959, 960, 961, 1920, 5000}) {
+    // CountFacing: around one and two full chunks of 62 x 256 bytes,
+    // and all ones (the largest lane sums).
+    for (int n : {15871, 15872, 15873, 31744, 31745, 40000}) {
+        for (bool all_ones : {false, true}) {
             std::vector<uint8_t> facing = random_facing(rng, n);
-            const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n));
-            std::vector<int> indices((size_t)3 * n);
-            for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
-            std::vector<uint8_t> cull = cull_bytes_8bit(rng, numVerts);
-            if (std::string(v->name) == "sse2_paper")
-                for (auto &c : cull) c &= 0x7F; // limit D-5
-            std::vector<uint8_t> expected_facing = facing;
-            const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n,
-                                                            indices.data(), cull.data());
-            GuardedBuffer fbuf((size_t)n, 0);
-            std::copy(facing.begin(), facing.end(), fbuf.data());
-            ASSERT_EQ(checked_call(rng, (const void *)v->count_facing_cull, ptr_arg(fbuf.data()),
-                                   int_arg(n, rng), ptr_arg(indices.data()),
-                                   ptr_arg(cull.data())),
-                      expected)
+            if (all_ones) std::fill(facing.begin(), facing.end(), 1);
+            GuardedBuffer buf((size_t)n, 0);
+            EXPECT_EQ(check_count_facing(abi, v, facing, buf.data()),
+                      sv_count_facing_c_ref(facing.data(), n))
                 << v->name << " n=" << n;
-            ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
-                << v->name << ": facing differs, n=" << n;
-            ASSERT_TRUE(fbuf.guards_intact()) << v->name << " n=" << n;
-
-            std::vector<int> expected_out((size_t)6 * n + 6);
-            const int expected_caps = sv_create_cap_triangles_c_ref(
-                expected_out.data(), facing.data(), indices.data(), 3 * n);
-            GuardedBuffer ibuf(indices.size() * sizeof(int), 0);
-            std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-            GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-            ASSERT_EQ(checked_call(rng, (const void *)v->create_cap_triangles, ptr_arg(out.data()),
-                                   ptr_arg(facing.data()), ptr_arg(ibuf.data()),
-                                   int_arg(3 * n, rng)),
-                      expected_caps)
-                << v->name << " n=" << n;
-            ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected_caps,
-                                   out.as<int>()))
-                << v->name << ": cap indices differ, n=" << n;
-            ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n;
         }
-        for (int n : {447, 448, 449, 896, 5000}) {
-            for (int numTriangles : {n / 2, 1500, 5000}) {
-                std::vector<uint8_t> facing = random_facing(rng, numTriangles + 1);
-                facing[(size_t)numTriangles] = 1;
-                std::vector<SilEdge> edges = random_edges(rng, n, numTriangles, 1 << 20);
-                ASSERT_TRUE(sil_matches_reference(rng, v, facing.data(), edges))
-                    << v->name << " n=" << n << " triangles=" << numTriangles;
-            }
+    }
+    // CountFacingCull over several lists of 960; CapTriangles and
+    // SilTriangles over many blocks and chunks.
+    for (int n : {959, 960, 961, 1920, 5000}) {
+        std::vector<uint8_t> facing = random_facing(rng, n);
+        const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n));
+        std::vector<int> indices((size_t)3 * n);
+        for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
+        std::vector<uint8_t> cull = cull_bytes_8bit(rng, numVerts);
+        if (std::string(v->name) == "sse2_paper")
+            for (auto &c : cull) c &= 0x7F; // limit D-5
+        std::vector<uint8_t> expected_facing = facing;
+        const int expected =
+            sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
+        GuardedBuffer fbuf((size_t)n, 0);
+        std::copy(facing.begin(), facing.end(), fbuf.data());
+        EXPECT_EQ(
+            checked_call(abi, v->count_facing_cull, fbuf.data(), n, indices.data(), cull.data()),
+            expected)
+            << v->name << " n=" << n;
+        EXPECT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
+            << v->name << ": facing differs, n=" << n;
+        EXPECT_TRUE(fbuf.guards_intact()) << v->name << " n=" << n;
+
+        std::vector<int> expected_out((size_t)6 * n + 6);
+        const int expected_caps = sv_create_cap_triangles_c_ref(expected_out.data(), facing.data(),
+                                                                indices.data(), 3 * n);
+        GuardedBuffer ibuf(indices.size() * sizeof(int), 0);
+        std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+        GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+        EXPECT_EQ(checked_call(abi, v->create_cap_triangles, out.as<int>(), facing.data(),
+                               ibuf.as<int>(), 3 * n),
+                  expected_caps)
+            << v->name << " n=" << n;
+        EXPECT_TRUE(
+            std::equal(expected_out.begin(), expected_out.begin() + expected_caps, out.as<int>()))
+            << v->name << ": cap indices differ, n=" << n;
+        EXPECT_TRUE(out.guards_intact()) << v->name << " n=" << n;
+    }
+    for (int n : {447, 448, 449, 896, 5000}) {
+        for (int numTriangles : {n / 2, 1500, 5000}) {
+            std::vector<uint8_t> facing = random_facing(rng, numTriangles + 1);
+            facing[(size_t)numTriangles] = 1;
+            std::vector<SilEdge> edges = random_edges(rng, n, numTriangles, 1 << 20);
+            EXPECT_TRUE(sil_matches_reference(abi, v, facing.data(), edges))
+                << v->name << " n=" << n << " triangles=" << numTriangles;
         }
     }
 }
@@ -221,33 +223,30 @@ TEST(Avx512Kernels, LargeCounts) {
 // The largest triangle number M decides between the AVX-512 kernel's
 // bitmap (M < 2048) and the AVX2 kernel it hands wider chunks to; the
 // facing array has exactly M + 1 bytes and ends at an unmapped page.
-TEST(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
+TEST_P(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.SilBitmapLimit");
-    for (const sv_variant *v : runnable_variants()) {
-        for (int maxP : {0, 1, 63, 64, 2046, 2047, 2048, 2049, 4095, 100000}) {
-            for (int n : {1, 15, 16, 17, 100, 449}) {
-                std::vector<uint8_t> facing = random_facing(rng, maxP + 1);
-                std::vector<SilEdge> edges = random_edges(rng, n, maxP, 1 << 20);
-                edges[rng.below((uint32_t)n)].p2 = maxP; // M exactly
-                FencedBuffer fbuf((size_t)maxP + 1, true);
-                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
-                FencedBuffer ebuf(edges.size() * sizeof(SilEdge), true);
-                std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
-                std::vector<int> expected_out((size_t)6 * n + 6);
-                const int expected = sv_create_sil_triangles_c_ref(
-                    expected_out.data(), facing.data(), edges.data(), n);
-                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
-                                       ptr_arg(out.data()), ptr_arg(fbuf.as<uint8_t>()),
-                                       ptr_arg(ebuf.as<SilEdge>()), int_arg(n, rng)),
-                          expected)
-                    << v->name << " n=" << n << " M=" << maxP;
-                ASSERT_TRUE(std::equal(expected_out.begin(), expected_out.begin() + expected,
-                                       out.as<int>()))
-                    << v->name << ": indices differ, n=" << n << " M=" << maxP;
-                ASSERT_TRUE(out.guards_intact()) << v->name << " n=" << n << " M=" << maxP;
-            }
+    for (int maxP : {0, 1, 63, 64, 2046, 2047, 2048, 2049, 4095, 100000}) {
+        for (int n : {1, 15, 16, 17, 100, 449}) {
+            std::vector<uint8_t> facing = random_facing(rng, maxP + 1);
+            std::vector<SilEdge> edges = random_edges(rng, n, maxP, 1 << 20);
+            edges[rng.below((uint32_t)n)].p2 = maxP; // M exactly
+            FencedBuffer fbuf((size_t)maxP + 1, true);
+            std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+            FencedBuffer ebuf(edges.size() * sizeof(SilEdge), true);
+            std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
+            std::vector<int> expected_out((size_t)6 * n + 6);
+            const int expected =
+                sv_create_sil_triangles_c_ref(expected_out.data(), facing.data(), edges.data(), n);
+            GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+            EXPECT_EQ(checked_call(abi, v->create_sil_triangles, out.as<int>(), fbuf.as<uint8_t>(),
+                                   ebuf.as<SilEdge>(), n),
+                      expected)
+                << v->name << " n=" << n << " M=" << maxP;
+            EXPECT_TRUE(
+                std::equal(expected_out.begin(), expected_out.begin() + expected, out.as<int>()))
+                << v->name << ": indices differ, n=" << n << " M=" << maxP;
+            EXPECT_TRUE(out.guards_intact()) << v->name << " n=" << n << " M=" << maxP;
         }
     }
 }
@@ -262,27 +261,24 @@ TEST(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
 // already covering it, and with 2600 or 2900 the window slides and
 // extends across the chunks; one edge of chunk 0, 1 or 2 names triangle
 // 5000, which makes that chunk too wide.
-TEST(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
+TEST_P(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.SilWideChunk");
     constexpr int kFar = 5000;
-    for (const sv_variant *v : runnable_variants()) {
-        for (int n : {3 * 448, 3 * 448 + 5, 3072, 3073, 6 * 448}) {
-            for (int span : {999, 2600, 2900}) {
-                for (int wideChunk : {0, 1, 2}) {
-                    std::vector<SilEdge> edges = random_edges(rng, n, span, 1 << 20);
-                    std::sort(edges.begin(), edges.end(),
-                              [](const SilEdge &a, const SilEdge &b) { return a.p1 < b.p1; });
-                    for (SilEdge &e : edges) {
-                        const int p2 = e.p1 + (int)rng.below(601) - 300;
-                        e.p2 = std::min(std::max(p2, 0), span);
-                    }
-                    edges[(size_t)wideChunk * 448 + rng.below(448)].p2 = kFar;
-                    std::vector<uint8_t> facing = random_facing(rng, kFar + 1);
-                    ASSERT_TRUE(sil_matches_reference(rng, v, facing.data(), edges))
-                        << v->name << " n=" << n << " span " << span << " wide chunk "
-                        << wideChunk;
+    for (int n : {3 * 448, 3 * 448 + 5, 3072, 3073, 6 * 448}) {
+        for (int span : {999, 2600, 2900}) {
+            for (int wideChunk : {0, 1, 2}) {
+                std::vector<SilEdge> edges = random_edges(rng, n, span, 1 << 20);
+                std::sort(edges.begin(), edges.end(),
+                          [](const SilEdge &a, const SilEdge &b) { return a.p1 < b.p1; });
+                for (SilEdge &e : edges) {
+                    const int p2 = e.p1 + (int)rng.below(601) - 300;
+                    e.p2 = std::min(std::max(p2, 0), span);
                 }
+                edges[(size_t)wideChunk * 448 + rng.below(448)].p2 = kFar;
+                std::vector<uint8_t> facing = random_facing(rng, kFar + 1);
+                EXPECT_TRUE(sil_matches_reference(abi, v, facing.data(), edges))
+                    << v->name << " n=" << n << " span " << span << " wide chunk " << wideChunk;
             }
         }
     }
@@ -294,37 +290,34 @@ TEST(Avx512Kernels, SilWideChunkBetweenWindowedChunks) {
 // 64-triangle blocks: cullBits has exactly M + 1 bytes and ends at an
 // unmapped page (a table load past cullBits[M] faults), the vertex numbers
 // and the facing bytes end at one too (the tail block's masked loads).
-TEST(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
+TEST_P(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.CullTable");
-    for (const sv_variant *v : runnable_variants()) {
-        for (int maxV : {0, 1, 63, 64, 127, 128, 191, 192, 255, 256, 383, 384, 511, 512, 575,
-                         576, 767, 831, 832, 895, 896, 959, 960, 1023, 1024, 1025, 5000}) {
-            for (int n : {1, 2, 63, 64, 65, 127, 128, 191, 200, 1344}) {
-                std::vector<uint8_t> facing = random_facing(rng, n);
-                std::vector<int> indices((size_t)3 * n);
-                for (auto &i : indices) i = (int)rng.below((uint32_t)maxV + 1);
-                indices[rng.below((uint32_t)(3 * n))] = maxV; // M exactly
-                std::vector<uint8_t> cull = cull_bytes_8bit(rng, maxV + 1);
-                if (std::string(v->name) == "sse2_paper")
-                    for (auto &c : cull) c &= 0x7F; // limit D-5
-                FencedBuffer fbuf((size_t)n, true), ibuf(indices.size() * sizeof(int), true),
-                    cbuf((size_t)maxV + 1, true);
-                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
-                std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-                std::copy(cull.begin(), cull.end(), cbuf.as<uint8_t>());
-                std::vector<uint8_t> expected_facing = facing;
-                const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n,
-                                                                indices.data(), cull.data());
-                ASSERT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
-                                       ptr_arg(fbuf.as<uint8_t>()), int_arg(n, rng),
-                                       ptr_arg(ibuf.as<int>()), ptr_arg(cbuf.as<uint8_t>())),
-                          expected)
-                    << v->name << " n=" << n << " M=" << maxV;
-                ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(),
-                                       fbuf.as<uint8_t>()))
-                    << v->name << ": facing differs, n=" << n << " M=" << maxV;
-            }
+    for (int maxV : {0,   1,   63,  64,  127, 128, 191, 192, 255, 256,  383,  384,  511, 512,
+                     575, 576, 767, 831, 832, 895, 896, 959, 960, 1023, 1024, 1025, 5000}) {
+        for (int n : {1, 2, 63, 64, 65, 127, 128, 191, 200, 1344}) {
+            std::vector<uint8_t> facing = random_facing(rng, n);
+            std::vector<int> indices((size_t)3 * n);
+            for (auto &i : indices) i = (int)rng.below((uint32_t)maxV + 1);
+            indices[rng.below((uint32_t)(3 * n))] = maxV; // M exactly
+            std::vector<uint8_t> cull = cull_bytes_8bit(rng, maxV + 1);
+            if (std::string(v->name) == "sse2_paper")
+                for (auto &c : cull) c &= 0x7F; // limit D-5
+            FencedBuffer fbuf((size_t)n, true), ibuf(indices.size() * sizeof(int), true),
+                cbuf((size_t)maxV + 1, true);
+            std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+            std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+            std::copy(cull.begin(), cull.end(), cbuf.as<uint8_t>());
+            std::vector<uint8_t> expected_facing = facing;
+            const int expected =
+                sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
+            EXPECT_EQ(checked_call(abi, v->count_facing_cull, fbuf.as<uint8_t>(), n, ibuf.as<int>(),
+                                   cbuf.as<uint8_t>()),
+                      expected)
+                << v->name << " n=" << n << " M=" << maxV;
+            EXPECT_TRUE(
+                std::equal(expected_facing.begin(), expected_facing.end(), fbuf.as<uint8_t>()))
+                << v->name << ": facing differs, n=" << n << " M=" << maxV;
         }
     }
 }
@@ -332,39 +325,32 @@ TEST(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
 // "Writes only facing bytes that were 0" (the AVX2, AVX-512 and avx512vbmi
 // kernels' contract; the C's too): every triangle facing and culled, the
 // facing bytes in a read-only page. A store of the same 1 would fault.
-TEST(Avx512Kernels, CullWritesNoFacingByteThatWasOne) {
+TEST_P(Avx512Kernels, CullWritesNoFacingByteThatWasOne) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.CullReadOnly");
     const size_t page = (size_t)sysconf(_SC_PAGESIZE);
-    for (const char *name : {"c_ref", "avx2", "avx512", "avx512vbmi"}) {
-        const sv_variant *v = sv_variant_by_name(name);
-        if (!v && !variant_built_here(name)) {
-            std::printf("[  SKIPPED ] variant %s: not built on this platform\n", name);
-            continue;
-        }
-        ASSERT_NE(v, nullptr) << name;
-        if ((v->isa & sv_cpu_isa()) != v->isa) {
-            std::printf("[  SKIPPED ] variant %s: this CPU lacks its instruction set\n", name);
-            continue;
-        }
-        for (int n : {1, 63, 64, 65, 1344, 3000}) {
-            for (int numVerts : {3, 700, 2000}) {
-                std::vector<int> indices((size_t)3 * n);
-                for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
-                std::vector<uint8_t> cull((size_t)numVerts, 0x21);
-                const size_t len = ((size_t)n + page - 1) / page * page;
-                uint8_t *facing = (uint8_t *)mmap(nullptr, len, PROT_READ | PROT_WRITE,
-                                                  MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-                ASSERT_NE((void *)facing, MAP_FAILED);
-                std::fill(facing, facing + n, 1);
-                ASSERT_EQ(mprotect(facing, len, PROT_READ), 0);
-                EXPECT_EQ(checked_call(rng, (const void *)v->count_facing_cull, ptr_arg(facing),
-                                       int_arg(n, rng), ptr_arg(indices.data()),
-                                       ptr_arg(cull.data())),
-                          n)
-                    << name << " n=" << n << " vertices=" << numVerts;
-                munmap(facing, len);
-            }
+    // c_branchless and sse2_paper store every facing byte (branch-free):
+    // their contract does not promise this.
+    const std::string name = v->name;
+    if (name == "c_branchless" || name == "sse2_paper")
+        GTEST_SKIP() << name
+                     << " stores every facing byte; only c_ref, avx2, avx512 and "
+                        "avx512vbmi promise to store none that was 1";
+    for (int n : {1, 63, 64, 65, 1344, 3000}) {
+        for (int numVerts : {3, 700, 2000}) {
+            std::vector<int> indices((size_t)3 * n);
+            for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
+            std::vector<uint8_t> cull((size_t)numVerts, 0x21);
+            const size_t len = ((size_t)n + page - 1) / page * page;
+            uint8_t *facing = (uint8_t *)mmap(nullptr, len, PROT_READ | PROT_WRITE,
+                                              MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+            ASSERT_NE((void *)facing, MAP_FAILED);
+            std::fill(facing, facing + n, 1);
+            ASSERT_EQ(mprotect(facing, len, PROT_READ), 0);
+            EXPECT_EQ(
+                checked_call(abi, v->count_facing_cull, facing, n, indices.data(), cull.data()), n)
+                << name << " n=" << n << " vertices=" << numVerts;
+            munmap(facing, len);
         }
     }
 }
@@ -372,7 +358,7 @@ TEST(Avx512Kernels, CullWritesNoFacingByteThatWasOne) {
 // Every input array placed against an unmapped page, above it and below
 // it: a read outside any array faults. Variants whose alignment needs the
 // placement does not meet are skipped for that placement.
-TEST(Avx512Kernels, InputsAtPageEdgesReadNothingOutside) {
+TEST_P(Avx512Kernels, InputsAtPageEdgesReadNothingOutside) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Avx512Kernels.PageEdges");
     std::vector<int> counts;
@@ -380,6 +366,7 @@ TEST(Avx512Kernels, InputsAtPageEdgesReadNothingOutside) {
     for (int n : {127, 128, 129, 255, 256, 257, 1000, 1344}) counts.push_back(n);
     for (bool at_end : {true, false}) {
         for (int n : counts) {
+            if (stop_after_failures()) return;
             std::vector<uint8_t> facing = random_facing(rng, n);
             const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n + 1));
             std::vector<int> indices((size_t)3 * n);
@@ -409,48 +396,42 @@ TEST(Avx512Kernels, InputsAtPageEdgesReadNothingOutside) {
             const int n_sil = sv_create_sil_triangles_c_ref(
                 expected_sil.data(), sil_facing.data(), edges.data(), n);
 
-            for (const sv_variant *v : runnable_variants()) {
-                const std::string where = std::string(v->name) + " n=" + std::to_string(n) +
-                                          (at_end ? " (arrays end at a page)"
-                                                  : " (arrays start at a page)");
-                if (aligned(fbuf.as<uint8_t>(), v->align_facing)) {
-                    ASSERT_EQ(check_count_facing(rng, v, facing, fbuf.as<uint8_t>()),
-                              sv_count_facing_c_ref(facing.data(), n))
-                        << where;
-                }
-                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
-                ASSERT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
-                                       ptr_arg(fbuf.as<uint8_t>()), int_arg(n, rng),
-                                       ptr_arg(ibuf.as<int>()), ptr_arg(cbuf.as<uint8_t>())),
-                          expected_cull)
+            const std::string where =
+                std::string(v->name) + " n=" + std::to_string(n) +
+                (at_end ? " (arrays end at a page)" : " (arrays start at a page)");
+            if (aligned(fbuf.as<uint8_t>(), v->align_facing)) {
+                EXPECT_EQ(check_count_facing(abi, v, facing, fbuf.as<uint8_t>()),
+                          sv_count_facing_c_ref(facing.data(), n))
                     << where;
-                ASSERT_TRUE(std::equal(cull_facing.begin(), cull_facing.end(),
-                                       fbuf.as<uint8_t>()))
-                    << where;
-
-                std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
-                GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-                if (aligned(ibuf.as<int>(), v->align_indices)) {
-                    ASSERT_EQ(checked_call(rng, (const void *)v->create_cap_triangles,
-                                           ptr_arg(out.data()), ptr_arg(fbuf.as<uint8_t>()),
-                                           ptr_arg(ibuf.as<int>()), int_arg(3 * n, rng)),
-                              n_caps)
-                        << where;
-                    ASSERT_TRUE(std::equal(expected_caps.begin(), expected_caps.begin() + n_caps,
-                                           out.as<int>()))
-                        << where;
-                    ASSERT_TRUE(out.guards_intact()) << where;
-                }
-                ASSERT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
-                                       ptr_arg(out.data()), ptr_arg(sfbuf.as<uint8_t>()),
-                                       ptr_arg(ebuf.as<SilEdge>()), int_arg(n, rng)),
-                          n_sil)
-                    << where;
-                ASSERT_TRUE(
-                    std::equal(expected_sil.begin(), expected_sil.begin() + n_sil, out.as<int>()))
-                    << where;
-                ASSERT_TRUE(out.guards_intact()) << where;
             }
+            std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+            EXPECT_EQ(checked_call(abi, v->count_facing_cull, fbuf.as<uint8_t>(), n, ibuf.as<int>(),
+                                   cbuf.as<uint8_t>()),
+                      expected_cull)
+                << where;
+            EXPECT_TRUE(std::equal(cull_facing.begin(), cull_facing.end(), fbuf.as<uint8_t>()))
+                << where;
+
+            std::copy(facing.begin(), facing.end(), fbuf.as<uint8_t>());
+            GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
+            if (aligned(ibuf.as<int>(), v->align_indices)) {
+                EXPECT_EQ(checked_call(abi, v->create_cap_triangles, out.as<int>(),
+                                       fbuf.as<uint8_t>(), ibuf.as<int>(), 3 * n),
+                          n_caps)
+                    << where;
+                EXPECT_TRUE(std::equal(expected_caps.begin(), expected_caps.begin() + n_caps,
+                                       out.as<int>()))
+                    << where;
+                EXPECT_TRUE(out.guards_intact()) << where;
+            }
+            EXPECT_EQ(checked_call(abi, v->create_sil_triangles, out.as<int>(), sfbuf.as<uint8_t>(),
+                                   ebuf.as<SilEdge>(), n),
+                      n_sil)
+                << where;
+            EXPECT_TRUE(
+                std::equal(expected_sil.begin(), expected_sil.begin() + n_sil, out.as<int>()))
+                << where;
+            EXPECT_TRUE(out.guards_intact()) << where;
         }
     }
 }

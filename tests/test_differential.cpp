@@ -6,6 +6,11 @@
 // half of each int argument, and every output buffer is sized exactly at
 // the documented bound with guard bytes on both sides.
 //
+// Each test runs once per variant (Variants/Differential.<Test>/<variant>,
+// test_support.h's VariantTest): --gtest_filter='*/avx2' runs one variant,
+// and every case is an EXPECT, so a failing variant or case hides no other.
+// The cases are the same for every variant (drawn from the test's name).
+//
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include "test_support.h"
 
@@ -58,35 +63,37 @@ std::vector<uint8_t> random_cull_bits(Rng &rng, int numVerts) {
 
 } // namespace
 
-TEST(Differential, CountFacing) {
+class Differential : public VariantTest {};
+
+INSTANTIATE_TEST_SUITE_P(Variants, Differential, ::testing::ValuesIn(variant_names()), param_name);
+
+TEST_P(Differential, CountFacing) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Differential.CountFacing");
-    auto variants = runnable_variants();
     for (int n = 0; n <= kMaxCount; n++) {
+        if (stop_after_failures()) return;
         for (double density : kDensities) {
             std::vector<uint8_t> facing = random_facing(rng, n, density);
             const int expected = sv_count_facing_c_ref(facing.data(), n);
-            for (const sv_variant *v : variants) {
-                for (size_t off : offsets_for(v->align_facing, 1)) {
-                    GuardedBuffer buf((size_t)n, off);
-                    std::copy(facing.begin(), facing.end(), buf.data());
-                    int got = checked_call(rng, v->count_facing, buf.data(), n);
-                    ASSERT_EQ(got, expected) << v->name << " n=" << n << " density "
-                                             << density_name(density) << " offset " << off;
-                    ASSERT_TRUE(buf.guards_intact()) << v->name << " n=" << n;
-                    ASSERT_TRUE(std::equal(facing.begin(), facing.end(), buf.data()))
-                        << v->name << " modified its const input, n=" << n;
-                }
+            for (size_t off : offsets_for(v->align_facing, 1)) {
+                GuardedBuffer buf((size_t)n, off);
+                std::copy(facing.begin(), facing.end(), buf.data());
+                int got = checked_call(abi, v->count_facing, buf.data(), n);
+                EXPECT_EQ(got, expected) << v->name << " n=" << n << " density "
+                                         << density_name(density) << " offset " << off;
+                EXPECT_TRUE(buf.guards_intact()) << v->name << " n=" << n;
+                EXPECT_TRUE(std::equal(facing.begin(), facing.end(), buf.data()))
+                    << v->name << " modified its const input, n=" << n;
             }
         }
     }
 }
 
-TEST(Differential, CountFacingCull) {
+TEST_P(Differential, CountFacingCull) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Differential.CountFacingCull");
-    auto variants = runnable_variants();
     for (int n = 0; n <= kMaxCount; n++) {
+        if (stop_after_failures()) return;
         for (double density : kDensities) {
             std::vector<uint8_t> facing = random_facing(rng, n, density);
             const int numVerts = 1 + (int)rng.below((uint32_t)(3 * n + 1));
@@ -97,37 +104,33 @@ TEST(Differential, CountFacingCull) {
             std::vector<uint8_t> expected_facing = facing;
             const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n,
                                                             indices.data(), cull.data());
-            for (const sv_variant *v : variants) {
-                // No alignment contract: every byte offset of facing, every
-                // int offset of indices.
-                for (size_t off : offsets_for(1, 1)) {
-                    GuardedBuffer fbuf((size_t)n, off);
-                    GuardedBuffer ibuf(indices.size() * sizeof(int), (off * 4) % 16);
-                    GuardedBuffer cbuf(cull.size(), off);
-                    std::copy(facing.begin(), facing.end(), fbuf.data());
-                    std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-                    std::copy(cull.begin(), cull.end(), cbuf.data());
-                    int got = checked_call(rng, v->count_facing_cull, fbuf.data(), n,
-                                           ibuf.as<int>(), cbuf.data());
-                    ASSERT_EQ(got, expected) << v->name << " n=" << n << " density "
-                                             << density_name(density) << " offset " << off;
-                    ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(),
-                                           fbuf.data()))
-                        << v->name << ": facing array differs, n=" << n;
-                    ASSERT_TRUE(fbuf.guards_intact() && ibuf.guards_intact() &&
-                                cbuf.guards_intact())
-                        << v->name << " wrote out of bounds, n=" << n;
-                }
+            // No alignment contract: every byte offset of facing, every
+            // int offset of indices.
+            for (size_t off : offsets_for(1, 1)) {
+                GuardedBuffer fbuf((size_t)n, off);
+                GuardedBuffer ibuf(indices.size() * sizeof(int), (off * 4) % 16);
+                GuardedBuffer cbuf(cull.size(), off);
+                std::copy(facing.begin(), facing.end(), fbuf.data());
+                std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+                std::copy(cull.begin(), cull.end(), cbuf.data());
+                int got = checked_call(abi, v->count_facing_cull, fbuf.data(), n, ibuf.as<int>(),
+                                       cbuf.data());
+                EXPECT_EQ(got, expected) << v->name << " n=" << n << " density "
+                                         << density_name(density) << " offset " << off;
+                EXPECT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
+                    << v->name << ": facing array differs, n=" << n << " offset " << off;
+                EXPECT_TRUE(fbuf.guards_intact() && ibuf.guards_intact() && cbuf.guards_intact())
+                    << v->name << " wrote out of bounds, n=" << n << " offset " << off;
             }
         }
     }
 }
 
-TEST(Differential, CreateSilTriangles) {
+TEST_P(Differential, CreateSilTriangles) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Differential.CreateSilTriangles");
-    auto variants = runnable_variants();
     for (int n = 0; n <= kMaxCount; n++) {
+        if (stop_after_failures()) return;
         for (double density : kDensities) {
             const int numTriangles = (int)rng.below(2u * (uint32_t)n + 2);
             std::vector<uint8_t> facing = random_facing(rng, numTriangles + 1, density);
@@ -145,31 +148,30 @@ TEST(Differential, CreateSilTriangles) {
             std::vector<int> expected((size_t)6 * n + 6);
             const int expected_count =
                 sv_create_sil_triangles_c_ref(expected.data(), facing.data(), edges.data(), n);
-            for (const sv_variant *v : variants) {
-                for (size_t out_off : offsets_for(v->align_shadow_indices, 4)) {
-                    GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
-                    GuardedBuffer ebuf(edges.size() * sizeof(SilEdge), (out_off * 3) % 16);
-                    std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
-                    int got = checked_call(rng, v->create_sil_triangles, out.as<int>(),
-                                           facing.data(), ebuf.as<SilEdge>(), n);
-                    ASSERT_EQ(got, expected_count) << v->name << " n=" << n << " density "
-                                                   << density_name(density);
-                    ASSERT_TRUE(std::equal(expected.begin(), expected.begin() + expected_count,
-                                           out.as<int>()))
-                        << v->name << ": indices differ, n=" << n;
-                    ASSERT_TRUE(out.guards_intact())
-                        << v->name << " wrote outside 6 * numSilEdges ints, n=" << n;
-                }
+            for (size_t out_off : offsets_for(v->align_shadow_indices, 4)) {
+                GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
+                GuardedBuffer ebuf(edges.size() * sizeof(SilEdge), (out_off * 3) % 16);
+                std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
+                int got = checked_call(abi, v->create_sil_triangles, out.as<int>(), facing.data(),
+                                       ebuf.as<SilEdge>(), n);
+                const std::string what = std::string(v->name) + " n=" + std::to_string(n) +
+                                         " density " + density_name(density) + " offset " +
+                                         std::to_string(out_off);
+                EXPECT_EQ(got, expected_count) << what;
+                EXPECT_TRUE(
+                    std::equal(expected.begin(), expected.begin() + expected_count, out.as<int>()))
+                    << what << ": indices differ";
+                EXPECT_TRUE(out.guards_intact()) << what << ": wrote outside 6 * numSilEdges ints";
             }
         }
     }
 }
 
-TEST(Differential, CreateCapTriangles) {
+TEST_P(Differential, CreateCapTriangles) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Differential.CreateCapTriangles");
-    auto variants = runnable_variants();
     for (int n = 0; n <= kMaxCount; n++) {
+        if (stop_after_failures()) return;
         for (double density : kDensities) {
             std::vector<uint8_t> facing = random_facing(rng, n, density);
             const int numVerts = 1 + (int)rng.below(1u << 29);
@@ -178,24 +180,24 @@ TEST(Differential, CreateCapTriangles) {
             std::vector<int> expected((size_t)6 * n + 6);
             const int expected_count = sv_create_cap_triangles_c_ref(
                 expected.data(), facing.data(), indices.data(), 3 * n);
-            for (const sv_variant *v : variants) {
-                // every input offset, each paired with one of the output's
-                const std::vector<size_t> out_offsets = offsets_for(v->align_shadow_indices, 4);
-                for (size_t in_off : offsets_for(v->align_indices, 4)) {
-                    size_t out_off = out_offsets[in_off / 4 % out_offsets.size()];
-                    GuardedBuffer ibuf(indices.size() * sizeof(int), in_off);
-                    GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
-                    std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-                    int got = checked_call(rng, v->create_cap_triangles, out.as<int>(),
-                                           facing.data(), ibuf.as<int>(), 3 * n);
-                    ASSERT_EQ(got, expected_count) << v->name << " n=" << n << " density "
-                                                   << density_name(density);
-                    ASSERT_TRUE(std::equal(expected.begin(), expected.begin() + expected_count,
-                                           out.as<int>()))
-                        << v->name << ": indices differ, n=" << n;
-                    ASSERT_TRUE(out.guards_intact() && ibuf.guards_intact())
-                        << v->name << " wrote outside 6 * numTriangles ints, n=" << n;
-                }
+            // every input offset, each paired with one of the output's
+            const std::vector<size_t> out_offsets = offsets_for(v->align_shadow_indices, 4);
+            for (size_t in_off : offsets_for(v->align_indices, 4)) {
+                size_t out_off = out_offsets[in_off / 4 % out_offsets.size()];
+                GuardedBuffer ibuf(indices.size() * sizeof(int), in_off);
+                GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
+                std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+                int got = checked_call(abi, v->create_cap_triangles, out.as<int>(), facing.data(),
+                                       ibuf.as<int>(), 3 * n);
+                const std::string what = std::string(v->name) + " n=" + std::to_string(n) +
+                                         " density " + density_name(density) + " offsets " +
+                                         std::to_string(in_off) + "/" + std::to_string(out_off);
+                EXPECT_EQ(got, expected_count) << what;
+                EXPECT_TRUE(
+                    std::equal(expected.begin(), expected.begin() + expected_count, out.as<int>()))
+                    << what << ": indices differ";
+                EXPECT_TRUE(out.guards_intact() && ibuf.guards_intact())
+                    << what << ": wrote outside 6 * numTriangles ints";
             }
         }
     }
@@ -203,13 +205,13 @@ TEST(Differential, CreateCapTriangles) {
 
 // The whole volume, with and without culling, on random connectivity: the
 // four kernels of each variant glued by sv_create_shadow_volume.
-TEST(Differential, CreateShadowVolume) {
+TEST_P(Differential, CreateShadowVolume) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("Differential.CreateShadowVolume");
-    auto variants = runnable_variants();
     const sv_variant *ref = sv_variant_by_name("c_ref");
     ASSERT_NE(ref, nullptr);
     for (int numTriangles = 0; numTriangles <= 300; numTriangles++) {
+        if (stop_after_failures()) return;
         for (double density : kDensities) {
             for (bool cull : {false, true}) {
                 const int numIndices = 3 * numTriangles;
@@ -235,28 +237,26 @@ TEST(Differential, CreateShadowVolume) {
                     ref, expected.data(), indices.data(), numIndices, edges.data(), numEdges,
                     expected_facing.data(), cull ? cullBits.data() : nullptr);
 
-                for (const sv_variant *v : variants) {
-                    GuardedBuffer out(cap * sizeof(int), 0);
-                    GuardedBuffer fbuf(facing.size(), 0);
-                    GuardedBuffer ibuf(indices.size() * sizeof(int), 0);
-                    std::copy(facing.begin(), facing.end(), fbuf.data());
-                    std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-                    int got = sv_create_shadow_volume_checked(
-                        v, out.as<int>(), cap, ibuf.as<int>(), numIndices, numVerts,
-                        edges.data(), numEdges, fbuf.data(), cull ? cullBits.data() : nullptr);
-                    ASSERT_EQ(got, expected_count)
-                        << v->name << " triangles=" << numTriangles << " cull=" << cull
-                        << " density " << density_name(density) << ": "
-                        << (got < 0 ? sv_status_string(got) : "");
-                    ASSERT_TRUE(std::equal(expected.begin(), expected.begin() + expected_count,
-                                           out.as<int>()))
-                        << v->name << ": indices differ, triangles=" << numTriangles;
-                    ASSERT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(),
-                                           fbuf.data()))
-                        << v->name << ": facing differs, triangles=" << numTriangles;
-                    ASSERT_TRUE(out.guards_intact())
-                        << v->name << " wrote past sv_shadow_volume_capacity";
-                }
+                GuardedBuffer out(cap * sizeof(int), 0);
+                GuardedBuffer fbuf(facing.size(), 0);
+                GuardedBuffer ibuf(indices.size() * sizeof(int), 0);
+                std::copy(facing.begin(), facing.end(), fbuf.data());
+                std::copy(indices.begin(), indices.end(), ibuf.as<int>());
+                int got = sv_create_shadow_volume_checked(
+                    v, out.as<int>(), cap, ibuf.as<int>(), numIndices, numVerts, edges.data(),
+                    numEdges, fbuf.data(), cull ? cullBits.data() : nullptr);
+                const std::string what =
+                    std::string(v->name) + " triangles=" + std::to_string(numTriangles) +
+                    " cull=" + std::to_string(cull) + " density " + density_name(density);
+                EXPECT_EQ(got, expected_count)
+                    << what << ": " << (got < 0 ? sv_status_string(got) : "");
+                EXPECT_TRUE(
+                    std::equal(expected.begin(), expected.begin() + expected_count, out.as<int>()))
+                    << what << ": indices differ";
+                EXPECT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
+                    << what << ": facing differs";
+                EXPECT_TRUE(out.guards_intact())
+                    << what << ": wrote past sv_shadow_volume_capacity";
             }
         }
     }

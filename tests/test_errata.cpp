@@ -59,9 +59,7 @@ TEST(Errata, C2_CountFacingOfZeroTrianglesIsZero) {
     Rng rng = rng_for("Errata.C2");
     uint8_t facing[16] __attribute__((aligned(16))) = {1, 1, 1, 1};
     for (int i = 0; i < 100; i++) {
-        EXPECT_EQ(checked_call(rng, (const void *)paper().count_facing, ptr_arg(facing),
-                               int_arg(0, rng)),
-                  0);
+        EXPECT_EQ(checked_call(rng, paper().count_facing, facing, 0), 0);
     }
 }
 
@@ -72,9 +70,7 @@ TEST(Errata, D3_CountFacingCullOfZeroTrianglesIsZero) {
     uint8_t facing[4] = {1, 1, 1, 1}, cull[4] = {1, 1, 1, 1};
     int indices[3] = {0, 1, 2};
     for (int i = 0; i < 100; i++) {
-        EXPECT_EQ(checked_call(rng, (const void *)paper().count_facing_cull, ptr_arg(facing),
-                               int_arg(0, rng), ptr_arg(indices), ptr_arg(cull)),
-                  0);
+        EXPECT_EQ(checked_call(rng, paper().count_facing_cull, facing, 0, indices, cull), 0);
     }
 }
 
@@ -86,9 +82,7 @@ TEST(Errata, E1_SilTrianglesOfZeroEdgesIsZero) {
     int out[8] __attribute__((aligned(16)));
     uint8_t facing[2] = {0, 1};
     SilEdge edge = {0, 1, 0, 2};
-    EXPECT_EQ(checked_call(rng, (const void *)paper().create_sil_triangles, ptr_arg(out),
-                           ptr_arg(facing), ptr_arg(&edge), int_arg(0, rng)),
-              0);
+    EXPECT_EQ(checked_call(rng, paper().create_sil_triangles, out, facing, &edge, 0), 0);
 }
 
 TEST(Errata, F2_CapTrianglesOfZeroIndicesIsZero) {
@@ -96,9 +90,7 @@ TEST(Errata, F2_CapTrianglesOfZeroIndicesIsZero) {
     int out[8] __attribute__((aligned(16)));
     int indices[4] __attribute__((aligned(16))) = {0, 1, 2, 0};
     uint8_t facing[1] = {0};
-    EXPECT_EQ(checked_call(rng, (const void *)paper().create_cap_triangles, ptr_arg(out),
-                           ptr_arg(facing), ptr_arg(indices), int_arg(0, rng)),
-              0);
+    EXPECT_EQ(checked_call(rng, paper().create_cap_triangles, out, facing, indices, 0), 0);
 }
 
 // F-3: appendix F's one-triangle loop loads the triangle with
@@ -120,9 +112,8 @@ TEST(Errata, F3_CapTrianglesTailReadsNothingPastIndices) {
         for (int i = 0; i < 3 * tris; i++) indices[i] = 5 * i + 1;
         std::vector<uint8_t> facing((size_t)tris, 0);
         std::vector<int> out((size_t)6 * tris), expected((size_t)6 * tris);
-        int n = checked_call(rng, (const void *)paper().create_cap_triangles,
-                             ptr_arg(out.data()), ptr_arg(facing.data()), ptr_arg(indices),
-                             int_arg(3 * tris, rng));
+        int n = checked_call(rng, paper().create_cap_triangles, out.data(), facing.data(), indices,
+                             3 * tris);
         int e = sv_create_cap_triangles_c_ref(expected.data(), facing.data(), indices, 3 * tris);
         EXPECT_EQ(n, e);
         EXPECT_EQ(out, expected) << "tris=" << tris;
@@ -145,13 +136,9 @@ TEST(Errata, E2F4_CountsAreRightForOutputAbove4GiB) {
     ASSERT_GT((uintptr_t)out, (uintptr_t)0xFFFFFFFFull);
     uint8_t facing[5] = {1, 0, 0, 1, 1};
     SilEdge edges[3] = {{0, 1, 0, 2}, {1, 2, 2, 4}, {2, 3, 4, 6}};
-    EXPECT_EQ(checked_call(rng, (const void *)paper().create_sil_triangles, ptr_arg(out),
-                           ptr_arg(facing), ptr_arg(edges), int_arg(3, rng)),
-              12);
+    EXPECT_EQ(checked_call(rng, paper().create_sil_triangles, out, facing, edges, 3), 12);
     alignas(16) int indices[12] = {0, 1, 2, 2, 1, 3, 3, 1, 4, 4, 1, 0};
-    EXPECT_EQ(checked_call(rng, (const void *)paper().create_cap_triangles, ptr_arg(out),
-                           ptr_arg(facing), ptr_arg(indices), int_arg(12, rng)),
-              12);
+    EXPECT_EQ(checked_call(rng, paper().create_cap_triangles, out, facing, indices, 12), 12);
     munmap(out, len);
 }
 
@@ -165,8 +152,7 @@ TEST(Errata, D5_Limit_SignedCompareIgnoresBit7InFourTriangleLoop) {
     uint8_t cull[3] = {0x80, 0x80, 0x80};
     int indices[15] = {0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2};
     uint8_t facing[5] = {0, 0, 0, 0, 0};
-    int n = checked_call(rng, (const void *)paper().count_facing_cull, ptr_arg(facing),
-                         int_arg(5, rng), ptr_arg(indices), ptr_arg(cull));
+    int n = checked_call(rng, paper().count_facing_cull, facing, 5, indices, cull);
     EXPECT_EQ(n, 1);
     const uint8_t expected_paper[5] = {0, 0, 0, 0, 1};
     EXPECT_EQ(0, memcmp(facing, expected_paper, 5));
@@ -176,9 +162,7 @@ TEST(Errata, D5_Limit_SignedCompareIgnoresBit7InFourTriangleLoop) {
     // Bits 0..6 behave the same in both: 0x40 is culled everywhere.
     uint8_t cull40[3] = {0x40, 0xC0, 0x7F};
     uint8_t facing2[5] = {0, 0, 0, 0, 0};
-    EXPECT_EQ(checked_call(rng, (const void *)paper().count_facing_cull, ptr_arg(facing2),
-                           int_arg(5, rng), ptr_arg(indices), ptr_arg(cull40)),
-              5);
+    EXPECT_EQ(checked_call(rng, paper().count_facing_cull, facing2, 5, indices, cull40), 5);
 }
 
 // LIMIT C-3 (kept): facing bytes must be 0 or 1. paddusb saturates each
@@ -186,22 +170,24 @@ TEST(Errata, D5_Limit_SignedCompareIgnoresBit7InFourTriangleLoop) {
 // count as 16 * 255, where the branchless C sums 256 * 255 and the paper's
 // C counts 256 non-zero bytes.
 TEST(Errata, C3_Limit_FacingBytesAboveOneSaturate) {
+    Rng rng = rng_for("Errata.C3");
     alignas(16) uint8_t facing[256];
     memset(facing, 0xFF, sizeof facing);
-    EXPECT_EQ(sv_count_facing_sse2_paper(facing, 256), 16 * 255);
-    EXPECT_EQ(sv_count_facing_c_branchless(facing, 256), 256 * 255);
-    EXPECT_EQ(sv_count_facing_c_ref(facing, 256), 256);
+    EXPECT_EQ(checked_call(rng, sv_count_facing_sse2_paper, facing, 256), 16 * 255);
+    EXPECT_EQ(checked_call(rng, sv_count_facing_c_branchless, facing, 256), 256 * 255);
+    EXPECT_EQ(checked_call(rng, sv_count_facing_c_ref, facing, 256), 256);
 }
 
 // LIMIT E-4 (kept): the xor trick needs even (doubled) vertex numbers. With
 // an odd v the paper's C writes v + 1, the xor variants v - 1. The checked
 // entry point refuses such edges (test_contracts.cpp).
 TEST(Errata, E4_Limit_OddVertexNumbersBreakTheXorTrick) {
+    Rng rng = rng_for("Errata.E4");
     uint8_t facing[2] = {1, 0};
     SilEdge edge = {0, 1, 3, 5};
     alignas(16) int ref[6], fast[6];
     ASSERT_EQ(sv_create_sil_triangles_c_ref(ref, facing, &edge, 1), 6);
-    ASSERT_EQ(sv_create_sil_triangles_sse2_paper(fast, facing, &edge, 1), 6);
+    ASSERT_EQ(checked_call(rng, sv_create_sil_triangles_sse2_paper, fast, facing, &edge, 1), 6);
     EXPECT_EQ(ref[1], 6); // v2 + 1
     EXPECT_EQ(fast[1], 4); // v2 ^ 1
 }
@@ -210,12 +196,13 @@ TEST(Errata, E4_Limit_OddVertexNumbersBreakTheXorTrick) {
 // output that is only 4-byte aligned is written from 4 bytes BEFORE it.
 // The header's contract asks for 8; the checked entry points refuse less.
 TEST(Errata, E5F5_Limit_OutputBelow8ByteAlignmentWritesBeforeIt) {
+    Rng rng = rng_for("Errata.E5F5");
     const svtest::IsaLimitLifted lifted; // a named variant's contract
     uint8_t facing[2] = {1, 0};
     SilEdge edge = {0, 1, 2, 4};
     GuardedBuffer out(6 * sizeof(int), 4); // 4 mod 8
     ASSERT_EQ((uintptr_t)out.data() % 8, (uintptr_t)4);
-    int n = sv_create_sil_triangles_sse2_paper(out.as<int>(), facing, &edge, 1);
+    int n = checked_call(rng, sv_create_sil_triangles_sse2_paper, out.as<int>(), facing, &edge, 1);
     EXPECT_EQ(n, 5); // (24 bytes written from start - 4) / 4: one index short
     EXPECT_FALSE(out.guards_intact()) << "the 4 bytes before the output were written";
     GuardedBuffer out2(6 * sizeof(int), 4);
@@ -249,57 +236,50 @@ const int kHugeNegativeCounts[] = {INT32_MIN, INT32_MIN + 1, INT32_MIN + 100, IN
 
 } // namespace
 
+// The errata whose fix every variant must keep (negative counts), once per
+// variant: Variants/ErrataVariants.<ID>_.../<variant>.
+class ErrataVariants : public VariantTest {};
+
+INSTANTIATE_TEST_SUITE_P(Variants, ErrataVariants, ::testing::ValuesIn(variant_names()),
+                         param_name);
+
 // C-7: appendix C tests only `jz done`; for a count in [INT_MIN,
 // INT_MIN + 255], `sub eax, 256` and `add eax, 256 - 16` overflow and the
 // 16- and 4-byte loops read about 2^28 bytes. The port exits on <= 0. The
 // facing pointer is a no-access page: any read faults.
-TEST(Errata, C7_HugeNegativeCountsReadNothing) {
-    Rng rng = rng_for("Errata.C7");
+TEST_P(ErrataVariants, C7_HugeNegativeCountsReadNothing) {
     NoAccessPage page;
-    for (const sv_variant *v : runnable_variants()) {
-        for (int n : kHugeNegativeCounts) {
-            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing, ptr_arg(page.as<uint8_t>()),
-                                   int_arg(n, rng)),
-                      0)
-                << v->name << " n=" << n;
-        }
+    for (int n : kHugeNegativeCounts) {
+        EXPECT_EQ(checked_call(abi, v->count_facing, page.as<uint8_t>(), n), 0)
+            << v->name << " n=" << n;
     }
 }
 
 // D-7: appendix D's `neg eax` leaves INT_MIN negative, so `add eax, 4` /
 // `jg run1` falls into the loop, which walks ~2^29 triangles. The port
 // negates in 64 bits. Every array is a no-access page.
-TEST(Errata, D7_HugeNegativeCountsTouchNothing) {
-    Rng rng = rng_for("Errata.D7");
+TEST_P(ErrataVariants, D7_HugeNegativeCountsTouchNothing) {
     NoAccessPage page;
-    for (const sv_variant *v : runnable_variants()) {
-        for (int n : kHugeNegativeCounts) {
-            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
-                                   ptr_arg(page.as<uint8_t>()), int_arg(n, rng),
-                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>())),
-                      0)
-                << v->name << " n=" << n;
-        }
+    for (int n : kHugeNegativeCounts) {
+        EXPECT_EQ(checked_call(abi, v->count_facing_cull, page.as<uint8_t>(), n, page.as<int>(),
+                               page.as<uint8_t>()),
+                  0)
+            << v->name << " n=" << n;
     }
 }
 
 // Negative counts for the writers: nothing read, nothing written, 0 back.
-TEST(Errata, NegativeCountsWriteNothing) {
-    Rng rng = rng_for("Errata.NegativeWriters");
+TEST_P(ErrataVariants, NegativeCountsWriteNothing) {
     NoAccessPage page;
-    for (const sv_variant *v : runnable_variants()) {
-        for (int n : kHugeNegativeCounts) {
-            EXPECT_EQ(checked_call(rng, (const void *)v->create_sil_triangles,
-                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>()),
-                                   ptr_arg(page.as<SilEdge>()), int_arg(n, rng)),
-                      0)
-                << v->name << " n=" << n;
-            EXPECT_EQ(checked_call(rng, (const void *)v->create_cap_triangles,
-                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>()),
-                                   ptr_arg(page.as<int>()), int_arg(n, rng)),
-                      0)
-                << v->name << " n=" << n;
-        }
+    for (int n : kHugeNegativeCounts) {
+        EXPECT_EQ(checked_call(abi, v->create_sil_triangles, page.as<int>(), page.as<uint8_t>(),
+                               page.as<SilEdge>(), n),
+                  0)
+            << v->name << " n=" << n;
+        EXPECT_EQ(checked_call(abi, v->create_cap_triangles, page.as<int>(), page.as<uint8_t>(),
+                               page.as<int>(), n),
+                  0)
+            << v->name << " n=" << n;
     }
 }
 
@@ -310,6 +290,7 @@ TEST(Errata, NegativeCountsWriteNothing) {
 // mapped 1023 times (edges {0, 0, 0, 0}: never a silhouette) plus a private
 // last chunk whose final edge is a silhouette edge. The port must find it.
 TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
+    Rng rng = rng_for("Errata.E3");
     const size_t edges = (size_t)1 << 27;
     if (!HugeSilEdgeArray::available()) GTEST_SKIP() << "needs 2 GiB of memfd mappings (Linux x86-64)";
     HugeSilEdgeArray huge(edges);
@@ -319,7 +300,7 @@ TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
     uint8_t facing[2] = {0, 1};
     alignas(16) int out[12];
     const int n = (int)edges;
-    EXPECT_EQ(sv_create_sil_triangles_sse2_paper(out, facing, e, n), 6);
+    EXPECT_EQ(checked_call(rng, sv_create_sil_triangles_sse2_paper, out, facing, e, n), 6);
     const int expected[6] = {4, 6, 7, 5, 4, 7};
     EXPECT_EQ(0, memcmp(out, expected, sizeof expected));
 }
@@ -328,22 +309,16 @@ TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
 // C-7 / D-7, every count from INT_MIN to INT_MIN + 300 (the listings break
 // on the first 256 of them in C and the first 5 in D, each in its own way:
 // see docs/ERRATA.md), for every variant: 0 back, nothing touched.
-TEST(Errata, C7D7_EveryCountNearIntMinTouchesNothing) {
-    Rng rng = rng_for("Errata.C7D7");
+TEST_P(ErrataVariants, C7D7_EveryCountNearIntMinTouchesNothing) {
     NoAccessPage page;
-    for (const sv_variant *v : runnable_variants()) {
-        for (int k = 0; k <= 300; k++) {
-            const int n = INT32_MIN + k;
-            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing, ptr_arg(page.as<uint8_t>()),
-                                   int_arg(n, rng)),
-                      0)
-                << v->name << " count_facing n=INT_MIN+" << k;
-            EXPECT_EQ(checked_call(rng, (const void *)v->count_facing_cull,
-                                   ptr_arg(page.as<uint8_t>()), int_arg(n, rng),
-                                   ptr_arg(page.as<int>()), ptr_arg(page.as<uint8_t>())),
-                      0)
-                << v->name << " count_facing_cull n=INT_MIN+" << k;
-        }
+    for (int k = 0; k <= 300; k++) {
+        const int n = INT32_MIN + k;
+        EXPECT_EQ(checked_call(abi, v->count_facing, page.as<uint8_t>(), n), 0)
+            << v->name << " count_facing n=INT_MIN+" << k;
+        EXPECT_EQ(checked_call(abi, v->count_facing_cull, page.as<uint8_t>(), n, page.as<int>(),
+                               page.as<uint8_t>()),
+                  0)
+            << v->name << " count_facing_cull n=INT_MIN+" << k;
     }
 }
 
@@ -352,12 +327,15 @@ TEST(Errata, C7D7_EveryCountNearIntMinTouchesNothing) {
 // the first n - n % 4 triangles, the one-triangle tail over the LAST n % 4;
 // with cull bytes sharing only bit 7 exactly the tail's triangles are culled.
 TEST(Errata, D5_Limit_OnlyTheLastNMod4TrianglesAreCulled) {
+    Rng rng = rng_for("Errata.D5EveryCount");
     uint8_t cull[3] = {0x80, 0x80, 0x80};
     std::vector<int> indices;
     for (int t = 0; t < 12; t++) indices.insert(indices.end(), {0, 1, 2});
     for (int n = 1; n <= 12; n++) {
         std::vector<uint8_t> facing((size_t)n + 1, 0), ref((size_t)n + 1, 0);
-        EXPECT_EQ(sv_count_facing_cull_sse2_paper(facing.data(), n, indices.data(), cull), n % 4)
+        EXPECT_EQ(checked_call(rng, sv_count_facing_cull_sse2_paper, facing.data(), n,
+                               indices.data(), cull),
+                  n % 4)
             << "n=" << n;
         for (int t = 0; t < n; t++) {
             EXPECT_EQ(facing[(size_t)t], t >= n - n % 4 ? 1 : 0) << "n=" << n << " triangle " << t;
@@ -378,10 +356,11 @@ static bool faulted(int status) {
 // with a memory operand need 16-byte alignment, the 4- and 1-byte loops do
 // not. 15 bytes at an odd address count right; 16 fault (SIGSEGV: #GP).
 TEST(ErrataDeathTest, C4_Limit_UnalignedFacingFaultsFrom16Bytes) {
+    Rng rng = rng_for("ErrataDeathTest.C4");
     alignas(16) uint8_t facing[64];
     memset(facing, 1, sizeof facing);
-    EXPECT_EQ(sv_count_facing_sse2_paper(facing + 1, 15), 15);
-    EXPECT_EXIT(sv_count_facing_sse2_paper(facing + 1, 16), faulted, "");
+    EXPECT_EQ(checked_call(rng, sv_count_facing_sse2_paper, facing + 1, 15), 15);
+    EXPECT_EXIT(checked_call(rng, sv_count_facing_sse2_paper, facing + 1, 16), faulted, "");
 }
 
 // LIMIT F-6 (kept), the raw routine: the walk starts at indices + numIndices
@@ -390,16 +369,17 @@ TEST(ErrataDeathTest, C4_Limit_UnalignedFacingFaultsFrom16Bytes) {
 // triangles at indices + 1 and + 4); from four triangles on, loop4's movdqa
 // meets the misaligned address and faults.
 TEST(ErrataDeathTest, F6_Limit_PartialTrianglesShiftEveryTriangle) {
+    Rng rng = rng_for("ErrataDeathTest.F6");
     alignas(16) int indices[16];
     for (int i = 0; i < 16; i++) indices[i] = 2 * i;
     uint8_t facing[6] = {0, 0, 0, 0, 0, 1};
     alignas(16) int out[48], shifted[48];
-    const int n = sv_create_cap_triangles_sse2_paper(out, facing, indices, 7);
+    const int n = checked_call(rng, sv_create_cap_triangles_sse2_paper, out, facing, indices, 7);
     const int e = sv_create_cap_triangles_c_ref(shifted, facing, indices + 1, 6);
     ASSERT_EQ(n, 12);
     ASSERT_EQ(n, e);
     EXPECT_EQ(0, memcmp(out, shifted, sizeof(int) * (size_t)n));
-    EXPECT_EXIT(sv_create_cap_triangles_sse2_paper(out, facing, indices, 13),
+    EXPECT_EXIT(checked_call(rng, sv_create_cap_triangles_sse2_paper, out, facing, indices, 13),
                 faulted, "");
 }
 #endif
@@ -409,11 +389,12 @@ TEST(ErrataDeathTest, F6_Limit_PartialTrianglesShiftEveryTriangle) {
 // twice as far: the C writes the edge's 6 indices and returns 6, the
 // listing returns 12 (6 of them never written).
 TEST(Errata, E7_Limit_FacingByteTwoAdvancesTwice) {
+    Rng rng = rng_for("Errata.E7");
     uint8_t facing[3] = {2, 0, 1};
     SilEdge edge = {0, 1, 2, 4};
     alignas(16) int ref[12], fast[12];
     EXPECT_EQ(sv_create_sil_triangles_c_ref(ref, facing, &edge, 1), 6);
-    EXPECT_EQ(sv_create_sil_triangles_sse2_paper(fast, facing, &edge, 1), 12);
+    EXPECT_EQ(checked_call(rng, sv_create_sil_triangles_sse2_paper, fast, facing, &edge, 1), 12);
 }
 
 // LIMIT F-5 (kept): appendix F keeps its output pointer / 8 as appendix E
@@ -421,6 +402,7 @@ TEST(Errata, E7_Limit_FacingByteTwoAdvancesTwice) {
 // 4 bytes before it and the count comes back one short, in the
 // four-triangle loop and in the one-triangle tail alike.
 TEST(Errata, F5_Limit_CapOutputBelow8ByteAlignmentWritesBeforeIt) {
+    Rng rng = rng_for("Errata.F5");
     const svtest::IsaLimitLifted lifted;
     alignas(16) int indices[12];
     for (int i = 0; i < 12; i++) indices[i] = 2 * i;
@@ -431,7 +413,8 @@ TEST(Errata, F5_Limit_CapOutputBelow8ByteAlignmentWritesBeforeIt) {
         const int e = sv_create_cap_triangles_c_ref(ref, facing, indices, numIndices);
         GuardedBuffer out((size_t)e * sizeof(int), 4); // 4 mod 8
         ASSERT_EQ((uintptr_t)out.data() % 8, (uintptr_t)4);
-        const int n = sv_create_cap_triangles_sse2_paper(out.as<int>(), facing, indices, numIndices);
+        const int n = checked_call(rng, sv_create_cap_triangles_sse2_paper, out.as<int>(), facing,
+                                   indices, numIndices);
         EXPECT_EQ(n, e - 1) << "numIndices=" << numIndices;
         EXPECT_FALSE(out.guards_intact()) << "the 4 bytes before the output were written";
         // What lands from 4 bytes before the output is the whole volume.
@@ -448,10 +431,11 @@ TEST(Errata, F5_Limit_CapOutputBelow8ByteAlignmentWritesBeforeIt) {
 // vertex number of 2^30 or more wraps (2^30 -> INT_MIN); the checked entry
 // points refuse numVerts above 2^30 (Contracts.*).
 TEST(Errata, F9_Limit_VertexNumbersFrom2To30WrapWhenDoubled) {
+    Rng rng = rng_for("Errata.F9");
     alignas(16) int indices[4] = {1 << 30, (1 << 30) + 1, 5, 0};
     const uint8_t facing[2] = {0, 1};
     alignas(16) int out[8];
-    ASSERT_EQ(sv_create_cap_triangles_sse2_paper(out, facing, indices, 3), 6);
+    ASSERT_EQ(checked_call(rng, sv_create_cap_triangles_sse2_paper, out, facing, indices, 3), 6);
     const int want[6] = {10, INT32_MIN + 2, INT32_MIN, INT32_MIN + 1, INT32_MIN + 3, 11};
     EXPECT_EQ(0, memcmp(out, want, sizeof want));
 }

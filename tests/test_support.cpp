@@ -46,8 +46,12 @@ uint64_t seed() {
 }
 
 std::string seed_trace() {
-    return "seed " + std::to_string(seed()) + " (reproduce with SV_TEST_SEED=" +
-           std::to_string(seed()) + ")";
+    std::string t = "seed " + std::to_string(seed()) +
+                    " (reproduce with SV_TEST_SEED=" + std::to_string(seed());
+    // and the test alone, one variant's instance of it included
+    if (const ::testing::TestInfo *info = ::testing::UnitTest::GetInstance()->current_test_info())
+        t += std::string(" --gtest_filter=") + info->test_suite_name() + "." + info->name();
+    return t + ")";
 }
 
 Rng::Rng(uint64_t s) {
@@ -106,51 +110,6 @@ std::string abi_failures(uint32_t mask) {
 
 #endif
 
-uint64_t int_arg(int v, Rng &rng) {
-    uint32_t hi = (uint32_t)rng.next();
-    uint32_t sign_ext = v < 0 ? 0xFFFFFFFFu : 0u;
-    if (hi == sign_ext) hi ^= 0xDEADBEEFu;
-    return ((uint64_t)hi << 32) | (uint32_t)v;
-}
-
-#if defined(SV_HAVE_ABI_CHECKER)
-int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3, uint64_t a4,
-                 uint64_t a5) {
-    svcheck::detect_once();
-    uintptr_t words[SV_ABI_ARGS] = {a1, a2, a3, a4, a5};
-    for (int i = 5; i < SV_ABI_ARGS; i++) words[i] = rng.next();
-    abi_scramble(rng);
-    sv_abi_failed = 0;
-    uint64_t r = sv_abi_checked_call(fn, words);
-    EXPECT_EQ(sv_abi_failed, 0u) << "ABI broken: " << abi_failures(sv_abi_failed);
-    return (int)(uint32_t)r;
-}
-#else
-// No checker on this platform yet (tests/abi_checked_call.asm is System V
-// x86-64 code; docs/platforms.md): the routine is called directly, so the
-// results are still compared, but a broken calling convention is caught
-// only as far as it corrupts them. Every routine called here takes at most
-// five pointer or int arguments and returns int:
-//  - Windows x64 passes the first four in rcx, rdx, r8, r9 and the fifth on
-//    the stack, each in an 8-byte slot whose upper half an int parameter
-//    ignores, so a prototype of five 64-bit integers passes them right;
-//  - 32-bit cdecl passes 4-byte stack slots, and the caller pops them, so a
-//    prototype of five 32-bit integers (pointers and ints are 32 bits)
-//    passes them right, extra ones unread.
-int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3, uint64_t a4,
-                 uint64_t a5) {
-    (void)rng;
-#if UINTPTR_MAX > 0xFFFFFFFFu
-    using any5 = uint64_t (*)(uint64_t, uint64_t, uint64_t, uint64_t, uint64_t);
-    return (int)(uint32_t)reinterpret_cast<any5>(const_cast<void *>(fn))(a1, a2, a3, a4, a5);
-#else
-    using any5 = uint32_t (*)(uint32_t, uint32_t, uint32_t, uint32_t, uint32_t);
-    return (int)reinterpret_cast<any5>(const_cast<void *>(fn))(
-        (uint32_t)a1, (uint32_t)a2, (uint32_t)a3, (uint32_t)a4, (uint32_t)a5);
-#endif
-}
-#endif
-
 bool variant_built_here(const char *name) {
     const std::string n = name;
     if (n == "c_ref" || n == "c_branchless") return true;
@@ -179,6 +138,65 @@ std::vector<const sv_variant *> runnable_variants() {
         }
     }
     return out;
+}
+
+// The names of a table of variants (sv_variants, sv_facing_variants).
+template <class T> static std::vector<std::string> names_of(const T *(*table)(int *)) {
+    int n = 0;
+    const T *all = table(&n);
+    std::vector<std::string> out;
+    for (int i = 0; i < n; i++) out.push_back(all[i].name);
+    return out;
+}
+
+std::vector<std::string> variant_names() { return names_of(sv_variants); }
+std::vector<std::string> facing_variant_names() { return names_of(sv_facing_variants); }
+
+std::string param_name(const ::testing::TestParamInfo<std::string> &info) { return info.param; }
+
+std::string isa_missing(unsigned isa) {
+    if ((isa & sv_cpu_isa()) == isa) return "";
+    if ((isa & sv_cpu_isa_detected()) == isa && sv_isa_limit_name())
+        return std::string("held down by the ISA limit (SV_ISA=") + sv_isa_limit_name() + ")";
+    return "this CPU lacks its instruction set";
+}
+
+// The instance's own stream for the checker's garbage: named by the whole
+// name, variant included.
+static Rng instance_rng() {
+    const ::testing::TestInfo *info = ::testing::UnitTest::GetInstance()->current_test_info();
+    return rng_for((std::string(info->test_suite_name()) + "." + info->name()).c_str());
+}
+
+void VariantTest::SetUp() {
+    const std::string &name = GetParam();
+    abi = instance_rng();
+    v = sv_variant_by_name(name.c_str());
+    if (!v) {
+        if (variant_built_here(name.c_str()))
+            FAIL() << "no variant " << name << " in sv_variants()";
+        GTEST_SKIP() << "variant " << name << ": not built on this platform (docs/platforms.md)";
+    }
+    const std::string why = isa_missing(v->isa);
+    if (!why.empty()) GTEST_SKIP() << "variant " << name << ": " << why;
+}
+
+void FacingVariantTest::SetUp() {
+    const std::string &name = GetParam();
+    abi = instance_rng();
+    v = sv_facing_variant_by_name(name.c_str());
+    ASSERT_NE(v, nullptr) << "no facing variant " << name;
+    const std::string why = isa_missing(v->isa);
+    if (!why.empty()) GTEST_SKIP() << "facing variant " << name << ": " << why;
+}
+
+bool stop_after_failures(int limit) {
+    const ::testing::TestResult *r =
+        ::testing::UnitTest::GetInstance()->current_test_info()->result();
+    if (r->total_part_count() < limit) return false;
+    ADD_FAILURE() << "stopped at " << r->total_part_count() << " failures (the limit is " << limit
+                  << "): the remaining cases did not run";
+    return true;
 }
 
 #if defined(__linux__)

@@ -121,11 +121,6 @@ void abi_scramble(Rng &rng);
 std::string abi_failures(uint32_t mask);
 #endif
 
-// A 32-bit int argument as the register it travels in, with a garbage upper
-// half that is never the sign extension of the low half.
-uint64_t int_arg(int v, Rng &rng);
-inline uint64_t ptr_arg(const void *p) { return (uint64_t)(uintptr_t)p; }
-
 #if defined(SV_HAVE_ABI_CHECKER)
 // Calls fn through the trampoline with scrambled registers, the argument
 // words built from fn's prototype (svcheck::checked_call: every 32-bit int
@@ -151,12 +146,6 @@ R checked_call(Rng &, R (*fn)(P...), A... args) {
 }
 #endif
 
-// The same for a routine known only by address (test_errata.cpp and
-// test_machine_limits.cpp): the caller builds the words, int_arg() for an
-// int. Prefer the typed form above.
-int checked_call(Rng &rng, const void *fn, uint64_t a1, uint64_t a2, uint64_t a3 = 0,
-                 uint64_t a4 = 0, uint64_t a5 = 0);
-
 // The variants this CPU runs; the others are reported as skipped by name.
 std::vector<const sv_variant *> runnable_variants();
 
@@ -165,6 +154,51 @@ std::vector<const sv_variant *> runnable_variants();
 // docs/platforms.md). A test that names a variant fails if it is missing
 // where it is built, and skips it by name where it is not.
 bool variant_built_here(const char *name);
+
+// ---- Tests parametrised by variant --------------------------------------
+// A TEST_P over a Variant fixture runs once per variant and is named after
+// it (Variants/Differential.CountFacing/avx512vbmi): --gtest_filter=*avx512*
+// runs those variants' checks alone, and a failing variant hides no other.
+// A variant this CPU (or SV_ISA) does not run is still listed, and skipped
+// with the reason. Instantiate with
+//   INSTANTIATE_TEST_SUITE_P(Variants, Suite, ::testing::ValuesIn(variant_names()),
+//                            param_name);
+
+// sv_variants()' names, in table order: every variant built here.
+std::vector<std::string> variant_names();
+// sv_facing_variants()' names (appendices A and B), in table order.
+std::vector<std::string> facing_variant_names();
+// gtest's name for an instance: the variant's own.
+std::string param_name(const ::testing::TestParamInfo<std::string> &info);
+
+// Why sv_cpu_isa() cannot run ISA; empty when it can.
+std::string isa_missing(unsigned isa);
+
+// The fixture of the four kernels' variants (sv_variants()). v is the
+// variant; abi is the generator of the checker's garbage, one per instance.
+// The cases come from rng_for(name of the test without the variant), so
+// every variant sees the same cases, whichever of them the filter runs.
+class VariantTest : public ::testing::TestWithParam<std::string> {
+  protected:
+    void SetUp() override;
+    const sv_variant *v = nullptr;
+    Rng abi{0};
+};
+
+// The same over sv_facing_variants().
+class FacingVariantTest : public ::testing::TestWithParam<std::string> {
+  protected:
+    void SetUp() override;
+    const sv_facing_variant *v = nullptr;
+    Rng abi{0};
+};
+
+// A loop over thousands of cases checks each with EXPECT, so one failing
+// case does not stop the others. Once the test has recorded this many
+// failures, this adds one saying the rest were not run and returns true:
+// the loop stops there instead of printing thousands of lines that say the
+// same. The test has failed either way.
+bool stop_after_failures(int limit = 20);
 
 } // namespace svtest
 

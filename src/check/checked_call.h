@@ -83,7 +83,9 @@ typename fn_traits<Fn>::ret checked_call(Gen &gen, uint32_t *failed, Fn fn, A...
     using R = typename fn_traits<Fn>::ret;
     static_assert(sizeof...(A) == fn_traits<Fn>::arity, "wrong number of arguments");
     static_assert(sizeof...(A) <= SV_ABI_ARGS, "the checker passes 8 argument words");
-    static_assert(std::is_void_v<R> || sizeof(R) <= sizeof(uintptr_t),
+    // (sizeof of a char stands in for void's: sizeof(void) is a GNU extension
+    // that warns, and || does not keep the compiler from evaluating it.)
+    static_assert(sizeof(std::conditional_t<std::is_void_v<R>, char, R>) <= sizeof(uintptr_t),
                   "return value wider than a register");
     detect_once();
     uintptr_t words[SV_ABI_ARGS];
