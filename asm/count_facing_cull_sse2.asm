@@ -36,7 +36,8 @@
 ;   edx  dl / dh: AND of one triangle's      pair   rdx   rdx    edx
 ;        cull bytes each
 ;   xmm0 four c bytes; xmm1 four facing bytes; xmm5 dword counters;
-;   xmm6 zero; xmm7 sixteen bytes of 1 (SIMD_B_one)
+;   xmm6 zero; xmm7 sixteen bytes of 1 (SIMD_B_one, loaded on x86-32
+;   through the GOT address in edx: SV_PIC_BASE, no text relocation)
 ;   dh is addressable only in an instruction without a REX prefix, so
 ;   `mov dh, [cbits+vert]` needs pair in rdx and cbits, vert among the
 ;   eight legacy registers (movsxd, REX.W anyway, is a separate
@@ -59,7 +60,8 @@
 ;   listing jumps over `pxor xmm5, xmm5` and returns whatever xmm5 held;
 ;   `movdqa dword ptr n, xmm5` names a dword for a 16-byte store; for
 ;   numTriangles == INT_MIN the listing's 32-bit `neg eax` overflows and its
-;   loop walks ~2^29 triangles: the port negates in 64 bits and returns 0.
+;   loop walks ~2^29 triangles: the port negates in 64 bits and returns 0
+;   (x86-32: `jle` in place of `jz`, port entry D-8).
 ;   A fix of the D-5 limit would cost nothing: pcmpeqb xmm0, xmm6 / pandn
 ;   xmm0, xmm7 in place of pcmpgtb / pand. It is not taken here, to stay the
 ;   listing's code (issue 3 asks for the faithful behaviour, pinned).
@@ -113,13 +115,19 @@ FUNC sv_count_facing_cull_sse2_paper, 4, CF_NGPRS, 8, facing, numTriangles, indi
         mov     cbitsq, cullBitsq
         pxor    xmm5, xmm5              ; moved above the early exit (erratum D-3)
         test    rvd, rvd
+%if SV_BITS == 64
         jz      .done
         MOVSXD_P  rvq, rvd                ; 64-bit index from here on (erratum D-7)
+%else
+        jle     .done                   ; x86-32: no 64-bit neg to make a negative
+                                        ; count an empty walk (erratum D-7, port D-8)
+%endif
         add     fendq, rvq
         neg     rvq
 
         pxor    xmm6, xmm6
-        movdqa  xmm7, [SIMD_B_one]
+        SV_PIC_BASE pairq               ; (x86-32: edx = the GOT; free until loop4)
+        movdqa  xmm7, [SV_RODATA(pairq, SIMD_B_one)]
 
         add     rvq, 4
         jg      .run1
