@@ -37,7 +37,7 @@
 ;        cull bytes each
 ;   xmm0 four c bytes; xmm1 four facing bytes; xmm5 dword counters;
 ;   xmm6 zero; xmm7 sixteen bytes of 1 (SIMD_B_one, loaded on x86-32
-;   through the GOT address in edx: SV_PIC_BASE, no text relocation)
+;   through the GOT address in edx: SV_PIC_BASE, no text relocation, D-9)
 ;   dh is addressable only in an instruction without a REX prefix, so
 ;   `mov dh, [cbits+vert]` needs pair in rdx and cbits, vert among the
 ;   eight legacy registers (movsxd, REX.W anyway, is a separate

@@ -42,9 +42,9 @@
 ;   x86-32 has the listing's six registers and no more: it re-reads
 ;   shadowIndices from the stack at the end, and computes num with the
 ;   32-bit reciprocal (mul by 0xAAAAAAAB, shr edx, 1) in edx before edx
-;   becomes the index offset (port entry P-4 in docs/ERRATA.md).
+;   becomes the index offset (port entry F-12 in docs/ERRATA.md).
 ;   xmm6 c0, xmm7 c1, xmm5 c2 (SIMD_DW_capTris_c0..c2); on x86-32 edx holds
-;   the GOT address while they are loaded (SV_PIC_BASE: no text relocation)
+;   the GOT address while they are loaded (SV_PIC_BASE: no text relocation, F-13)
 
 ; Contracts: indices 16-byte aligned (movdqa); numIndices a multiple of 3
 ;   (the end pointer is indices + numIndices but the walk counts whole
@@ -120,7 +120,7 @@ FUNC sv_create_cap_triangles_sse2_paper, 4, CAP_NGPRS, 8, shadowIndices, facing,
         lea     g0q, [g0q+rvq*4]        ; indices + numIndices
         ; num = numIndices / 3 for 0 <= numIndices < 2^31: the high dword of
         ; n * 0xAAAAAAAB (= (2^33 + 1) / 3) is n * 2/3 + a fraction < 1/3,
-        ; so shr 1 gives floor(n / 3) exactly (port entry P-4)
+        ; so shr 1 gives floor(n / 3) exactly (port entry F-12)
         mov     g2d, 0xAAAAAAAB
         mul     g2d                     ; edx:eax = n * 0xAAAAAAAB
         shr     g2d, 1

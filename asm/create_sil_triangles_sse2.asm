@@ -58,7 +58,7 @@
 ;   return statement names `shadowIndexes` (the parameter is shadowIndices)
 ;   and casts a pointer to int; 16 * numSilEdges is computed in 32 bits
 ;   (wraps for 2^27 edges and more): the port computes it in 64 bits on
-;   x86-64; on x86-32 (port entry P-3 in docs/ERRATA.md) a negative count
+;   x86-64; on x86-32 (port entry E-9 in docs/ERRATA.md) a negative count
 ;   leaves before the shift, and 2^27 edges (2 GiB of edges and 3 GiB of
 ;   output) cannot exist in a 32-bit address space.
 ;
@@ -124,7 +124,7 @@ FUNC sv_create_sil_triangles_sse2_paper, 4, SIL_NGPRS, 4, shadowIndices, facing,
         ; esi = facing already
         mov     g0q, g2q              ; silEdges
         shr     optr%+q, 3              ; moved above the early exit (erratum E-1)
-        test    rvd, rvd                ; 0 or negative: nothing (port entry P-3;
+        test    rvd, rvd                ; 0 or negative: nothing (port entry E-9;
         jle     .done                   ; the 64-bit path: jz, then an empty walk)
         shl     rvd, 4
 %endif
