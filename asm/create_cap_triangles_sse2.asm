@@ -27,7 +27,7 @@
 ;
 ; Register map (listing -> port; asm/sv_abi.inc names, rv = rax/eax). The
 ; output pointer pair is the roles `optr` (ebx) and g3 (ecx), the saved
-; shadowIndices `obase`:
+; shadowIndices `obase` (asm/out_ptr8.inc, shared with appendix E):
 ;                                                   64-bit       x86-32
 ;   eax  -(triangles left) (+4 inside loop4)        rvq          eax
 ;   edx  3 * eax: index offset into indices         g2q          edx
@@ -73,23 +73,14 @@
 ; any later version.
 
 %include "sv_abi.inc"
+%include "out_ptr8.inc"                 ; optr, obase, OUT8_RETURN
 
 RODATA
 SIMD_DW_capTris_c0: dd 0, 0, 0, 1
 SIMD_DW_capTris_c1: dd 1, 1, 0, 0
 SIMD_DW_capTris_c2: dd 0, 1, 0, 0
 
-%if SV_BITS == 64
-    %define CAP_NGPRS 9
-    %define optr g8
-    %define obase g4q
-%else
-    %define CAP_NGPRS 5
-    %define optr g4
-    %define obase SV_STACK_ARG(0)       ; the listing's re-read of shadowIndices
-%endif
-
-FUNC sv_create_cap_triangles_sse2_paper, 4, CAP_NGPRS, 8, shadowIndices, facing, indices, numIndices
+FUNC sv_create_cap_triangles_sse2_paper, 4, OUT8_NGPRS, 8, shadowIndices, facing, indices, numIndices
 %if SV_BITS == 64
         movsxd  rvq, g3d              ; numIndices
         mov     optr%+q, g0q          ; shadowIndices
@@ -226,9 +217,6 @@ FUNC sv_create_cap_triangles_sse2_paper, 4, CAP_NGPRS, 8, shadowIndices, facing,
         jl      .loop1
 
 .done:
-        shl     optr%+q, 3
-        mov     rvq, optr%+q                ; return (end - shadowIndices) / 4
-        sub     rvq, obase
-        sar     rvq, 2
+        OUT8_RETURN
         RET
 ENDFUNC

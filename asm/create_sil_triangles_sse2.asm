@@ -27,7 +27,8 @@
 ;                                        const SilEdge *silEdges, int numSilEdges)
 ;
 ; Register map (listing -> port; asm/sv_abi.inc names, rv = rax/eax). The
-; output pointer is the role `optr` and the saved shadowIndices `obase`:
+; output pointer is the role `optr` and the saved shadowIndices `obase`
+; (asm/out_ptr8.inc, shared with appendix F):
 ;                                                         64-bit   x86-32
 ;   eax  negative byte offset from the end of silEdges   rvq      eax
 ;   ebx  output pointer / 8 in the 1st and 3rd edge of    optr=g8  optr=g4
@@ -73,6 +74,7 @@
 ; any later version.
 
 %include "sv_abi.inc"
+%include "out_ptr8.inc"                 ; optr, obase, OUT8_RETURN
 
 ; One edge of loop4. %1: edge slot (4..1, as in -%1*16), %2: xmm for (f1,f2)
 ; (xmm2 / xmm3 alternate), %3: register holding pointer/8 on entry, %4: the
@@ -98,17 +100,7 @@
         movhps  qword [%3q*8+2*4], xmm0
 %endmacro
 
-%if SV_BITS == 64
-    %define SIL_NGPRS 9
-    %define optr g8
-    %define obase g4q
-%else
-    %define SIL_NGPRS 5
-    %define optr g4
-    %define obase SV_STACK_ARG(0)       ; the listing's re-read of shadowIndices
-%endif
-
-FUNC sv_create_sil_triangles_sse2_paper, 4, SIL_NGPRS, 4, shadowIndices, facing, silEdges, numSilEdges
+FUNC sv_create_sil_triangles_sse2_paper, 4, OUT8_NGPRS, 4, shadowIndices, facing, silEdges, numSilEdges
 %if SV_BITS == 64
         movsxd  rvq, g3d              ; numSilEdges
         mov     optr%+q, g0q          ; shadowIndices
@@ -174,9 +166,6 @@ FUNC sv_create_sil_triangles_sse2_paper, 4, SIL_NGPRS, 4, shadowIndices, facing,
         jl      .loop1
 
 .done:
-        shl     optr%+q, 3
-        mov     rvq, optr%+q                ; return (end - shadowIndices) / 4
-        sub     rvq, obase
-        sar     rvq, 2
+        OUT8_RETURN
         RET
 ENDFUNC
