@@ -66,6 +66,9 @@
 ;   rvd  numTriangles; g4q triangles left; g5q-g7q scratch
 ;   g9q  facing, g10q numTriangles (kept for the count's tail call)
 ;   g8q  the frame (rsp 64-byte aligned below it: the tail's 192 numbers)
+;   (steps 0 and 1, the maximum and the table, run before PROLOGUE on
+;   System V and after it on win64, where g6, g7 and xmm13 are callee-saved:
+;   see CFV_EARLY_FRAME)
 ;   zmm16-zmm31 cullBits[0 .. 1023] (above M's register: not loaded);
 ;   zmm13 the last table register's realignment
 ;   zmm0-zmm8 group scratch; zmm9-zmm11 the block's three groups of cull
@@ -252,11 +255,24 @@ cfv_hi_ %+ k:
 %%next:
 %endmacro
 
+; Where the frame is made. Steps 0 and 1 run before PROLOGUE on System V:
+; they use g4-g7 (r8-r11, scratch there) and zmm13, zmm16-31, none of them
+; callee-saved, and the path that leaves for the list kernel (.list) then
+; needs no frame at all. On win64 g6, g7 are rdi, rsi and xmm13 is
+; callee-saved, so the frame comes first there and .list leaves through
+; the epilogue (RET_VIA) instead of a bare tail call.
+%ifdef SV_WIN64
+    %define CFV_EARLY_FRAME 1
+%endif
+
 VEC_ZMM
 FUNC sv_count_facing_cull_avx512vbmi
         mov     rvd, g1d                      ; numTriangles
         test    rvd, rvd
         jle     .zero                           ; negative or zero: touch nothing
+%ifdef CFV_EARLY_FRAME
+        PROLOGUE 4, 11, 32, facing, numTriangles, indices, cullBits
+%endif
 
         ; 0. M, the largest vertex number (unsigned). Every 128 numbers the
         ;    running maximum is tested against the table's size: a large
@@ -338,7 +354,9 @@ FUNC sv_count_facing_cull_avx512vbmi
 %endrep
 .tables_done:
 
+%ifndef CFV_EARLY_FRAME
         PROLOGUE 4, 11, 32, facing, numTriangles, indices, cullBits
+%endif
         mov     g8q, rsp
         sub     rsp, 768                        ; the tail's 192 vertex numbers
         and     rsp, -64
@@ -416,7 +434,11 @@ FUNC sv_count_facing_cull_avx512vbmi
         RET_VIA sv_count_facing_avx512, clean ; (vzeroupper there)
 
 .list:  ; same arguments, untouched
+%ifdef CFV_EARLY_FRAME
+        RET_VIA sv_count_facing_cull_avx512
+%else
         TAIL_SV sv_count_facing_cull_avx512
+%endif
 
 .zero:
         xor     rvd, rvd

@@ -1,5 +1,5 @@
-; create_cap_triangles_sse2.asm: CreateCapTriangles, the faithful x86-64
-; port of appendix F.
+; create_cap_triangles_sse2.asm: CreateCapTriangles, the faithful port of
+; appendix F (x86-64 System V and Windows x64, x86-32 cdecl).
 ;
 ; Computes: for each triangle j with facing[j] == 0 and doubled vertex
 ;   numbers i0, i1, i2: the near cap (i2, i1, i0) and the far cap
@@ -25,16 +25,27 @@
 ; int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
 ;                                        const int *indices, int numIndices)
 ;
-; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
-;   eax  -(triangles left) (+4 inside loop4)    -> rvq (64-bit)
-;   edx  3 * eax: index offset into indices     -> g2q
-;   ebx  output pointer / 8, alternating with ecx -> g8q (pushed), g3q
-;   esi  facing + numTriangles                  -> g1q
-;   edi  indices + numIndices                   -> g0q
-;   r8   shadowIndices, kept for the return value; r9 numIndices / 3 (the
-;        listing's C `int num = numIndices / 3`)
-;   xmm6 c0, xmm7 c1, xmm5 c2 (SIMD_DW_capTris_c0..c2)
-;
+; Register map (listing -> port; asm/sv_abi.inc names, rv = rax/eax). The
+; output pointer pair is the roles `optr` (ebx) and g3 (ecx), the saved
+; shadowIndices `obase` (asm/out_ptr8.inc, shared with appendix E):
+;                                                   64-bit       x86-32
+;   eax  -(triangles left) (+4 inside loop4)        rvq          eax
+;   edx  3 * eax: index offset into indices         g2q          edx
+;   ebx  output pointer / 8, alternating with ecx   optr=g8 (rbx, ebx (g4,
+;                                                   pushed), g3q pushed), ecx
+;   esi  facing + numTriangles                      g1q          esi
+;   edi  indices + numIndices                       g0q          edi
+;   shadowIndices, for the return value             obase=g4     its stack
+;                                                   (r8/r10)     argument
+;   num = numIndices / 3 (the listing's C           g5 (r9/r11)  edx, once
+;   `int num = numIndices / 3`)
+;   x86-32 has the listing's six registers and no more: it re-reads
+;   shadowIndices from the stack at the end, and computes num with the
+;   32-bit reciprocal (mul by 0xAAAAAAAB, shr edx, 1) in edx before edx
+;   becomes the index offset (port entry F-12 in docs/ERRATA.md).
+;   xmm6 c0, xmm7 c1, xmm5 c2 (SIMD_DW_capTris_c0..c2); on x86-32 edx holds
+;   the GOT address while they are loaded (SV_PIC_BASE: no text relocation, F-13)
+
 ; Contracts: indices 16-byte aligned (movdqa); numIndices a multiple of 3
 ;   (the end pointer is indices + numIndices but the walk counts whole
 ;   triangles, so anything else misaligns every load); vertex numbers in
@@ -62,16 +73,18 @@
 ; any later version.
 
 %include "sv_abi.inc"
+%include "out_ptr8.inc"                 ; optr, obase, OUT8_RETURN
 
 RODATA
 SIMD_DW_capTris_c0: dd 0, 0, 0, 1
 SIMD_DW_capTris_c1: dd 1, 1, 0, 0
 SIMD_DW_capTris_c2: dd 0, 1, 0, 0
 
-FUNC sv_create_cap_triangles_sse2_paper, 4, 9, 8, shadowIndices, facing, indices, numIndices
+FUNC sv_create_cap_triangles_sse2_paper, 4, OUT8_NGPRS, 8, shadowIndices, facing, indices, numIndices
+%if SV_BITS == 64
         movsxd  rvq, g3d              ; numIndices
-        mov     g8q, g0q              ; shadowIndices
-        mov     g4q, g0q
+        mov     optr%+q, g0q          ; shadowIndices
+        mov     obase, g0q
         ; rsi = facing already
         mov     g0q, g2q              ; indices
         ; num = numIndices / 3, rounded toward zero as C does
@@ -80,17 +93,37 @@ FUNC sv_create_cap_triangles_sse2_paper, 4, 9, 8, shadowIndices, facing, indices
         shr     g3q, 63
         sar     g5q, 32
         add     g5d, g3d
-        shr     g8q, 3                  ; moved above the early exit (erratum F-2)
+        shr     optr%+q, 3              ; moved above the early exit (erratum F-2)
         shl     rvq, 2
         jz      .done
         add     g0q, rvq
         movsxd  rvq, g5d                ; mov eax, num
         add     g1q, rvq
         neg     rvq
+%else
+        mov     rvd, g3d              ; numIndices
+        mov     optr%+q, g0q          ; shadowIndices (obase: its stack slot)
+        ; esi = facing already
+        mov     g0q, g2q              ; indices
+        shr     optr%+q, 3              ; moved above the early exit (erratum F-2)
+        test    rvd, rvd                ; 0 or negative: nothing (the 64-bit
+        jle     .done                   ; path: jz, or num <= 0, an empty walk)
+        lea     g0q, [g0q+rvq*4]        ; indices + numIndices
+        ; num = numIndices / 3 for 0 <= numIndices < 2^31: the high dword of
+        ; n * 0xAAAAAAAB (= (2^33 + 1) / 3) is n * 2/3 + a fraction < 1/3,
+        ; so shr 1 gives floor(n / 3) exactly (port entry F-12)
+        mov     g2d, 0xAAAAAAAB
+        mul     g2d                     ; edx:eax = n * 0xAAAAAAAB
+        shr     g2d, 1
+        mov     rvd, g2d                ; mov eax, num
+        add     g1q, rvq
+        neg     rvq
+%endif
 
-        movaps  xmm6, [SIMD_DW_capTris_c0]
-        movaps  xmm7, [SIMD_DW_capTris_c1]
-        movaps  xmm5, [SIMD_DW_capTris_c2]
+        SV_PIC_BASE g2q                 ; (x86-32: edx = the GOT; free until the lea below)
+        movaps  xmm6, [SV_RODATA(g2q, SIMD_DW_capTris_c0)]
+        movaps  xmm7, [SV_RODATA(g2q, SIMD_DW_capTris_c1)]
+        movaps  xmm5, [SV_RODATA(g2q, SIMD_DW_capTris_c2)]
 
         add     rvq, 4
         lea     g2q, [rvq*2+rvq]
@@ -105,22 +138,22 @@ FUNC sv_create_cap_triangles_sse2_paper, 4, 9, 8, shadowIndices, facing, indices
         sub     g3d, 1
         pxor    xmm1, xmm6
         and     g3d, 3
-        movlps  qword [g8q*8+0*4], xmm1
-        add     g3q, g8q
-        movhps  qword [g8q*8+2*4], xmm1
+        movlps  qword [optr%+q*8+0*4], xmm1
+        add     g3q, optr%+q
+        movhps  qword [optr%+q*8+2*4], xmm1
         pxor    xmm2, xmm7
-        movlps  qword [g8q*8+4*4], xmm2
+        movlps  qword [optr%+q*8+4*4], xmm2
 
         movdqa  xmm3, [g0q+g2q*4-3*3*4+4]            ; xmm3 = 4, 5, 6, 7
         paddd   xmm3, xmm3
         shufps  xmm0, xmm3, SHUFFLE_D(3, 3, 1, 0)    ; xmm0 = 3, 3, 5, 4
-        movzx   g8d, byte [g1q+rvq-3]
+        movzx   optr%+d, byte [g1q+rvq-3]
         movdqa  xmm2, xmm3                           ; xmm2 = 4, 5, 6, 7
-        sub     g8d, 1
+        sub     optr%+d, 1
         pxor    xmm0, xmm5
-        and     g8d, 3
+        and     optr%+d, 3
         movhps  qword [g3q*8+0*4], xmm0
-        add     g8q, g3q
+        add     optr%+q, g3q
         movlps  qword [g3q*8+2*4], xmm0
         pxor    xmm2, xmm7
         movlps  qword [g3q*8+4*4], xmm2
@@ -134,20 +167,20 @@ FUNC sv_create_cap_triangles_sse2_paper, 4, 9, 8, shadowIndices, facing, indices
         sub     g3d, 1
         pxor    xmm1, xmm6
         and     g3d, 3
-        movlps  qword [g8q*8+0*4], xmm1
-        add     g3q, g8q
-        movhps  qword [g8q*8+2*4], xmm1
+        movlps  qword [optr%+q*8+0*4], xmm1
+        add     g3q, optr%+q
+        movhps  qword [optr%+q*8+2*4], xmm1
         pxor    xmm2, xmm7
-        movlps  qword [g8q*8+4*4], xmm2
+        movlps  qword [optr%+q*8+4*4], xmm2
 
         pshufd  xmm1, xmm0, SHUFFLE_D(3, 2, 1, 1)    ; xmm1 = 11, 10, 9, 9
-        movzx   g8d, byte [g1q+rvq-1]
+        movzx   optr%+d, byte [g1q+rvq-1]
         pshufd  xmm2, xmm0, SHUFFLE_D(2, 3, 2, 3)    ; xmm2 = 10, 11, 10, 11
-        sub     g8d, 1
+        sub     optr%+d, 1
         pxor    xmm1, xmm6
-        and     g8d, 3
+        and     optr%+d, 3
         movlps  qword [g3q*8+0*4], xmm1
-        add     g8q, g3q
+        add     optr%+q, g3q
         movhps  qword [g3q*8+2*4], xmm1
         pxor    xmm2, xmm7
         movlps  qword [g3q*8+4*4], xmm2
@@ -171,22 +204,19 @@ FUNC sv_create_cap_triangles_sse2_paper, 4, 9, 8, shadowIndices, facing, indices
         pshufd  xmm1, xmm0, SHUFFLE_D(2, 1, 0, 0)
         pshufd  xmm2, xmm0, SHUFFLE_D(1, 2, 1, 2)
         pxor    xmm1, xmm6
-        movlps  qword [g8q*8+0*4], xmm1
+        movlps  qword [optr%+q*8+0*4], xmm1
         pxor    xmm2, xmm7
-        movhps  qword [g8q*8+2*4], xmm1
+        movhps  qword [optr%+q*8+2*4], xmm1
         movzx   g3d, byte [g1q+rvq]
-        movlps  qword [g8q*8+4*4], xmm2
+        movlps  qword [optr%+q*8+4*4], xmm2
         sub     g3d, 1
         and     g3d, 3
-        add     g8q, g3q
+        add     optr%+q, g3q
 
         add     rvq, 1
         jl      .loop1
 
 .done:
-        shl     g8q, 3
-        mov     rvq, g8q                ; return (end - shadowIndices) / 4
-        sub     rvq, g4q
-        sar     rvq, 2
+        OUT8_RETURN
         RET
 ENDFUNC

@@ -1,5 +1,5 @@
-; create_sil_triangles_sse2.asm: CreateSilTriangles, the faithful x86-64
-; port of appendix E.
+; create_sil_triangles_sse2.asm: CreateSilTriangles, the faithful port of
+; appendix E (x86-64 System V and Windows x64, x86-32 cdecl).
 ;
 ; Computes: for each SilEdge whose two facing bytes f1 = facing[p1],
 ;   f2 = facing[p2] differ, the two triangles of the extruded edge:
@@ -26,17 +26,25 @@
 ; int sv_create_sil_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
 ;                                        const SilEdge *silEdges, int numSilEdges)
 ;
-; Register map (asm/sv_abi.inc names; rv = rax) (listing -> port):
-;   eax  negative byte offset from the end of silEdges -> rvq (64-bit)
-;   ebx  output pointer / 8 in the 1st and 3rd edge of loop4, scratch (f2,
-;        then the next pointer) in the 2nd and 4th  -> g8q (pushed)
-;   edx  the other way round                        -> g2q
-;   ecx  f1, then f1 ^ f2                              -> g3q
-;   esi  facing                                        -> g1q (2nd argument)
-;   edi  silEdges + numSilEdges (end pointer)          -> g0q
-;   r8   shadowIndices, kept for the return value (the listing re-reads it)
+; Register map (listing -> port; asm/sv_abi.inc names, rv = rax/eax). The
+; output pointer is the role `optr` and the saved shadowIndices `obase`
+; (asm/out_ptr8.inc, shared with appendix F):
+;                                                         64-bit   x86-32
+;   eax  negative byte offset from the end of silEdges   rvq      eax
+;   ebx  output pointer / 8 in the 1st and 3rd edge of    optr=g8  optr=g4
+;        loop4, scratch (f2, then the next pointer) in    (rbx,    (ebx,
+;        the 2nd and 4th                                  pushed)  pushed)
+;   edx  the other way round                              g2q      edx
+;   ecx  f1, then f1 ^ f2                                 g3q      ecx
+;   esi  facing                                           g1q      esi
+;   edi  silEdges + numSilEdges (end pointer)             g0q      edi
+;   shadowIndices, for the return value                   obase=g4 its stack
+;                                                         (r8/r10) argument
+;   x86-32 has the listing's six registers and no more, so it re-reads
+;   shadowIndices from the stack at the end, as the listing does; x86-64
+;   keeps it in a register.
 ;   xmm2/xmm3 (f1, f2, 0, 0); xmm0 the indices; xmm1 (0, f1, f2, f2)
-;
+
 ; Contracts: shadowIndices 8-byte aligned (with less, [ptr/8*8] stores up
 ;   to 4 bytes BEFORE the buffer); room for 6 * numSilEdges ints (6 are
 ;   written for every edge, advancing or not); facing bytes 0 or 1 (the xor
@@ -50,7 +58,10 @@
 ;   `done` before `shr ebx, 3`, so `shl ebx, 3` there returns garbage; the
 ;   return statement names `shadowIndexes` (the parameter is shadowIndices)
 ;   and casts a pointer to int; 16 * numSilEdges is computed in 32 bits
-;   (wraps for 2^27 edges and more): the port computes it in 64.
+;   (wraps for 2^27 edges and more): the port computes it in 64 bits on
+;   x86-64; on x86-32 (port entry E-9 in docs/ERRATA.md) a negative count
+;   leaves before the shift, and 2^27 edges (2 GiB of edges and 3 GiB of
+;   output) cannot exist in a 32-bit address space.
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
 ;   on the machine at hand and docs/benchmark.md has the current table.
@@ -63,6 +74,7 @@
 ; any later version.
 
 %include "sv_abi.inc"
+%include "out_ptr8.inc"                 ; optr, obase, OUT8_RETURN
 
 ; One edge of loop4. %1: edge slot (4..1, as in -%1*16), %2: xmm for (f1,f2)
 ; (xmm2 / xmm3 alternate), %3: register holding pointer/8 on entry, %4: the
@@ -70,10 +82,10 @@
 ; Written out as a macro only to keep the four copies identical; the
 ; expansion is instruction for instruction the listing's.
 %macro SIL_EDGE 4
-        movsxd  g3q, dword [g0q+rvq-%1*16+0]        ; p1
+        MOVSXD_P g3q, dword [g0q+rvq-%1*16+0]       ; p1
         movzx   g3d, byte [g1q+g3q]                  ; f1
         movd    %2, g3d
-        movsxd  %4q, dword [g0q+rvq-%1*16+4]         ; p2
+        MOVSXD_P %4q, dword [g0q+rvq-%1*16+4]        ; p2
         movzx   %4d, byte [g1q+%4q]                   ; f2
         pinsrw  %2, %4d, 2                           ; (f1, f2, 0, 0)
         movq    xmm0, qword [g0q+rvq-%1*16+8]       ; (v1, v2, 0, 0)
@@ -88,15 +100,26 @@
         movhps  qword [%3q*8+2*4], xmm0
 %endmacro
 
-FUNC sv_create_sil_triangles_sse2_paper, 4, 9, 4, shadowIndices, facing, silEdges, numSilEdges
+FUNC sv_create_sil_triangles_sse2_paper, 4, OUT8_NGPRS, 4, shadowIndices, facing, silEdges, numSilEdges
+%if SV_BITS == 64
         movsxd  rvq, g3d              ; numSilEdges
-        mov     g8q, g0q              ; shadowIndices
-        mov     g4q, g0q
+        mov     optr%+q, g0q          ; shadowIndices
+        mov     obase, g0q
         ; rsi = facing already
         mov     g0q, g2q              ; silEdges
-        shr     g8q, 3                  ; moved above the early exit (erratum E-1)
+        shr     optr%+q, 3              ; moved above the early exit (erratum E-1)
         shl     rvq, 4                  ; 64-bit: no wrap (erratum E-3)
         jz      .done
+%else
+        mov     rvd, g3d              ; numSilEdges
+        mov     optr%+q, g0q          ; shadowIndices (obase: its stack slot)
+        ; esi = facing already
+        mov     g0q, g2q              ; silEdges
+        shr     optr%+q, 3              ; moved above the early exit (erratum E-1)
+        test    rvd, rvd                ; 0 or negative: nothing (port entry E-9;
+        jle     .done                   ; the 64-bit path: jz, then an empty walk)
+        shl     rvd, 4
+%endif
         add     g0q, rvq
         neg     rvq
 
@@ -104,13 +127,13 @@ FUNC sv_create_sil_triangles_sse2_paper, 4, 9, 4, shadowIndices, facing, silEdge
         jg      .run1
 
 .loop4:
-        SIL_EDGE 4, xmm2, g8, g2
-        movlps  qword [g8q*8+4*4], xmm2
-        SIL_EDGE 3, xmm3, g2, g8
+        SIL_EDGE 4, xmm2, optr, g2
+        movlps  qword [optr%+q*8+4*4], xmm2
+        SIL_EDGE 3, xmm3, g2, optr
         movlps  qword [g2q*8+4*4], xmm3
-        SIL_EDGE 2, xmm2, g8, g2
-        movlps  qword [g8q*8+4*4], xmm2
-        SIL_EDGE 1, xmm3, g2, g8
+        SIL_EDGE 2, xmm2, optr, g2
+        movlps  qword [optr%+q*8+4*4], xmm2
+        SIL_EDGE 1, xmm3, g2, optr
         add     rvq, 4*16               ; the listing moves this above the last store
         movlps  qword [g2q*8+4*4], xmm3
 
@@ -121,31 +144,28 @@ FUNC sv_create_sil_triangles_sse2_paper, 4, 9, 4, shadowIndices, facing, silEdge
         jge     .done
 
 .loop1:
-        movsxd  g3q, dword [g0q+rvq+0]
+        MOVSXD_P g3q, dword [g0q+rvq+0]
         movzx   g3d, byte [g1q+g3q]
         movd    xmm2, g3d
-        movsxd  g2q, dword [g0q+rvq+4]
+        MOVSXD_P g2q, dword [g0q+rvq+4]
         movzx   g2d, byte [g1q+g2q]
         pinsrw  xmm2, g2d, 2
         movq    xmm0, qword [g0q+rvq+8]
         pshufd  xmm1, xmm2, SHUFFLE_D(2, 0, 1, 1)
         pshufd  xmm0, xmm0, SHUFFLE_D(0, 1, 1, 0)
         pxor    xmm0, xmm1
-        movlps  qword [g8q*8+0*4], xmm0
-        movhps  qword [g8q*8+2*4], xmm0
+        movlps  qword [optr%+q*8+0*4], xmm0
+        movhps  qword [optr%+q*8+2*4], xmm0
         pxor    xmm2, xmm0
-        movlps  qword [g8q*8+4*4], xmm2
+        movlps  qword [optr%+q*8+4*4], xmm2
         xor     g3d, g2d
         lea     g2d, [g3q*2+g3q]
-        add     g8q, g2q
+        add     optr%+q, g2q
 
         add     rvq, 16
         jl      .loop1
 
 .done:
-        shl     g8q, 3
-        mov     rvq, g8q                ; return (end - shadowIndices) / 4
-        sub     rvq, g4q
-        sar     rvq, 2
+        OUT8_RETURN
         RET
 ENDFUNC

@@ -15,6 +15,9 @@ set(CMAKE_C_FLAGS_INIT "-m32")
 set(CMAKE_CXX_FLAGS_INIT "-m32")
 set(CMAKE_EXE_LINKER_FLAGS_INIT "-m32")
 set(CMAKE_SHARED_LINKER_FLAGS_INIT "-m32")
+# NASM: elf32 by name (CMake's default for 32-bit Linux is `elf`, whose
+# __OUTPUT_FORMAT__ asm/sv_abi.inc does not take for elf32).
+set(CMAKE_ASM_NASM_OBJECT_FORMAT elf32)
 # 32-bit libraries only (Debian's multiarch i386 folders), never the
 # native 64-bit ones.
 set(CMAKE_LIBRARY_ARCHITECTURE i386-linux-gnu)

@@ -127,7 +127,7 @@ if [ "$job" = cross ]; then
   t_all=$SECONDS
   step cmake -S . -B "$wb" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-mingw-w64.cmake "${launcher[@]}" >/dev/null
-  step cmake --build "$wb" --target shadowvol_tests >&2
+  step cmake --build "$wb" --target shadowvol_tests shadowvol_bench_asm_tests >&2
   step ctest --test-dir "$wb" --output-on-failure "$@" || status=1
   step cmake -S . -B "$ib" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-i686.cmake "${launcher[@]}" >/dev/null

@@ -46,7 +46,7 @@ template <class T> uintptr_t arg_word(T v, uint64_t garbage) {
             // either is caught.
             uint32_t hi = (uint32_t)(garbage >> 32);
             if (hi == 0 || hi == 0xFFFFFFFFu) hi ^= 0xDEADBEEFu;
-            return ((uintptr_t)hi << 32) | (uint32_t)v;
+            return (uintptr_t)(((uint64_t)hi << 32) | (uint32_t)v);
         } else {
             return (uintptr_t)v;
         }
