@@ -24,13 +24,13 @@
 ;                       into it, which would chain the iterations)
 ; The zmm forms need AVX-512F, the ymm forms AVX2: the caller checks CPUID.
 ;
-; void svb_scalar_loads(const uint8_t *buf, long iters)              (2 KiB)
-; void svb_vector_loads_zmm(const uint8_t *buf, long iters, long bytes)
-; void svb_vector_loads_ymm(const uint8_t *buf, long iters, long bytes)
-; void svb_vector_stores_zmm(uint8_t *buf, long iters)               (512 B)
-; void svb_vector_stores_ymm(uint8_t *buf, long iters)               (256 B)
-; void svb_gather_lanes_zmm(const uint8_t *buf, long iters)          (1 KiB)
-; void svb_gather_lanes_ymm(const uint8_t *buf, long iters)          (1 KiB)
+; void svb_scalar_loads(const uint8_t *buf, int64_t iters)              (2 KiB)
+; void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes)
+; void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes)
+; void svb_vector_stores_zmm(uint8_t *buf, int64_t iters)               (512 B)
+; void svb_vector_stores_ymm(uint8_t *buf, int64_t iters)               (256 B)
+; void svb_gather_lanes_zmm(const uint8_t *buf, int64_t iters)          (1 KiB)
+; void svb_gather_lanes_ymm(const uint8_t *buf, int64_t iters)          (1 KiB)
 ;   bytes: a multiple of 512, at least 512; buf 64-byte aligned.
 ;
 ; Register map: rdi the buffer, rsi iterations left, rcx the offset and rdx

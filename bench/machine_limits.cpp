@@ -20,13 +20,13 @@
 #include "shadowvol.h"
 
 extern "C" {
-void svb_scalar_loads(const uint8_t *buf, long iters);
-void svb_vector_loads_zmm(const uint8_t *buf, long iters, long bytes);
-void svb_vector_loads_ymm(const uint8_t *buf, long iters, long bytes);
-void svb_vector_stores_zmm(uint8_t *buf, long iters);
-void svb_vector_stores_ymm(uint8_t *buf, long iters);
-void svb_gather_lanes_zmm(const uint8_t *buf, long iters);
-void svb_gather_lanes_ymm(const uint8_t *buf, long iters);
+void svb_scalar_loads(const uint8_t *buf, int64_t iters);
+void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes);
+void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes);
+void svb_vector_stores_zmm(uint8_t *buf, int64_t iters);
+void svb_vector_stores_ymm(uint8_t *buf, int64_t iters);
+void svb_gather_lanes_zmm(const uint8_t *buf, int64_t iters);
+void svb_gather_lanes_ymm(const uint8_t *buf, int64_t iters);
 }
 
 namespace svbench {
@@ -123,9 +123,9 @@ MachineLimits measure_machine_limits() {
         const char *name;
         double bytes;     /* per vector */
         long gatherLanes; /* lanes per vpgatherdd */
-        void (*gather)(const uint8_t *, long);
-        void (*loads)(const uint8_t *, long, long);
-        void (*stores)(uint8_t *, long);
+        void (*gather)(const uint8_t *, int64_t);
+        void (*loads)(const uint8_t *, int64_t, int64_t);
+        void (*stores)(uint8_t *, int64_t);
     };
     static const VectorForms zmm{"zmm", 64, 16, svb_gather_lanes_zmm, svb_vector_loads_zmm,
                                  svb_vector_stores_zmm};
@@ -137,7 +137,7 @@ MachineLimits measure_machine_limits() {
     if (v) {
         l.vector = v->name;
         /* 8 gathers, loads or stores per iteration */
-        const long iters = kOps / 8;
+        const int64_t iters = kOps / 8;
         l.gatherLanes = rate(m, (double)(iters * 8 * v->gatherLanes),
                              [&] { v->gather(small.p, iters); });
         l.l1LoadBytes = rate(m, v->bytes * kOps, [&] { v->loads(small.p, iters, (long)kL1Buffer); });

@@ -16,13 +16,13 @@
 #include "test_support.h"
 
 extern "C" {
-void svb_scalar_loads(const uint8_t *buf, long iters);
-void svb_vector_loads_zmm(const uint8_t *buf, long iters, long bytes);
-void svb_vector_loads_ymm(const uint8_t *buf, long iters, long bytes);
-void svb_vector_stores_zmm(uint8_t *buf, long iters);
-void svb_vector_stores_ymm(uint8_t *buf, long iters);
-void svb_gather_lanes_zmm(const uint8_t *buf, long iters);
-void svb_gather_lanes_ymm(const uint8_t *buf, long iters);
+void svb_scalar_loads(const uint8_t *buf, int64_t iters);
+void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes);
+void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes);
+void svb_vector_stores_zmm(uint8_t *buf, int64_t iters);
+void svb_vector_stores_ymm(uint8_t *buf, int64_t iters);
+void svb_gather_lanes_zmm(const uint8_t *buf, int64_t iters);
+void svb_gather_lanes_ymm(const uint8_t *buf, int64_t iters);
 }
 
 using namespace svtest;
@@ -33,13 +33,15 @@ constexpr size_t kGuard = 256;
 constexpr size_t kBuffer = 16 * 1024;
 
 // The primitives' own prototypes, so that checked_call builds the argument
-// words from them (the long counts are 64-bit here, passed unchanged).
+// words from them (the int64_t counts pass unchanged). They were long,
+// which is 32 bits on Windows x64: the checker's garbage upper half then
+// made the asm (which reads the whole register) loop for ever under wine.
 struct Form {
     const char *name;
     unsigned isa;
-    void (*loads)(const uint8_t *, long, long);
-    void (*stores)(uint8_t *, long);
-    void (*gather)(const uint8_t *, long);
+    void (*loads)(const uint8_t *, int64_t, int64_t);
+    void (*stores)(uint8_t *, int64_t);
+    void (*gather)(const uint8_t *, int64_t);
     size_t storeBytes; // what one call of the store primitive writes
 };
 
@@ -83,7 +85,7 @@ TEST(MachineLimits, ScalarLoadsKeepTheAbiAndWriteNothing) {
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("MachineLimits.Scalar");
     Guarded g;
-    for (long iters : {0L, -1L, 1L, 3L}) {
+    for (int64_t iters : {0L, -1L, 1L, 3L}) {
         checked_call(rng, svb_scalar_loads, g.data(), iters);
         EXPECT_EQ(g.changed(0, kBuffer), 0u) << iters;
         EXPECT_TRUE(g.guards_intact()) << iters;
@@ -104,10 +106,10 @@ TEST_P(MachineLimitsForm, VectorPrimitivesKeepTheAbiAndTheirBytes) {
     const std::string why = isa_missing(f.isa);
     if (!why.empty()) GTEST_SKIP() << f.name << " forms: " << why;
     Rng rng = rng_for(("MachineLimits.Vector/" + GetParam()).c_str());
-    for (long iters : {0L, -2L, 1L, 5L}) {
+    for (int64_t iters : {0L, -2L, 1L, 5L}) {
         Guarded g;
         // loads over 512 bytes (one iteration wraps at once) and the whole buffer
-        for (long bytes : {512L, (long)kBuffer}) {
+        for (int64_t bytes : {512L, (long)kBuffer}) {
             checked_call(rng, f.loads, g.data(), iters, bytes);
         }
         checked_call(rng, f.gather, g.data(), iters);

@@ -120,7 +120,14 @@ if [ "$job" = cross ]; then
   # natively (multilib) and under qemu-i386 as a Core Duo and an Atom N270,
   # plus the 32-bit `shadowvol bench` table. Each step's seconds are
   # printed, for the CI's budget.
-  step() { local t0=$SECONDS; "$@"; echo "tools/run.sh cross: $* took $((SECONDS - t0)) s" >&2; }
+  # step's status is the command's (not the echo's: without the rc a
+  # failing ctest under `|| status=1` read as a pass).
+  step() {
+    local t0=$SECONDS rc=0
+    "$@" || rc=$?
+    echo "tools/run.sh cross: $* took $((SECONDS - t0)) s (exit $rc)" >&2
+    return $rc
+  }
   status=0
   wb="${WIN64_BUILD_DIR:-build-win64}"
   ib="${I686_BUILD_DIR:-build-i686}"
