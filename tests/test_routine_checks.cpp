@@ -8,6 +8,7 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,11 @@ TEST(RoutineChecks, LibraryVariantsPassOrSkipWithAReason) {
         const std::vector<Result> rs = svcheck::check_routine(r, table, kSeed);
         EXPECT_GE(rs.size(), 2u) << svcheck::routine_name(r);
         for (const Result &x : rs) {
+            // The lines `shadowvol check` would print: the report of the
+            // cross builds, which have no `shadowvol` program.
+            std::printf("%-21s %-13s %s %s\n", svcheck::routine_name(r), x.variant.c_str(),
+                        x.status == Result::ok ? "ok" : x.status == Result::skipped ? "skipped" : "FAILED",
+                        x.detail.c_str());
             EXPECT_NE(x.status, Result::failed)
                 << svcheck::routine_name(r) << " " << x.variant << ": " << x.detail;
             if (x.status == Result::ok) {
