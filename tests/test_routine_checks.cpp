@@ -126,6 +126,9 @@ TEST(RoutineChecks, ReportsAMiscountAtOneSize) {
     const auto table = with_good({c_ref_with("miscount", miscount_one_size, nullptr, nullptr)});
     const std::vector<Result> rs = svcheck::check_routine(Routine::count_facing, table, kSeed);
     const Result &bad = row(rs, "miscount");
+    // What the line of `shadowvol check` would say (docs/testing.md quotes it).
+    std::printf("count_facing miscount FAILED (%d of %d cases) first: %s\n", bad.failures, bad.cases,
+                bad.detail.c_str());
     ASSERT_EQ(bad.status, Result::failed);
     EXPECT_EQ(bad.routine, Routine::count_facing);
     // Four facing modes at that size, each one too high.
