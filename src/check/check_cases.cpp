@@ -33,15 +33,29 @@ const char *facing_name(Facing f) {
 
 // Every tail of every loop the kernels have (256/64/32/16/8/4/1 elements),
 // then sizes in the thousands; the last is in size class 1 of the planner.
-std::vector<int> case_sizes() {
+// NEGATIVE adds the negative counts that A-E define (nothing read or
+// written, 0 returned).
+std::vector<int> case_sizes(bool negative) {
     std::vector<int> n;
     for (int i = 0; i <= 80; i++) n.push_back(i);
     for (int i : {255, 256, 257, 1021, 4099, 65541}) n.push_back(i);
+    if (negative) n.insert(n.end(), {-1, -17});
     return n;
 }
 
-// Negative counts: A-E define them (nothing read or written, 0 returned).
-constexpr int kNegativeCounts[] = {-1, -17};
+// Calls F(n, mode, caseno) for every size and every one of MODES, caseno
+// counting from 1 (the offsets walk with it).
+template <class Mode, size_t K, class F>
+void for_each_case(bool negative, const Mode (&modes)[K], F f) {
+    size_t caseno = 0;
+    for (int n : case_sizes(negative)) {
+        for (Mode mode : modes) f(n, mode, ++caseno);
+    }
+}
+
+// Offsets with no alignment need: every byte, every int of a vector.
+const std::vector<size_t> kByteOffsets = allowed_offsets(1, 1);
+const std::vector<size_t> kIntOffsets = allowed_offsets(1, 4);
 
 std::vector<uint8_t> facing_bytes(Rng &rng, int n, Facing mode) {
     std::vector<uint8_t> f((size_t)std::max(n, 0));
@@ -102,14 +116,7 @@ float special_float(Rng &rng) {
 // ---- A: CalculateFacing ----------------------------------------------------
 
 void run_calculate_facing(std::vector<Row> &rows, Rng &rng) {
-    std::vector<int> sizes = case_sizes();
-    sizes.insert(sizes.end(), std::begin(kNegativeCounts), std::end(kNegativeCounts));
-    const std::vector<size_t> plane_offsets = allowed_offsets(1, 4);
-    const std::vector<size_t> byte_offsets = allowed_offsets(1, 1);
-    size_t caseno = 0;
-    for (int n : sizes) {
-        for (Facing mode : kFacingModes) {
-            caseno++;
+    for_each_case(true, kFacingModes, [&](int n, Facing mode, size_t caseno) {
             Vec4 light = {rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(-10, 10),
                           rng.chance(0.5) ? 1.0f : 0.0f};
             std::vector<Plane> planes((size_t)std::max(n, 0));
@@ -135,7 +142,7 @@ void run_calculate_facing(std::vector<Row> &rows, Rng &rng) {
             const size_t out_bytes = n >= 0 ? (size_t)n + 1 : 0;
             std::vector<uint8_t> want(out_bytes, pat);
             sv_calculate_facing_c_ref(planes.data(), n, &light, want.data());
-            const size_t po = pick(plane_offsets, caseno), fo = pick(byte_offsets, caseno);
+            const size_t po = pick(kIntOffsets, caseno), fo = pick(kByteOffsets, caseno);
             const std::string at = where("n", n, mode, fo);
             for (Row &row : rows) {
                 const Kernels &k = row.variant->for_triangles(n);
@@ -153,8 +160,7 @@ void run_calculate_facing(std::vector<Row> &rows, Rng &rng) {
                 check_guards(row, at, {"below or past the facing bytes", "around the planes"},
                              {&out, &pbuf});
             }
-        }
-    }
+    });
 }
 
 // ---- B: CalculateCullBits --------------------------------------------------
@@ -162,6 +168,7 @@ void run_calculate_facing(std::vector<Row> &rows, Rng &rng) {
 namespace {
 
 enum class Box { inside, every_plane, outside, mixed };
+constexpr Box kBoxModes[] = {Box::inside, Box::every_plane, Box::outside, Box::mixed};
 const char *box_name(Box b) {
     switch (b) {
     case Box::inside: return "box inside all planes";
@@ -174,14 +181,7 @@ const char *box_name(Box b) {
 } // namespace
 
 void run_calculate_cull_bits(std::vector<Row> &rows, Rng &rng) {
-    std::vector<int> sizes = case_sizes();
-    sizes.insert(sizes.end(), std::begin(kNegativeCounts), std::end(kNegativeCounts));
-    const std::vector<size_t> vec_offsets = allowed_offsets(1, 4);
-    const std::vector<size_t> byte_offsets = allowed_offsets(1, 1);
-    size_t caseno = 0;
-    for (int n : sizes) {
-        for (Box box : {Box::inside, Box::every_plane, Box::outside, Box::mixed}) {
-            caseno++;
+    for_each_case(true, kBoxModes, [&](int n, Box box, size_t caseno) {
             Bounds b;
             b.center = {rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-9, 9)};
             b.extents = {rng.uniform(0, 2), rng.uniform(0, 2), rng.uniform(0, 2), rng.uniform(-9, 9)};
@@ -212,7 +212,7 @@ void run_calculate_cull_bits(std::vector<Row> &rows, Rng &rng) {
             std::vector<uint8_t> want(nb, pat);
             const int want_ret = sv_calculate_cull_bits_c_ref(pos.data(), n, &b, planes, want.data());
             const std::vector<Plane> plane_v(planes, planes + SV_NUM_LIGHT_PLANES);
-            const size_t vo = pick(vec_offsets, caseno), co = pick(byte_offsets, caseno);
+            const size_t vo = pick(kIntOffsets, caseno), co = pick(kByteOffsets, caseno);
             const std::string at = std::string("n=") + std::to_string(n) + ", " + box_name(box) +
                                    ", offset " + std::to_string(co);
             for (Row &row : rows) {
@@ -240,19 +240,13 @@ void run_calculate_cull_bits(std::vector<Row> &rows, Rng &rng) {
                 check_guards(row, at, {"around cullBits", "around the positions", "around the planes"},
                              {&out, &pbuf, &lbuf});
             }
-        }
-    }
+    });
 }
 
 // ---- C: CountFacing --------------------------------------------------------
 
 void run_count_facing(std::vector<Row> &rows, Rng &rng) {
-    std::vector<int> sizes = case_sizes();
-    sizes.insert(sizes.end(), std::begin(kNegativeCounts), std::end(kNegativeCounts));
-    size_t caseno = 0;
-    for (int n : sizes) {
-        for (Facing mode : kFacingModes) {
-            caseno++;
+    for_each_case(true, kFacingModes, [&](int n, Facing mode, size_t caseno) {
             const std::vector<uint8_t> facing = facing_bytes(rng, n, mode);
             const uint8_t pat = guard_pattern(rng);
             const int want = sv_count_facing_c_ref(facing.data(), n);
@@ -273,8 +267,7 @@ void run_count_facing(std::vector<Row> &rows, Rng &rng) {
                 if (!unchanged(fbuf, facing)) record_failure(row, at, "modified its const facing");
                 check_guards(row, at, {"around facing"}, {&fbuf});
             }
-        }
-    }
+    });
 }
 
 // ---- D: CountFacingCull ----------------------------------------------------
@@ -308,14 +301,7 @@ std::vector<uint8_t> without_bit7(std::vector<uint8_t> c) {
 } // namespace
 
 void run_count_facing_cull(std::vector<Row> &rows, Rng &rng) {
-    std::vector<int> sizes = case_sizes();
-    sizes.insert(sizes.end(), std::begin(kNegativeCounts), std::end(kNegativeCounts));
-    const std::vector<size_t> byte_offsets = allowed_offsets(1, 1);
-    const std::vector<size_t> int_offsets = allowed_offsets(1, 4);
-    size_t caseno = 0;
-    for (int n : sizes) {
-        for (Facing mode : kFacingModes) {
-            caseno++;
+    for_each_case(true, kFacingModes, [&](int n, Facing mode, size_t caseno) {
             const std::vector<uint8_t> facing = facing_bytes(rng, n, mode);
             const int tris = std::max(n, 0);
             const int numVerts = 1 + (int)rng.below((uint32_t)(3 * tris + 1));
@@ -329,7 +315,7 @@ void run_count_facing_cull(std::vector<Row> &rows, Rng &rng) {
             const int want8 = sv_count_facing_cull_c_ref(want_f8.data(), n, indices.data(), cull8.data());
             const int want7 = sv_count_facing_cull_c_ref(want_f7.data(), n, indices.data(), cull7.data());
             const uint8_t pat = guard_pattern(rng);
-            const size_t fo = pick(byte_offsets, caseno), io = pick(int_offsets, caseno);
+            const size_t fo = pick(kByteOffsets, caseno), io = pick(kIntOffsets, caseno);
             for (Row &row : rows) {
                 const Kernels &k = row.variant->for_triangles(n);
                 const std::vector<uint8_t> &cull = k.cull_bit7 ? cull8 : cull7;
@@ -357,8 +343,7 @@ void run_count_facing_cull(std::vector<Row> &rows, Rng &rng) {
                 check_guards(row, at, {"around facing", "around the indices", "around cullBits"},
                              {&fbuf, &ibuf, &cbuf});
             }
-        }
-    }
+    });
 }
 
 // ---- E: CreateSilTriangles -------------------------------------------------
@@ -399,14 +384,7 @@ void compare_indices(Row &row, const std::string &at, int got, int want, const G
 } // namespace
 
 void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng) {
-    std::vector<int> sizes = case_sizes();
-    sizes.insert(sizes.end(), std::begin(kNegativeCounts), std::end(kNegativeCounts));
-    const std::vector<size_t> byte_offsets = allowed_offsets(1, 1);
-    const std::vector<size_t> int_offsets = allowed_offsets(1, 4);
-    size_t caseno = 0;
-    for (int n : sizes) {
-        for (Facing mode : kFacingModes) {
-            caseno++;
+    for_each_case(true, kFacingModes, [&](int n, Facing mode, size_t caseno) {
             const int numTriangles = (int)rng.below(2u * (uint32_t)std::max(n, 0) + 2);
             std::vector<uint8_t> facing = facing_bytes(rng, numTriangles + 1, mode);
             facing[(size_t)numTriangles] = 1; // the dangling edges' byte
@@ -415,7 +393,7 @@ void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng) {
             std::vector<int> want_out(out_ints + 6);
             const int want = sv_create_sil_triangles_c_ref(want_out.data(), facing.data(), edges.data(), n);
             const uint8_t pat = guard_pattern(rng);
-            const size_t fo = pick(byte_offsets, caseno), eo = pick(int_offsets, caseno);
+            const size_t fo = pick(kByteOffsets, caseno), eo = pick(kIntOffsets, caseno);
             for (Row &row : rows) {
                 const Kernels &k = row.variant->for_triangles(numTriangles);
                 const size_t oo = pick(allowed_offsets(k.kernels.align_shadow_indices, 4), caseno);
@@ -436,8 +414,7 @@ void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng) {
                 check_guards(row, at, {"outside 6 * numSilEdges ints", "around facing", "around the edges"},
                              {&out, &fbuf, &ebuf});
             }
-        }
-    }
+    });
 }
 
 // ---- F: CreateCapTriangles -------------------------------------------------
@@ -452,11 +429,7 @@ int vertex_index(Rng &rng, uint32_t numVerts) {
 } // namespace
 
 void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng) {
-    const std::vector<size_t> byte_offsets = allowed_offsets(1, 1);
-    size_t caseno = 0;
-    for (int n : case_sizes()) { // numIndices = 3n >= 0: no negative count
-        for (Facing mode : kFacingModes) {
-            caseno++;
+    for_each_case(false, kFacingModes, [&](int n, Facing mode, size_t caseno) {
             const std::vector<uint8_t> facing = facing_bytes(rng, n, mode);
             const uint32_t numVerts = rng.chance(0.5) ? 1u << 30 : 1 + rng.below(3u * (uint32_t)n + 1);
             std::vector<int> indices((size_t)3 * n);
@@ -465,7 +438,7 @@ void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng) {
             std::vector<int> want_out(out_ints + 6);
             const int want = sv_create_cap_triangles_c_ref(want_out.data(), facing.data(), indices.data(), 3 * n);
             const uint8_t pat = guard_pattern(rng);
-            const size_t fo = pick(byte_offsets, caseno);
+            const size_t fo = pick(kByteOffsets, caseno);
             for (Row &row : rows) {
                 const Kernels &k = row.variant->for_triangles(n);
                 const size_t io = pick(allowed_offsets(k.kernels.align_indices, 4), caseno);
@@ -487,8 +460,7 @@ void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng) {
                 check_guards(row, at, {"outside 6 * numTriangles ints", "around facing", "around the indices"},
                              {&out, &fbuf, &ibuf});
             }
-        }
-    }
+    });
 }
 
 // ---- The whole volume (sv_create_shadow_volume) ----------------------------
@@ -499,10 +471,7 @@ void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull) {
     static const sv_variant kRef = {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref,
                                     sv_count_facing_cull_c_ref, sv_create_sil_triangles_c_ref,
                                     sv_create_cap_triangles_c_ref, 1, 1, 1};
-    size_t caseno = 0;
-    for (int numTriangles : case_sizes()) {
-        for (Facing mode : kFacingModes) {
-            caseno++;
+    for_each_case(false, kFacingModes, [&](int numTriangles, Facing mode, size_t caseno) {
             const int numIndices = 3 * numTriangles;
             const int numEdges = numTriangles * 3 / 2 + (int)rng.below(4);
             const int numVerts = 1 + (int)rng.below((uint32_t)numIndices + 1);
@@ -561,8 +530,7 @@ void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull) {
                               "around the edges", "around cullBits"},
                              {&out, &ibuf, &fbuf, &ebuf, &cbuf});
             }
-        }
-    }
+    });
 }
 
 } // namespace svcheck
