@@ -3,7 +3,7 @@
 # this CPU runs (the count from the variant list that --help prints and the
 # routines each variant has); the seed replays the same output; under
 # SV_ISA=avx2 the AVX-512 variants are skipped with the reason (where the
-# build has them); --variant / --function narrow the lines; --bench adds
+# build has them); "planned" is a wisdom file's plan where there is one; --variant / --function narrow the lines; --bench adds
 # ticks per call; bad arguments exit 2 naming what is known.
 # usage: check_check_cli.sh PATH/TO/shadowvol [SECONDS]
 #   SECONDS: the most a full check may take (default 10)
@@ -53,6 +53,15 @@ done
 oks=$(grep -cE '^[a-z_]+ +[a-z0-9_]+ +ok \(' "$tmp/a")
 [ "$oks" -eq "$lines" ] || err "$lines lines but $oks ok"
 grep -qE "^summary   $lines ok, 0 failed, 0 skipped$" "$tmp/a" || err "the summary does not count $lines ok"
+
+grep -qE '^planned   class 0 (built-in|wisdom), class 1 ' "$tmp/a" || err "no planned line"
+# With a wisdom file for this CPU (shadowvol tune), "planned" is its plan.
+if "$sv" tune --class 0 --wisdom "$tmp/wisdom" >/dev/null 2>&1; then
+  SV_WISDOM="$tmp/wisdom" "$sv" check --seed 42 --variant planned >"$tmp/w" 2>&1 || err "check of the wisdom's plans failed"
+  grep -qE '^planned   class 0 wisdom, ' "$tmp/w" || err "the wisdom's plan for class 0 is not the one checked: $(grep '^planned' "$tmp/w")"
+else
+  err "shadowvol tune --class 0 failed"
+fi
 
 # The same seed, the same output.
 "$sv" check --seed 42 >"$tmp/b" 2>&1

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "shadowvol_plan.h"
 #include "routine_bench.h"
 #include "routine_checks.h"
 
@@ -77,7 +78,27 @@ void check_usage(FILE *out) {
                  joined(variant_names(table)).c_str(), joined(routine_names()).c_str());
 }
 
+namespace {
+
+// What "planned" is: each size class's plan source ("built-in",
+// "wisdom"), as sv_plan_for gives them now.
+std::string plan_sources() {
+    std::string s;
+    for (int c = 0; c < SV_NUM_SIZE_CLASSES; c++) {
+        const sv_plan *p = sv_plan_for(sv_size_class_triangles(c), SV_PLAN_ESTIMATE);
+        s += (c ? ", " : "") + std::string("class ") + std::to_string(c) + " " + p->source;
+    }
+    return s;
+}
+
+} // namespace
+
 int check_main(int argc, char **argv) {
+    // "planned" checks the plans a program of this user gets: the wisdom
+    // file's for this CPU where it has them (as `shadowvol bench` reads it),
+    // else the built-in ones. Nothing is measured.
+    char wisdom[1024];
+    sv_wisdom_load(sv_wisdom_default_path(wisdom, sizeof wisdom));
     const std::vector<svcheck::Variant> table = svcheck::library_variants();
     std::vector<std::string> want_variants;
     std::vector<svcheck::Routine> routines;
@@ -133,6 +154,7 @@ int check_main(int argc, char **argv) {
                 (unsigned long long)seed);
     std::printf("cpu       %s (%s)\n", sv_isa_level_name(), sv_isa_names(sv_cpu_isa(), isa, sizeof isa));
     std::printf("abi       %s\n", svcheck::abi_checker_summary().c_str());
+    std::printf("planned   %s\n", plan_sources().c_str());
     if (bench) {
         std::printf("bench     median TSC ticks per call, %d triangles; speed-up over c_ref\n",
                     svcheck::BenchWorkload::kTriangles);
