@@ -23,8 +23,9 @@ cat "$tmp/a"
 [ "$took" -le "$budget" ] || err "check took $took s (at most $budget s allowed)"
 grep -q '^seed      42 ' "$tmp/a" || err "the seed line does not name seed 42"
 
-routines="calculate_facing calculate_cull_bits count_facing count_facing_cull create_sil_triangles
-          create_cap_triangles shadow_volume shadow_volume_cull"
+routines="calculate_facing calculate_cull_bits calculate_facing_count count_facing count_facing_cull
+          create_sil_triangles create_cap_triangles shadow_volume shadow_volume_cull
+          shadow_volume_for_light"
 variants=$("$sv" check --help | sed -n '/^  --variant V/{n;p}')
 [ -n "$variants" ] || err "--help lists no variants"
 # One line per routine and variant that has it: every variant has C-F and
@@ -40,7 +41,7 @@ for v in $variants; do
   grep -qE "^[a-z_]+ +$v +ok " "$tmp/a" || err "no ok line for variant $v"
 done
 for r in $routines; do
-  grep -qE "^$r +c_ref +ok " "$tmp/a" || err "no ok line for $r c_ref"
+  [ $r = shadow_volume_for_light ] || grep -qE "^$r +c_ref +ok " "$tmp/a" || err "no ok line for $r c_ref"
   grep -qE "^$r +planned +ok " "$tmp/a" || err "no ok line for $r planned"
 done
 # The kernels' routines (C-F and the volume) have the same variants, and
@@ -49,7 +50,11 @@ set_of() { grep -E "^$1 " "$tmp/a" | awk '{print $2}' | tr '\n' ' '; }
 for r in count_facing_cull create_sil_triangles create_cap_triangles shadow_volume shadow_volume_cull; do
   [ "$(set_of $r)" = "$(set_of count_facing)" ] || err "$r's variants ($(set_of $r)) are not count_facing's"
 done
-[ "$(set_of calculate_cull_bits)" = "$(set_of calculate_facing)" ] || err "the facing routines' variants differ"
+for r in calculate_cull_bits calculate_facing_count; do
+  [ "$(set_of $r)" = "$(set_of calculate_facing)" ] || err "$r's variants are not calculate_facing's"
+done
+# The per-light call takes a plan: planned only.
+[ "$(set_of shadow_volume_for_light)" = "planned " ] || err "shadow_volume_for_light is not planned's alone"
 oks=$(grep -cE '^[a-z_]+ +[a-z0-9_]+ +ok \(' "$tmp/a")
 [ "$oks" -eq "$lines" ] || err "$lines lines but $oks ok"
 grep -qE "^summary   $lines ok, 0 failed, 0 skipped$" "$tmp/a" || err "the summary does not count $lines ok"

@@ -65,10 +65,12 @@ std::string first_difference(const T *got, const T *want, size_t n, const char *
 // the routine's input stream, the same for every row.
 void run_calculate_facing(std::vector<Row> &rows, Rng &input);
 void run_calculate_cull_bits(std::vector<Row> &rows, Rng &input);
+void run_calculate_facing_count(std::vector<Row> &rows, Rng &input);
 void run_count_facing(std::vector<Row> &rows, Rng &input);
 void run_count_facing_cull(std::vector<Row> &rows, Rng &input);
 void run_create_sil_triangles(std::vector<Row> &rows, Rng &input);
 void run_create_cap_triangles(std::vector<Row> &rows, Rng &input);
 void run_shadow_volume(std::vector<Row> &rows, Rng &input, bool cull);
+void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &input);
 
 } // namespace svcheck

@@ -127,6 +127,10 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
             sink = k.calculate_cull_bits(d.positions.data(), d.numVerts, &d.bounds, d.lightPlanes,
                                          d.cull_out.data());
         });
+    case Routine::calculate_facing_count:
+        return d.time(nothing, [&] {
+            sink = k.calculate_facing_count(d.planes.data(), n, &d.light, d.scratch_facing.data());
+        });
     case Routine::count_facing:
         return d.time(nothing, [&] { sink = k.kernels.count_facing(d.facing_buf.data(), n); });
     case Routine::count_facing_cull:
@@ -149,6 +153,29 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
         return d.time(restore_facing, [&] {
             sink = sv_create_shadow_volume(&k.kernels, d.out.as<int>(), d.indices_buf.as<int>(), 3 * n,
                                            d.edges.data(), ne, d.scratch_facing.data(), cull);
+        });
+    }
+    case Routine::shadow_volume_for_light: {
+        // The plan's one call with the light planes; for a variant without
+        // a plan (c_ref, the ratio's reference) the paper's pipeline of its
+        // kernels: A, B and its decision, the volume.
+        const size_t cap = d.out.size() / sizeof(int);
+        if (k.plan) {
+            const sv_surface surface = {d.planes.data(), d.indices_buf.as<int>(), 3 * n, d.edges.data(), ne,
+                                        d.positions.data(), d.numVerts, d.bounds};
+            return d.time(nothing, [&] {
+                sink = sv_shadow_volume_for_light(k.plan, &surface, &d.light, d.lightPlanes,
+                                                  d.out.as<int>(), cap, d.scratch_facing.data(),
+                                                  d.cull_out.data());
+            });
+        }
+        return d.time(nothing, [&] {
+            k.calculate_facing(d.planes.data(), n, &d.light, d.scratch_facing.data());
+            const int inside = k.calculate_cull_bits(d.positions.data(), d.numVerts, &d.bounds,
+                                                     d.lightPlanes, d.cull_out.data());
+            sink = sv_create_shadow_volume(&k.kernels, d.out.as<int>(), d.indices_buf.as<int>(), 3 * n,
+                                           d.edges.data(), ne, d.scratch_facing.data(),
+                                           inside ? nullptr : d.cull_out.data());
         });
     }
     }

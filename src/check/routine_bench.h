@@ -24,7 +24,9 @@ public:
     BenchWorkload &operator=(const BenchWorkload &) = delete;
     // Median ticks per call of ROUTINE as K runs it (K's alignment needs
     // are met: every array starts on a 64-byte boundary). Call only for a
-    // routine the variant has and the CPU runs.
+    // routine the variant has and the CPU runs; shadow_volume_for_light
+    // without a plan times the paper's pipeline of K's kernels instead
+    // (A, B, the volume: the reference of the one call).
     double ticks(Routine routine, const Kernels &k);
 
 private:

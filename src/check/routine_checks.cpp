@@ -14,8 +14,10 @@ namespace svcheck {
 namespace {
 
 const char *const kRoutineNames[kNumRoutines] = {
-    "calculate_facing",     "calculate_cull_bits",  "count_facing",  "count_facing_cull",
-    "create_sil_triangles", "create_cap_triangles", "shadow_volume", "shadow_volume_cull",
+    "calculate_facing",     "calculate_cull_bits",  "calculate_facing_count",
+    "count_facing",         "count_facing_cull",    "create_sil_triangles",
+    "create_cap_triangles", "shadow_volume",        "shadow_volume_cull",
+    "shadow_volume_for_light",
 };
 
 // The library's own contract check decides whether bit 7 is in
@@ -62,6 +64,8 @@ bool Variant::has(Routine r) const {
     switch (r) {
     case Routine::calculate_facing: return k.calculate_facing != nullptr;
     case Routine::calculate_cull_bits: return k.calculate_cull_bits != nullptr;
+    case Routine::calculate_facing_count: return k.calculate_facing_count != nullptr;
+    case Routine::shadow_volume_for_light: return k.plan != nullptr;
     default: return k.kernels.count_facing != nullptr;
     }
 }
@@ -75,6 +79,7 @@ Variant make_variant(const std::string &name, const sv_facing_variant *facing,
         v.isa |= facing->isa;
         k.calculate_facing = facing->calculate_facing;
         k.calculate_cull_bits = facing->calculate_cull_bits;
+        k.calculate_facing_count = facing->calculate_facing_count;
     }
     if (kernels) {
         v.isa |= kernels->isa;
@@ -108,7 +113,9 @@ std::vector<Variant> library_variants() {
         Kernels &k = planned.by_class[c];
         k.calculate_facing = p->calculate_facing;
         k.calculate_cull_bits = p->calculate_cull_bits;
+        k.calculate_facing_count = p->calculate_facing_count;
         k.kernels = p->kernels;
+        k.plan = p; // sv_plan_for's plans stay valid (shadowvol_plan.h)
         k.cull_bit7 = honours_cull_bit7(p->kernels);
         planned.isa |= p->kernels.isa;
         for (int r = SV_ROUTINE_CALCULATE_FACING; r <= SV_ROUTINE_CALCULATE_CULL_BITS; r++) {
@@ -181,12 +188,14 @@ std::vector<Result> check_routine(Routine routine, const std::vector<Variant> &t
     switch (routine) {
     case Routine::calculate_facing: run_calculate_facing(rows, input); break;
     case Routine::calculate_cull_bits: run_calculate_cull_bits(rows, input); break;
+    case Routine::calculate_facing_count: run_calculate_facing_count(rows, input); break;
     case Routine::count_facing: run_count_facing(rows, input); break;
     case Routine::count_facing_cull: run_count_facing_cull(rows, input); break;
     case Routine::create_sil_triangles: run_create_sil_triangles(rows, input); break;
     case Routine::create_cap_triangles: run_create_cap_triangles(rows, input); break;
     case Routine::shadow_volume: run_shadow_volume(rows, input, false); break;
     case Routine::shadow_volume_cull: run_shadow_volume(rows, input, true); break;
+    case Routine::shadow_volume_for_light: run_shadow_volume_for_light(rows, input); break;
     }
     // Back in table order, each run row in its place.
     size_t next = 0;

@@ -22,19 +22,22 @@
 
 namespace svcheck {
 
-// Appendices A-F by the benchmark's names, then the whole volume
-// (sv_create_shadow_volume) without and with cull bits.
+// Appendices A and B, A fused with C, C-F by the benchmark's names; the
+// whole volume (sv_create_shadow_volume) without and with cull bits; and
+// the one call per light (sv_shadow_volume_for_light, with a plan).
 enum class Routine {
     calculate_facing,
     calculate_cull_bits,
+    calculate_facing_count,
     count_facing,
     count_facing_cull,
     create_sil_triangles,
     create_cap_triangles,
     shadow_volume,
     shadow_volume_cull,
+    shadow_volume_for_light,
 };
-constexpr int kNumRoutines = 8;
+constexpr int kNumRoutines = 10;
 const char *routine_name(Routine r);
 // false when NAME is none of routine_name()'s.
 bool routine_by_name(const std::string &name, Routine *out);
@@ -46,7 +49,10 @@ std::vector<Routine> all_routines();
 struct Kernels {
     sv_calculate_facing_fn calculate_facing = nullptr;
     sv_calculate_cull_bits_fn calculate_cull_bits = nullptr;
+    sv_calculate_facing_count_fn calculate_facing_count = nullptr;
     sv_variant kernels{}; // C-F with their alignment needs; count_facing null: none
+    // The plan sv_shadow_volume_for_light runs ("planned" only; null: none).
+    const sv_plan *plan = nullptr;
     // Whether the contract lets CountFacingCull see cull bit 7
     // (sse2_paper's does not, erratum D-5): asked of the library's own
     // contract check (sv_count_facing_cull_checked), not known by name.

@@ -205,7 +205,7 @@ int check_main(int argc, char **argv) {
             } else if (bench) {
                 timing = std::string(33, ' ');
             }
-            std::printf("%-21s %-13s %s%s\n", svcheck::routine_name(r), res.variant.c_str(),
+            std::printf("%-24s %-13s %s%s\n", svcheck::routine_name(r), res.variant.c_str(),
                         timing.c_str(), status.c_str());
             std::fflush(stdout);
         }
