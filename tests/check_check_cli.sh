@@ -90,6 +90,11 @@ fi
 [ "$(grep -cE '^(calc|count|create|shadow)' "$tmp/e")" -eq 1 ] || err "--variant --function printed not one line"
 grep -qE '^count_facing_cull +c_ref +ok ' "$tmp/e" || err "the narrowed line is not count_facing_cull c_ref"
 
+# A name given twice: one line.
+"$sv" check --seed 5 --variant c_ref --variant c_ref --function count_facing --function count_facing >"$tmp/g" 2>&1 \
+  || err "check with names given twice failed"
+[ "$(grep -cE '^count_facing ' "$tmp/g")" -eq 1 ] || err "a name given twice printed its line twice"
+
 # --bench: ticks and the ratio to c_ref on each line, c_ref at 1.00x.
 "$sv" check --seed 5 --function count_facing --bench >"$tmp/f" 2>&1 || err "--bench failed"
 grep -qE '^count_facing +c_ref +[0-9]+ ticks +1\.00x +ok ' "$tmp/f" || err "--bench: no c_ref timing at 1.00x"

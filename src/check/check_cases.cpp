@@ -510,25 +510,47 @@ void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng) {
 
 // ---- The whole volume (sv_create_shadow_volume) ----------------------------
 
+namespace {
+
+// A mesh's connectivity at random: NUMTRIANGLES triangles over at most
+// 3 * NUMTRIANGLES vertices, about 1.5 edges per triangle (a closed mesh's
+// count) between its triangles, their doubled vertex numbers in the mesh.
+struct Mesh {
+    int numIndices, numEdges, numVerts;
+    std::vector<int> indices;
+    std::vector<SilEdge> edges;
+};
+
+// The paper's C by name, not the table's c_ref: the oracle stays whatever
+// a table holds.
+const sv_variant kRef = {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref, sv_count_facing_cull_c_ref,
+                         sv_create_sil_triangles_c_ref, sv_create_cap_triangles_c_ref, 1, 1, 1};
+
+Mesh random_mesh(Rng &rng, int numTriangles) {
+    Mesh m;
+    m.numIndices = 3 * numTriangles;
+    m.numEdges = numTriangles * 3 / 2 + (int)rng.below(4);
+    m.numVerts = 1 + (int)rng.below((uint32_t)m.numIndices + 1);
+    m.indices.resize((size_t)m.numIndices);
+    for (int &i : m.indices) i = (int)rng.below((uint32_t)m.numVerts);
+    m.edges = sil_edges(rng, m.numEdges, numTriangles);
+    for (SilEdge &e : m.edges) {
+        e.v1 = 2 * (int)rng.below((uint32_t)m.numVerts);
+        e.v2 = 2 * (int)rng.below((uint32_t)m.numVerts);
+    }
+    return m;
+}
+
+} // namespace
+
 void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull) {
-    // The paper's C by name, not the table's c_ref: the oracle stays
-    // whatever a table holds.
-    static const sv_variant kRef = {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref,
-                                    sv_count_facing_cull_c_ref, sv_create_sil_triangles_c_ref,
-                                    sv_create_cap_triangles_c_ref, 1, 1, 1};
     for_each_case(false, kFacingModes, [&](int numTriangles, Facing mode, size_t caseno) {
-        const int numIndices = 3 * numTriangles;
-        const int numEdges = numTriangles * 3 / 2 + (int)rng.below(4);
-        const int numVerts = 1 + (int)rng.below((uint32_t)numIndices + 1);
-        std::vector<int> indices((size_t)numIndices);
-        for (int &i : indices) i = (int)rng.below((uint32_t)numVerts);
+        const Mesh mesh = random_mesh(rng, numTriangles);
+        const int numIndices = mesh.numIndices, numEdges = mesh.numEdges, numVerts = mesh.numVerts;
+        const std::vector<int> &indices = mesh.indices;
+        const std::vector<SilEdge> &edges = mesh.edges;
         std::vector<uint8_t> facing = facing_bytes(rng, numTriangles + 1, mode);
         facing[(size_t)numTriangles] = 1;
-        std::vector<SilEdge> edges = sil_edges(rng, numEdges, numTriangles);
-        for (SilEdge &e : edges) { // vertices of this mesh
-            e.v1 = 2 * (int)rng.below((uint32_t)numVerts);
-            e.v2 = 2 * (int)rng.below((uint32_t)numVerts);
-        }
         const std::vector<uint8_t> cull8 = cull_bytes(rng, numVerts, indices);
         const std::vector<uint8_t> cull7 = without_bit7(cull8);
         const size_t cap = sv_shadow_volume_capacity(numIndices, numEdges);
@@ -589,22 +611,13 @@ constexpr int kLightVolumeModes[] = {-1, (int)Box::inside, (int)Box::every_plane
 } // namespace
 
 void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng) {
-    static const sv_variant kRef = {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref,
-                                    sv_count_facing_cull_c_ref, sv_create_sil_triangles_c_ref,
-                                    sv_create_cap_triangles_c_ref, 1, 1, 1};
     for_each_case(false, kLightVolumeModes, [&](int numTriangles, int mode, size_t caseno) {
-        const int numIndices = 3 * numTriangles;
-        const int numEdges = numTriangles * 3 / 2 + (int)rng.below(4);
-        const int numVerts = 1 + (int)rng.below((uint32_t)numIndices + 1);
+        const Mesh mesh = random_mesh(rng, numTriangles);
+        const int numIndices = mesh.numIndices, numEdges = mesh.numEdges, numVerts = mesh.numVerts;
+        const std::vector<int> &indices = mesh.indices;
+        const std::vector<SilEdge> &edges = mesh.edges;
         const Vec4 light = random_light(rng);
         const std::vector<Plane> planes = facing_planes(rng, numTriangles, Facing::random, light);
-        std::vector<int> indices((size_t)numIndices);
-        for (int &i : indices) i = (int)rng.below((uint32_t)numVerts);
-        std::vector<SilEdge> edges = sil_edges(rng, numEdges, numTriangles);
-        for (SilEdge &e : edges) {
-            e.v1 = 2 * (int)rng.below((uint32_t)numVerts);
-            e.v2 = 2 * (int)rng.below((uint32_t)numVerts);
-        }
         const LightVolume lv = light_volume(rng, numVerts, mode < 0 ? Box::mixed : (Box)mode);
         const Plane *light_planes = mode < 0 ? nullptr : lv.planes.data();
         // The contract's reference: c_ref's A, its B and the decision, then

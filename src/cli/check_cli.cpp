@@ -12,6 +12,7 @@
  */
 #include "check_cli.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -126,7 +127,8 @@ int check_main(int argc, char **argv) {
                     usage_error("unknown function '" + quoted(f) + "' (known: " +
                                 joined(routine_names()) + ")");
                 }
-                routines.push_back(r);
+                // (named twice: checked once)
+                if (std::find(routines.begin(), routines.end(), r) == routines.end()) routines.push_back(r);
             } else if (a.is("--seed")) {
                 seed = a.seed();
                 seeded = true;
