@@ -2,8 +2,8 @@
 // than the benchmark (`shadowvol bench` is the measurement). Each routine
 // on one character-sized input (1344 triangles, as the bundled character
 // models/character_1344.glb: 2016 edges, about half the triangles facing),
-// median TSC ticks per call of a few hundred calls, the fences' own cost
-// subtracted.
+// median TSC ticks per call over a few hundred timed regions, the fences'
+// own cost subtracted.
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #pragma once
