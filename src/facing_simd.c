@@ -226,6 +226,17 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
 
 #define SV_TARGET_AVX2 __attribute__((target("avx2")))
 
+/* GCC puts vzeroupper at the end of an AVX function only when optimising;
+ * a -O0 build (the sanitizer build) would return with the upper YMM/ZMM
+ * state dirty, making the caller's SSE code pay the transition, and the
+ * ABI checker (`shadowvol check`) reports it. Written out there only, so
+ * the optimised objects stay as they were. */
+#if defined(__OPTIMIZE__)
+#define SV_VZEROUPPER_IF_UNOPTIMISED() ((void)0)
+#else
+#define SV_VZEROUPPER_IF_UNOPTIMISED() _mm256_zeroupper()
+#endif
+
 /* Rows r0..r3 each hold two structures (low lane: s, high lane: s + 4);
  * an in-lane transpose gives 8 lanes of a, b, c, d in the order
  * (0 1 2 3 | 4 5 6 7). */
@@ -302,9 +313,14 @@ SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangl
         if (wantCount) count += facing[i];
     }
     facing[numTriangles] = 1;
-    if (!wantCount) return 0;
+    if (!wantCount) {
+        SV_VZEROUPPER_IF_UNOPTIMISED();
+        return 0;
+    }
     const __m128i s2 = _mm_add_epi64(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
-    return count + _mm_cvtsi128_si32(s2) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(s2, s2));
+    const int total = count + _mm_cvtsi128_si32(s2) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(s2, s2));
+    SV_VZEROUPPER_IF_UNOPTIMISED();
+    return total;
 }
 
 SV_TARGET_AVX2 void sv_calculate_facing_avx2(const Plane *planes, int numTriangles,
@@ -349,6 +365,7 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
         memcpy(cullBits + j, &bytes, 8);
     }
     for (; j < numVerts; j++) cullBits[j] = cull_one(&positions[j], lightPlanes, cs.frontBits);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
     return 0;
 }
 
@@ -444,6 +461,7 @@ SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTri
         if (wantCount) count += __builtin_popcount((unsigned)gt);
     }
     facing[numTriangles] = 1;
+    SV_VZEROUPPER_IF_UNOPTIMISED(); /* (clears ZMM_Hi256 too) */
     return count;
 }
 
@@ -491,6 +509,7 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
         }
         _mm_mask_storeu_epi8(cullBits + j, (__mmask16)((1u << n) - 1), bytes);
     }
+    SV_VZEROUPPER_IF_UNOPTIMISED();
     return 0;
 }
 

@@ -15,6 +15,7 @@
 
 #include "bench_cli.h"
 #include "accuracy_cli.h"
+#include "check_cli.h"
 #include "model_cli.h"
 #include "render_cli.h"
 #include "scene_cli.h"
@@ -46,6 +47,8 @@ const Command kCommands[] = {
      svcli::render_main, svcli::render_usage},
     {"scene", "play a glTF scene in time, building only what each frame requires, proved pixel for pixel",
      svcli::scene_main, svcli::scene_usage},
+    {"check", "every routine of every variant this CPU runs against c_ref, ABI-checked; --bench",
+     svcli::check_main, svcli::check_usage},
     {"tune", "measure every variant per routine and mesh size; save this CPU's fastest as its plans",
      svcli::tune_main, svcli::tune_usage},
 };
