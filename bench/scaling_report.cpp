@@ -56,30 +56,44 @@ const Row *fastest_row(const ScalingMesh &m, Routine routine,
 }
 
 /* Issue 15's large-mesh goal, for the whole volume: the fastest variant's
- * cost per triangle on the largest mesh at most 1.5 x that on the
- * 12096-triangle character; and, where the run measured memory's read rate,
- * the time the largest mesh's working set takes to stream from memory once
- * (stores left out): the order of what bounds a mesh no cache holds. */
+ * cost per triangle on the 979776-triangle character at most 1.5 x that on
+ * the 12096-triangle one (n = 27 and n = 3 of the generated family, which
+ * differ in size alone: a real model or a --model file, however large, has
+ * its own shape and silhouette ratio, so it is never the "large" mesh
+ * here); and, where the run measured memory's read rate, the time the large
+ * mesh's working set takes to stream from memory once (stores left out):
+ * the order of what bounds a mesh no cache holds. A run without n = 27
+ * (--quick, --max-triangles) compares its largest generated mesh and says
+ * that the goal is not decided by it. */
 void print_large_mesh_check(FILE *out, const ScalingRun &run, Routine routine,
                             const std::vector<const BenchVariant *> &vars) {
     if (routine != Routine::pipeline && routine != Routine::create_shadow_volume) return;
-    const ScalingMesh *small = nullptr;
+    constexpr int kGoalSubdivision = 27, kSmallSubdivision = 3;
+    const ScalingMesh *small = nullptr, *largest = nullptr;
     for (const ScalingMesh &m : run.meshes) {
-        if (m.workload.numTriangles == 12096) small = &m;
+        if (!m.spec.generated) continue;
+        if (m.spec.subdivision == kSmallSubdivision) small = &m;
+        if (!largest || m.spec.subdivision > largest->spec.subdivision) largest = &m;
     }
-    const ScalingMesh &large = run.meshes.back();
-    const Row *rs = small ? fastest_row(*small, routine, vars) : nullptr;
+    if (!small || !largest || small == largest) return;
+    const ScalingMesh &large = *largest;
+    const Row *rs = fastest_row(*small, routine, vars);
     const Row *rl = fastest_row(large, routine, vars);
-    if (!rs || !rl || small == &large) return;
+    if (!rs || !rl) return;
     const double ps = rs->median / small->workload.numTriangles;
     const double pl = rl->median / large.workload.numTriangles;
+    const bool goalSize = large.spec.subdivision == kGoalSubdivision;
     std::fprintf(out,
                  "  large mesh: the fastest %.2f ticks per triangle at %d triangles (%s), %.2f at "
-                 "12096 (%s): %.2fx (goal at most 1.5x)\n",
-                 pl, large.workload.numTriangles, rl->variant->name, ps, rs->variant->name,
-                 pl / ps);
-    if (run.memoryLoadBytes > 0) {
-        const double ws = working_set_bytes(routine, large.workload);
+                 "%d (%s): %.2fx (%s)\n",
+                 pl, large.workload.numTriangles, rl->variant->name, ps,
+                 small->workload.numTriangles, rs->variant->name, pl / ps,
+                 goalSize ? "goal at most 1.5x"
+                          : "the goal, at most 1.5x, is at 979776 triangles: not decided here");
+    const double ws = working_set_bytes(routine, large.workload);
+    /* Measured when the largest mesh of the run (perhaps a real model)
+     * needed it; said only of a large mesh that no cache holds. */
+    if (run.memoryLoadBytes > 0 && ws > 32.0 * 1048576) {
         const double floor = ws / run.memoryLoadBytes / large.workload.numTriangles;
         /* Not a strict floor: part of the working set may stay in a cache
          * between calls (an L3 of tens of MiB holds a good part of it). */

@@ -281,9 +281,10 @@ SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangl
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
     const __m256i one = _mm256_set1_epi8(1);
-    /* The packs below work per 128-bit lane: dword k of the bytes vector
-     * holds the four triangles 4 * order[k] .. +3; vpermd restores the
-     * triangle order. */
+    /* The packs below work per 128-bit lane: dword j of the packed vector
+     * holds the four triangles from 4 * (2 * (j % 4) + j / 4) on (0, 8, 16,
+     * 24 | 4, 12, 20, 28), so triangles 4k .. 4k + 3 are in dword order[k];
+     * vpermd gathers them in triangle order. */
     const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
     const float *p = &planes[0].a;
     int i = 0;

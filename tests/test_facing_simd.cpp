@@ -98,6 +98,22 @@ TEST_P(FacingSimd, CalculateFacingIsBitIdenticalToTheReference) {
                     << v->name << " n=" << n << " extremes=" << extremes << " ftz=" << ftz;
                 EXPECT_TRUE(out.guards_intact()) << v->name << " wrote out of bounds, n=" << n;
                 EXPECT_TRUE(planes_buf.guards_intact());
+                // The fused twin (sv_calculate_facing_count_*): the same
+                // bytes on the same inputs, and their count, under the ABI
+                // checker like the unfused form.
+                ASSERT_NE(v->calculate_facing_count, nullptr) << v->name;
+                GuardedBuffer out2((size_t)n + 1, rng.below(64));
+                out2.fill(0xEE);
+                int count = -1;
+                with_ftz_daz(ftz, [&] {
+                    count = checked_call(abi, v->calculate_facing_count, planes, n, &light,
+                                         out2.data());
+                });
+                EXPECT_EQ(std::memcmp(out2.data(), want.data(), (size_t)n + 1), 0)
+                    << v->name << " fused, n=" << n << " extremes=" << extremes << " ftz=" << ftz;
+                EXPECT_EQ(count, sv_count_facing_c_ref(want.data(), n))
+                    << v->name << " fused count, n=" << n << " extremes=" << extremes;
+                EXPECT_TRUE(out2.guards_intact()) << v->name << " fused wrote out of bounds, n=" << n;
             }
         }
     }

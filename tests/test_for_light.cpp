@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <algorithm>
 #include <cstring>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -147,7 +149,7 @@ struct IsaLimitGuard {
 // Runs the one-call pipeline on M and compares with the reference; OFFSET
 // ints / bytes of misalignment on the output and facing buffers.
 void expect_same_volume(const Mesh &m, const Vec4 &light, const Plane *lightPlanes, int offset,
-                        const char *what) {
+                        const char *what, const sv_plan *plan = nullptr) {
     std::vector<int> want;
     const int n_want = reference_volume(m, light, lightPlanes, want);
     const size_t cap = sv_shadow_volume_capacity(m.surface.numIndices, m.surface.numSilEdges);
@@ -156,7 +158,7 @@ void expect_same_volume(const Mesh &m, const Vec4 &light, const Plane *lightPlan
     std::vector<int> out(cap + (size_t)offset + 16, 0x5A5A5A5A);
     std::vector<uint8_t> facing((size_t)nt + 1 + (size_t)offset + 64);
     std::vector<uint8_t> cull((size_t)m.surface.numVerts + 1);
-    const int n = sv_shadow_volume_for_light(nullptr, &m.surface, &light, lightPlanes,
+    const int n = sv_shadow_volume_for_light(plan, &m.surface, &light, lightPlanes,
                                              out.data() + offset, cap, facing.data() + offset,
                                              cull.data());
     ASSERT_EQ(n, n_want) << what;
@@ -236,6 +238,83 @@ TEST(ForLight, FusedFacingCountMatchesFacingThenCount) {
         uint8_t untouched = 0xEE;
         EXPECT_EQ(fv[k].calculate_facing_count(nullptr, -5, nullptr, &untouched), 0);
         EXPECT_EQ(untouched, 0xEE) << fv[k].name << ": a negative count wrote";
+    }
+}
+
+// A pointer into BUF that is 4 bytes past a 16-byte boundary (BUF has 8
+// spare elements of 4 bytes).
+template <class T> T *off16(std::vector<T> &buf) {
+    static_assert(sizeof(T) == 4, "4-byte elements");
+    size_t k = 0;
+    while (((uintptr_t)(buf.data() + k) & 15u) != 4u) k++;
+    return buf.data() + k;
+}
+
+// The surface's input arrays misaligned too: indices 4 bytes past a 16-byte
+// boundary (sse2_paper's CreateCapTriangles reads them with movdqa, so its
+// stand-in must take over), planes and positions by one float (every
+// facing and cull kernel loads them unaligned). At every ISA level, with
+// and without a light volume.
+TEST(ForLight, MisalignedInputArraysGiveTheSameVolume) {
+    IsaLimitGuard guard;
+    std::mt19937 rng(1515);
+    std::vector<Mesh> meshes;
+    for (int t : {0, 1, 3, 15, 16, 17, 31, 32, 33, 64, 100, 1000}) meshes.push_back(make_mesh(t, rng));
+    for (const char *level : isa_levels()) {
+        ASSERT_EQ(0, sv_set_isa_limit(level));
+        sv_plan_reset();
+        for (const Mesh &src : meshes) {
+            Mesh m = src; // the copy's surface still points at SRC's arrays
+            const int nt = m.surface.numIndices / 3;
+            std::vector<int> idx((size_t)m.surface.numIndices + 8);
+            int *ip = off16(idx);
+            std::copy(src.surface.indices, src.surface.indices + m.surface.numIndices, ip);
+            std::vector<float> pl(4 * (size_t)nt + 8), ps(4 * (size_t)m.surface.numVerts + 8);
+            float *pp = off16(pl), *vp = off16(ps);
+            if (nt) std::memcpy(pp, src.surface.planes, sizeof(Plane) * (size_t)nt);
+            if (m.surface.numVerts) {
+                std::memcpy(vp, src.surface.positions, sizeof(Vec4) * (size_t)m.surface.numVerts);
+            }
+            m.surface.indices = ip;
+            m.surface.planes = reinterpret_cast<const Plane *>(pp);
+            m.surface.positions = reinterpret_cast<const Vec4 *>(vp);
+            for (int l = 0; l < 3; l++) {
+                const Vec4 light = random_light(rng);
+                Plane box[SV_NUM_LIGHT_PLANES];
+                light_box(m, l, rng, box);
+                const std::string what = std::string(level) + ", " + std::to_string(nt) +
+                                         " triangles, misaligned inputs, box " + std::to_string(l);
+                for (int offset : {0, 1}) {
+                    expect_same_volume(m, light, nullptr, offset, (what + ", no light volume").c_str());
+                    expect_same_volume(m, light, box, offset, (what + ", light volume").c_str());
+                }
+            }
+        }
+    }
+}
+
+// A plan without the fused count (a caller's own sv_plan, or one built
+// before the fused kernels): CalculateFacing, then the plan's CountFacing,
+// stood in for when the facing bytes are not aligned as it needs
+// (sse2_paper's movdqa at the sse2 level).
+TEST(ForLight, PlanWithoutTheFusedCountGivesTheSameVolume) {
+    IsaLimitGuard guard;
+    std::mt19937 rng(2626);
+    std::vector<Mesh> meshes;
+    for (int t : {0, 1, 16, 17, 33, 100, 1000}) meshes.push_back(make_mesh(t, rng));
+    for (const char *level : isa_levels()) {
+        ASSERT_EQ(0, sv_set_isa_limit(level));
+        sv_plan_reset();
+        for (const Mesh &m : meshes) {
+            sv_plan p = *sv_plan_for(m.surface.numIndices / 3, SV_PLAN_ESTIMATE);
+            p.calculate_facing_count = nullptr;
+            for (int offset : {0, 1}) {
+                const std::string what = std::string(level) + ", " +
+                                         std::to_string(m.surface.numIndices / 3) +
+                                         " triangles, no fused count, offset " + std::to_string(offset);
+                expect_same_volume(m, random_light(rng), nullptr, offset, what.c_str(), &p);
+            }
+        }
     }
 }
 
