@@ -17,17 +17,8 @@
 #include <x86intrin.h>
 
 #include "cache_info.h"
+#include "machine_limits_asm.h"
 #include "shadowvol.h"
-
-extern "C" {
-void svb_scalar_loads(const uint8_t *buf, int64_t iters);
-void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes);
-void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes);
-void svb_vector_stores_zmm(uint8_t *buf, int64_t iters);
-void svb_vector_stores_ymm(uint8_t *buf, int64_t iters);
-void svb_gather_lanes_zmm(const uint8_t *buf, int64_t iters);
-void svb_gather_lanes_ymm(const uint8_t *buf, int64_t iters);
-}
 
 namespace svbench {
 namespace {

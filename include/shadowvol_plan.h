@@ -53,6 +53,12 @@ typedef enum sv_routine {
 /* "calculate_facing", ... (the benchmark's names); NULL out of range. */
 const char *sv_routine_name(sv_routine r);
 
+/* The static choice for routine R: the name of the variant
+ * sv_best_facing_variant() (A, B) or sv_best_variant() (C-F) gives; NULL out
+ * of range. A measured plan keeps it unless another variant is more than 3%
+ * faster. */
+const char *sv_static_variant_name(sv_routine r);
+
 /* Size classes by triangle count: 0 below 4096 (the arrays fit L1/L2),
  * 1 below 65536, 2 below 524288, 3 from there on (DRAM). */
 #define SV_NUM_SIZE_CLASSES 4

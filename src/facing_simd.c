@@ -405,17 +405,25 @@ SV_TARGET_AVX512 static inline void load16(const float *p, int n, __m512 r[4]) {
     }
 }
 
-/* The facing decisions of the 16 planes at P (all read): bit t of the
- * mask for plane t. */
-SV_TARGET_AVX512 static inline __mmask16 facing16_avx512(const float *p, __m512 lx, __m512 ly,
-                                                         __m512 lz, __m512 lw) {
+/* The facing decisions of the 16 planes in R (their 64 floats as loaded):
+ * bit t of the mask for plane t; lanes outside LIVE are 0. */
+SV_TARGET_AVX512 static inline __mmask16 facing16_avx512(const __m512 r[4], __mmask16 live,
+                                                         __m512 lx, __m512 ly, __m512 lz,
+                                                         __m512 lw) {
     __m512 a, b, c, d;
-    transpose16(_mm512_loadu_ps(p), _mm512_loadu_ps(p + 16), _mm512_loadu_ps(p + 32),
-                _mm512_loadu_ps(p + 48), &a, &b, &c, &d);
+    transpose16(r[0], r[1], r[2], r[3], &a, &b, &c, &d);
     __m512 s = _mm512_add_ps(_mm512_mul_ps(a, lx), _mm512_mul_ps(b, ly));
     s = _mm512_add_ps(s, _mm512_mul_ps(c, lz));
     s = _mm512_add_ps(s, _mm512_mul_ps(d, lw));
-    return _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_GT_OQ);
+    return _mm512_mask_cmp_ps_mask(live, s, _mm512_setzero_ps(), _CMP_GT_OQ);
+}
+
+/* The same for the 16 planes at P, all read with plain loads. */
+SV_TARGET_AVX512 static inline __mmask16 facing16_at_avx512(const float *p, __m512 lx, __m512 ly,
+                                                            __m512 lz, __m512 lw) {
+    const __m512 r[4] = {_mm512_loadu_ps(p), _mm512_loadu_ps(p + 16), _mm512_loadu_ps(p + 32),
+                         _mm512_loadu_ps(p + 48)};
+    return facing16_avx512(r, (__mmask16)0xFFFF, lx, ly, lz, lw);
 }
 
 SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTriangles,
@@ -425,7 +433,6 @@ SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTri
     int count = 0;
     const __m512 lx = _mm512_set1_ps(light->x), ly = _mm512_set1_ps(light->y);
     const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
-    const __m512 zero = _mm512_setzero_ps();
     const __m128i one = _mm_set1_epi8(1);
     const __m256i one32 = _mm256_set1_epi8(1);
     const float *p = &planes[0].a;
@@ -436,28 +443,24 @@ SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTri
      * 32-byte store. size_t and "what is left" comparisons: no index
      * passes numTriangles, none overflows for counts near INT_MAX. */
     for (; total - i >= 32; i += 32, p += 128) {
-        const __mmask16 g0 = facing16_avx512(p, lx, ly, lz, lw);
-        const __mmask16 g1 = facing16_avx512(p + 64, lx, ly, lz, lw);
+        const __mmask16 g0 = facing16_at_avx512(p, lx, ly, lz, lw);
+        const __mmask16 g1 = facing16_at_avx512(p + 64, lx, ly, lz, lw);
         const __mmask32 g = _mm512_kunpackw((__mmask32)g1, (__mmask32)g0);
         _mm256_storeu_si256((__m256i *)(facing + i), _mm256_maskz_mov_epi8(g, one32));
         if (wantCount) count += __builtin_popcount((unsigned)g);
     }
     if (total - i >= 16) {
-        const __mmask16 g = facing16_avx512(p, lx, ly, lz, lw);
+        const __mmask16 g = facing16_at_avx512(p, lx, ly, lz, lw);
         _mm_storeu_si128((__m128i *)(facing + i), _mm_maskz_mov_epi8(g, one));
         if (wantCount) count += __builtin_popcount((unsigned)g);
         i += 16, p += 64;
     }
     if (i < total) { /* the last 1-15: masked loads read nothing past them */
         const int n = (int)(total - i);
-        __m512 r[4], a, b, c, d;
-        load16(p, n, r);
-        transpose16(r[0], r[1], r[2], r[3], &a, &b, &c, &d);
-        __m512 s = _mm512_add_ps(_mm512_mul_ps(a, lx), _mm512_mul_ps(b, ly));
-        s = _mm512_add_ps(s, _mm512_mul_ps(c, lz));
-        s = _mm512_add_ps(s, _mm512_mul_ps(d, lw));
         const __mmask16 live = (__mmask16)((1u << n) - 1);
-        const __mmask16 gt = _mm512_mask_cmp_ps_mask(live, s, zero, _CMP_GT_OQ);
+        __m512 r[4];
+        load16(p, n, r);
+        const __mmask16 gt = facing16_avx512(r, live, lx, ly, lz, lw);
         _mm_mask_storeu_epi8(facing + i, live, _mm_maskz_mov_epi8(gt, one));
         if (wantCount) count += __builtin_popcount((unsigned)gt);
     }

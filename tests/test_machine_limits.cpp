@@ -12,18 +12,9 @@
 #include <cstring>
 #include <vector>
 
+#include "../bench/machine_limits_asm.h"
 #include "shadowvol.h"
 #include "test_support.h"
-
-extern "C" {
-void svb_scalar_loads(const uint8_t *buf, int64_t iters);
-void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes);
-void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes);
-void svb_vector_stores_zmm(uint8_t *buf, int64_t iters);
-void svb_vector_stores_ymm(uint8_t *buf, int64_t iters);
-void svb_gather_lanes_zmm(const uint8_t *buf, int64_t iters);
-void svb_gather_lanes_ymm(const uint8_t *buf, int64_t iters);
-}
 
 using namespace svtest;
 
@@ -32,10 +23,8 @@ namespace {
 constexpr size_t kGuard = 256;
 constexpr size_t kBuffer = 16 * 1024;
 
-// The primitives' own prototypes, so that checked_call builds the argument
-// words from them (the int64_t counts pass unchanged). They were long,
-// which is 32 bits on Windows x64: the checker's garbage upper half then
-// made the asm (which reads the whole register) loop for ever under wine.
+// The primitives' own prototypes (machine_limits_asm.h), so that
+// checked_call builds the argument words from them.
 struct Form {
     const char *name;
     unsigned isa;

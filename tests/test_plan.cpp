@@ -104,6 +104,9 @@ TEST_F(PlanTest, SizeClasses) {
     for (int c = 0; c < SV_NUM_SIZE_CLASSES; c++) {
         EXPECT_EQ(sv_size_class(sv_size_class_triangles(c)), c);
     }
+    EXPECT_STREQ(sv_static_variant_name(SV_ROUTINE_CALCULATE_FACING), sv_best_facing_variant()->name);
+    EXPECT_STREQ(sv_static_variant_name(SV_ROUTINE_CREATE_SIL_TRIANGLES), sv_best_variant()->name);
+    EXPECT_EQ(sv_static_variant_name(SV_NUM_ROUTINES), nullptr);
     EXPECT_EQ(sv_size_class_triangles(-1), 0);
     EXPECT_EQ(sv_size_class_triangles(SV_NUM_SIZE_CLASSES), 0);
     EXPECT_STREQ(sv_routine_name(SV_ROUTINE_CREATE_CAP_TRIANGLES), "create_cap_triangles");
@@ -142,8 +145,7 @@ TEST_F(PlanTest, MeasuredPlanTakesTheFastestOfItsTimingsAndComputesCRef) {
         EXPECT_GE(timed, 1) << sv_routine_name((sv_routine)r);
         // The fastest, or the static choice when it is within 3% of it
         // (the planner's margin against noise), with its own timing.
-        const char *stat = r <= SV_ROUTINE_CALCULATE_CULL_BITS ? sv_best_facing_variant()->name
-                                                               : sv_best_variant()->name;
+        const char *stat = sv_static_variant_name((sv_routine)r);
         double stat_ticks = -1;
         for (const sv_plan_timing &x : t) {
             if (x.routine == r && std::strcmp(x.variant, stat) == 0) stat_ticks = x.ticks;

@@ -89,8 +89,7 @@ int tune_main(int argc, char **argv) {
         std::printf("\nclass %d (%d triangles)\n", c, sv_size_class_triangles(c));
         std::printf("%-22s %-14s %12s %10s  %s\n", "routine", "variant", "ticks", "vs static", "");
         for (int r = 0; r < SV_NUM_ROUTINES; r++) {
-            const char *stat = r <= SV_ROUTINE_CALCULATE_CULL_BITS ? sv_best_facing_variant()->name
-                                                                   : sv_best_variant()->name;
+            const char *stat = sv_static_variant_name((sv_routine)r);
             double stat_ticks = 0;
             for (const sv_plan_timing &x : t) {
                 if (x.routine == r && std::string(x.variant) == stat) stat_ticks = x.ticks;

@@ -368,9 +368,7 @@ int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings) {
     auto record = [&](sv_routine r, const char *name, double t) {
         if (timings && taken < maxTimings) timings[taken] = {sizeClass, r, name, t};
         taken++;
-        const char *stat = r <= SV_ROUTINE_CALCULATE_CULL_BITS ? sv_best_facing_variant()->name
-                                                               : sv_best_variant()->name;
-        if (std::strcmp(name, stat) == 0) static_ticks[r] = t;
+        if (std::strcmp(name, sv_static_variant_name(r)) == 0) static_ticks[r] = t;
         if (!best[r] || t < best_ticks[r]) best[r] = name, best_ticks[r] = t;
     };
     int nf = 0;
@@ -391,15 +389,19 @@ int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings) {
     if (meas.failed) return -1;
     /* The static choice stays unless beaten by more than the margin. */
     for (int r = 0; r < SV_NUM_ROUTINES; r++) {
-        const char *stat = r <= SV_ROUTINE_CALCULATE_CULL_BITS ? sv_best_facing_variant()->name
-                                                               : sv_best_variant()->name;
         const double t = static_ticks[r];
         if (best[r] && t > 0 && t <= best_ticks[r] * kStaticMargin) {
-            best[r] = stat, best_ticks[r] = t;
+            best[r] = sv_static_variant_name((sv_routine)r), best_ticks[r] = t;
         }
     }
     svplan::install(sizeClass, svplan::make_plan(sizeClass, "measured", best, best_ticks), 3);
     return taken;
+}
+
+const char *sv_static_variant_name(sv_routine r) {
+    if ((int)r < 0 || r >= SV_NUM_ROUTINES) return nullptr;
+    return r <= SV_ROUTINE_CALCULATE_CULL_BITS ? sv_best_facing_variant()->name
+                                               : sv_best_variant()->name;
 }
 
 const sv_plan *sv_plan_for(int numTriangles, unsigned flags) {
