@@ -201,6 +201,28 @@ std::vector<RoutineFloor> routine_floors(const MachineLimits &l, const Workload 
     return floors;
 }
 
+namespace {
+
+/* The checked moving-light rows of one routine that the floors table and
+ * the goals compare: the fastest, and the references by name. */
+struct RowsOf {
+    const Row *best = nullptr, *sse2Paper = nullptr, *sse2 = nullptr, *cref = nullptr;
+};
+
+RowsOf rows_of(const ModelTable &t, Routine routine) {
+    RowsOf o;
+    for (const Row &r : t.rows) {
+        if (!r.moving || r.routine != routine || !r.ok) continue;
+        if (!o.best || r.median < o.best->median) o.best = &r;
+        if (std::strcmp(r.variant->name, "sse2_paper") == 0) o.sse2Paper = &r;
+        if (std::strcmp(r.variant->name, "sse2") == 0) o.sse2 = &r;
+        if (std::strcmp(r.variant->name, "c_ref") == 0) o.cref = &r;
+    }
+    return o;
+}
+
+} // namespace
+
 void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const ModelTable &t) {
     std::fprintf(out, "\nlimits: what this core moves per TSC tick at best (bench/machine_limits.asm;"
                       " the fastest of %d calls, each of 2^20 loads, stores or gathers)\n",
@@ -229,21 +251,8 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
                  "streaming", "load port", "(lookups)", "store", "best variant", "median",
                  "/stream", "sse2/2", "c_ref/8");
     for (const RoutineFloor &f : floors) {
-        const Row *best = nullptr, *sse2 = nullptr, *cref = nullptr;
-        for (const Row &r : t.rows) {
-            if (!r.moving || r.routine != f.routine || !r.ok) {
-                continue;
-            }
-            if (!best || r.median < best->median) {
-                best = &r;
-            }
-            if (std::strcmp(r.variant->name, "sse2_paper") == 0) {
-                sse2 = &r;
-            }
-            if (std::strcmp(r.variant->name, "c_ref") == 0) {
-                cref = &r;
-            }
-        }
+        const RowsOf rows = rows_of(t, f.routine);
+        const Row *best = rows.best, *sse2 = rows.sse2Paper, *cref = rows.cref;
         const std::string sse2Goal = sse2 ? std::to_string((long)(sse2->median / 2 + 0.5)) : "-";
         const std::string crefGoal = cref && (f.routine == Routine::create_shadow_volume ||
                                               f.routine == Routine::create_shadow_volume_cull ||
@@ -262,16 +271,14 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
      * streaming floor; the pipeline at least 3x the faithful SSE2 one. */
     std::fprintf(out, "goals (this run's medians, moving light):\n");
     for (const RoutineFloor &f : floors) {
-        const Row *best = nullptr, *sse2 = nullptr;
-        for (const Row &r : t.rows) {
-            if (!r.moving || r.routine != f.routine || !r.ok) continue;
-            if (!best || r.median < best->median) best = &r;
-            /* A and B: the paper printed no SIMD for them; their SSE2 is
-             * the "sse2" variant. */
-            const bool ab = f.routine == Routine::calculate_facing ||
-                            f.routine == Routine::calculate_cull_bits;
-            if (std::strcmp(r.variant->name, ab ? "sse2" : "sse2_paper") == 0) sse2 = &r;
-        }
+        const RowsOf rows = rows_of(t, f.routine);
+        const Row *best = rows.best;
+        /* A and B: the paper printed no SIMD for them; their SSE2 is the
+         * "sse2" variant. */
+        const Row *sse2 = f.routine == Routine::calculate_facing ||
+                                  f.routine == Routine::calculate_cull_bits
+                              ? rows.sse2
+                              : rows.sse2Paper;
         if (!best || !sse2 || best->median <= 0) continue;
         const double vsSse2 = sse2->median / best->median;
         const double vsStream = f.streaming > 0 ? best->median / f.streaming : 0;
