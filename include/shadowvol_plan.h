@@ -148,8 +148,9 @@ typedef struct sv_surface {
  * CountFacingCull; then the silhouette quads and the caps, into
  * SHADOWINDICES. Every kernel is PLAN's (NULL: sv_plan_for(numTriangles,
  * SV_PLAN_ESTIMATE)); a kernel whose alignment need a buffer does not meet
- * is replaced, for that call, by the same routine of the fastest variant
- * this CPU runs that has no such need. The indices written and the count
+ * is replaced, for that call, by the same routine of the highest entry of
+ * the variant table (sv_variants: reference first, widest ISA last) that
+ * this CPU runs and whose alignment needs all the buffers meet. The indices written and the count
  * returned are exactly those of sv_create_shadow_volume with the reference
  * kernels (c_ref) after the reference's A and B.
  *   shadowIndices  capacity ints, capacity >= sv_shadow_volume_capacity(

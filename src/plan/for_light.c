@@ -25,9 +25,10 @@ static int aligned_to(const void *p, unsigned align) {
     return align <= 1 || ((uintptr_t)p % align) == 0;
 }
 
-/* The fastest variant (the table ascends) the CPU runs that needs no
- * alignment beyond what the buffers have: the stand-in for a plan kernel
- * whose need they do not meet. c_ref needs none, so there is always one. */
+/* The highest variant of the table (it ascends towards the widest ISA)
+ * that the CPU runs and that needs no alignment beyond what the buffers
+ * have: the stand-in for a plan kernel whose need they do not meet. c_ref
+ * needs none, so there is always one. */
 static const sv_variant *unaligned_stand_in(const void *facing, const int *indices,
                                             const int *out) {
     int n = 0;
