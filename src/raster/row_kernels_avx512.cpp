@@ -8,8 +8,10 @@
  * vmulpd and vaddpd: the same rounding as the C), vcvtpd2ps into one zmm
  * of float, one masked compare with the stored depth. The span's tail is
  * an opmask too, so stores never touch a pixel outside [x_begin, x_end);
- * depth and stencil are read a whole vector at a time (kFrameSlack:
- * masked loads are slow on AMD cores).
+ * depth is read a whole vector at a time (kFrameSlack: masked loads are
+ * slow on AMD cores where their masked-off part reaches an untouched
+ * page); stencil bytes are read masked to the pixels updated, inside the
+ * row (the per-light stencil buffers have no slack).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -135,7 +137,14 @@ SV_TARGET_AVX512 void stencil_avx512(const RowSpan &s, const RowBuffers &buf, ui
             const __mmask16 less = _mm512_mask_cmp_ps_mask(cov, z, d, _CMP_LT_OQ);
             const __mmask16 upd = kFail ? (__mmask16)(cov & ~less) : less;
             if (upd) {
-                const __m128i st = _mm_loadu_si128((const __m128i *)(buf.stencil + x)); /* kFrameSlack */
+                /* Only the bytes it updates: the per-light stencil of a
+                 * frame (render::LightFrame) is a plain vector with no
+                 * kFrameSlack after it, and a whole-vector read ran past
+                 * its end on the last row (AddressSanitizer, on the first
+                 * AVX-512 machine the sanitizer build ran on). The lanes
+                 * all lie in the row, so the masked load never touches a
+                 * page the row does not. */
+                const __m128i st = _mm_maskz_loadu_epi8(upd, buf.stencil + x);
                 _mm_mask_storeu_epi8(buf.stencil + x, upd, _mm_add_epi8(st, dv));
             }
             tested += (uint64_t)__builtin_popcount(cov);
