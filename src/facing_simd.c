@@ -129,7 +129,7 @@ static inline int facing_sse2(const Plane *planes, int numTriangles, const Vec4 
     const __m128 lx = _mm_set1_ps(light->x), ly = _mm_set1_ps(light->y);
     const __m128 lz = _mm_set1_ps(light->z), lw = _mm_set1_ps(light->w);
     const __m128i one = _mm_set1_epi8(1);
-    const float *p = &planes[0].a;
+    const float *p = (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
     int i = 0;
     /* Sixteen triangles per iteration: the four compare masks (dwords of
      * 0 or -1) are packed with signed saturation to words, then to bytes,
@@ -190,7 +190,7 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
         bit[k] = _mm_set1_epi32(1 << cs.live[k]);
     }
     const __m128 zero = _mm_setzero_ps();
-    const float *v = &positions[0].x;
+    const float *v = (const float *)positions; /* (may be NULL when the count is 0) */
     int j = 0;
     /* Eight vertices per iteration, the bits gathered in vector lanes (a
      * plane's compare mask ANDed with its bit, ORed into the lane) and
@@ -286,7 +286,7 @@ SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangl
      * 24 | 4, 12, 20, 28), so triangles 4k .. 4k + 3 are in dword order[k];
      * vpermd gathers them in triangle order. */
     const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
-    const float *p = &planes[0].a;
+    const float *p = (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
     int i = 0;
     /* 32 triangles per iteration, packed to bytes in registers (dwords ->
      * words -> bytes, signed saturation keeps 0 and -1), one 32-byte
@@ -348,7 +348,7 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
         pc[k] = _mm256_set1_ps(cs.lp[k].c), pd[k] = _mm256_set1_ps(cs.lp[k].d);
     }
     const __m256 zero = _mm256_setzero_ps();
-    const float *v = &positions[0].x;
+    const float *v = (const float *)positions; /* (may be NULL when the count is 0) */
     int j = 0;
     for (; j <= numVerts - 8; j += 8, v += 32) {
         __m256 x, y, z, w;
@@ -435,7 +435,7 @@ SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTri
     const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
     const __m128i one = _mm_set1_epi8(1);
     const __m256i one32 = _mm256_set1_epi8(1);
-    const float *p = &planes[0].a;
+    const float *p = (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
     const size_t total = (size_t)numTriangles;
     size_t i = 0;
     /* Whole blocks first, 32 triangles a step: plain loads (no masks to
@@ -495,7 +495,7 @@ SV_TARGET_AVX512 int sv_calculate_cull_bits_avx512(const Vec4 *positions, int nu
         bit[k] = _mm_set1_epi8((char)(1 << cs.live[k]));
     }
     const __m512 zero = _mm512_setzero_ps();
-    const float *v = &positions[0].x;
+    const float *v = (const float *)positions; /* (may be NULL when the count is 0) */
     for (size_t j = 0, left = (size_t)numVerts; left > 0; j += 16, v += 64) {
         const int n = left < 16 ? (int)left : 16;
         left -= (size_t)n;
