@@ -14,7 +14,12 @@
  *   the first model (a row per routine, a column per variant, median ticks
  *   per element, and the best variant's speed-up over c_ref); a scaling
  *   document's table per routine (a row per mesh, a column per variant).
- *   With --regime fixed, the fixed-light table instead.
+ *   With --regime fixed, the fixed-light table instead; with --routine R,
+ *   routine R's rows only. Where the document records the plans its
+ *   "planned" rows ran ("plans"), the planner's choices follow: a row per
+ *   size class, a column per routine.
+ * --report A.json B.json ... --routine R: routine R's moving-light row of
+ *   each bench document, a row per CPU, with the best against sse2_paper.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */

@@ -136,7 +136,7 @@ template <bool kCull> struct PipelineCall {
     const BenchVariant *bv;
     const Workload *w;
     int operator()(const CallArgs &a) const {
-        if (bv->plan) { /* the planned row: the public one-call entry point */
+        if (bv->plan && !bv->unfused) { /* the planned row: the public one-call entry point */
             const sv_surface s{w->planes.data(), w->indices.data(), w->numIndices,
                                w->silEdges.data(), w->numSilEdges, w->positions.data(),
                                w->numVerts, w->bounds};

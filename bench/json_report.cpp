@@ -348,11 +348,52 @@ std::string bench_json(const BenchRun &run) {
         }
     }
     j.end_array();
+    std::vector<PlanUse> uses;
+    for (const ModelRun &mr : run.models) {
+        if (const sv_plan *p = plan_of(mr.table.rows)) {
+            uses.push_back({mr.workload.name, mr.workload.numTriangles, p});
+        }
+    }
+    write_plans(j, uses);
     if (run.limitsMeasured) {
         limits(j, run);
     }
     j.end_object();
     return j.str();
+}
+
+const sv_plan *plan_of(const std::vector<Row> &rows) {
+    for (const Row &r : rows) {
+        if (r.variant && r.variant->plan) return r.variant->plan;
+    }
+    return nullptr;
+}
+
+void write_plans(JsonWriter &j, const std::vector<PlanUse> &uses) {
+    j.key("plans");
+    j.begin_array();
+    for (const PlanUse &u : uses) {
+        j.begin_object(true);
+        j.key("model");
+        j.value(u.model);
+        j.key("triangles");
+        j.value(u.triangles);
+        j.key("size_class");
+        j.value(u.plan->size_class);
+        j.key("class_triangles");
+        j.value(sv_size_class_triangles(u.plan->size_class));
+        j.key("source");
+        j.value(u.plan->source);
+        j.key("variants");
+        j.begin_object(true);
+        for (int r = 0; r < SV_NUM_ROUTINES; r++) {
+            j.key(sv_routine_name((sv_routine)r));
+            j.value(u.plan->variant[r]);
+        }
+        j.end_object();
+        j.end_object();
+    }
+    j.end_array();
 }
 
 } // namespace svbench

@@ -75,6 +75,19 @@ void write_row_figure(JsonWriter &j, const char *name, const Row &r, double v);
 /* Per row, in both documents: "checked", and "failure" when it failed. */
 void write_row_check(JsonWriter &j, const Row &r);
 
+/* The plan a model's planned rows ran (nullptr: it had none). */
+const sv_plan *plan_of(const std::vector<Row> &rows);
+/* "plans": per model whose rows ran a plan, the plan: {model, triangles,
+ * size_class, class_triangles (the mesh the class is measured on),
+ * source ("measured", "wisdom", "built-in"), variants {routine: name}}.
+ * `bench --report` prints them as the planner's choices. */
+struct PlanUse {
+    std::string model;
+    int triangles;
+    const sv_plan *plan;
+};
+void write_plans(JsonWriter &j, const std::vector<PlanUse> &uses);
+
 } // namespace svbench
 
 #endif

@@ -63,6 +63,10 @@ std::vector<BenchVariant> make_bench_variants() {
     BenchVariant planned{"planned", 0, nullptr, nullptr, nullptr};
     planned.planned = true;
     all.push_back(planned);
+    BenchVariant planned_kernels{"planned_kernels", 0, nullptr, nullptr, nullptr};
+    planned_kernels.planned = true;
+    planned_kernels.unfused = true;
+    all.push_back(planned_kernels);
     for (BenchVariant &b : all) {
         if (!b.kernels) continue;
         const sv_facing_variant *pick = nullptr;
@@ -182,7 +186,9 @@ const BenchVariant *resolve_planned(const BenchVariant *v, int numTriangles) {
 }
 
 bool implements(const BenchVariant &v, Routine r) {
-    if (v.planned) return true; /* every routine, once resolved */
+    if (v.planned) { /* every routine, once resolved; the unfused form the pipelines only */
+        return !v.unfused || r == Routine::pipeline || r == Routine::pipeline_cull;
+    }
     switch (r) {
     case Routine::calculate_facing: return v.calculate_facing != nullptr;
     case Routine::calculate_cull_bits: return v.calculate_cull_bits != nullptr;

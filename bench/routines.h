@@ -90,6 +90,13 @@ struct BenchVariant {
     /* "planned": the planner's choice (include/shadowvol_plan.h) for the
      * workload's size, resolved per workload by resolve_planned(). */
     bool planned = false;
+    /* "planned_kernels": the same plan's kernels called one after the
+     * other (A, then sv_create_shadow_volume), not the fused one-call
+     * entry. It has pipeline rows only (elsewhere it is "planned"), so
+     * that the planner's choice of kernels is compared with the fixed
+     * variants like with like, and the fused entry's own gain shows as
+     * the difference between the two rows. */
+    bool unfused = false;
     /* A resolved planned variant: the table's entry it was made from, and
      * the plan (its pipeline rows call sv_shadow_volume_for_light with it:
      * the fused facing and count, what a user of the one-call entry gets). */

@@ -180,6 +180,13 @@ std::string scaling_json(const ScalingRun &run) {
         }
     }
     j.end_array();
+    std::vector<PlanUse> uses;
+    for (const ScalingMesh &sm : run.meshes) {
+        if (const sv_plan *p = plan_of(sm.table.rows)) {
+            uses.push_back({sm.spec.name, sm.workload.numTriangles, p});
+        }
+    }
+    write_plans(j, uses);
     j.end_object();
     return j.str();
 }

@@ -30,6 +30,7 @@
 #include <unistd.h>
 
 #include "shadowvol.h"
+#include "shadowvol_plan.h"
 
 #ifndef SV_SHADOWVOL_EXE
 #error "SV_SHADOWVOL_EXE must name the built shadowvol program"
@@ -90,6 +91,7 @@ std::set<std::string> all_variant_names() {
     std::set<std::string> names = variant_names(false);
     for (const std::string &f : facing_variant_names(false)) names.insert(f);
     names.insert("planned"); /* the planner's choice (shadowvol_plan.h) */
+    names.insert("planned_kernels"); /* its kernels unfused (pipelines only) */
     return names;
 }
 
@@ -408,10 +410,34 @@ TEST_F(BenchJson, DocumentMatchesTheSchemaAndCoversEveryRow) {
     EXPECT_TRUE(errors.empty()) << join(errors);
     /* 6 kernel routines and 2 pipelines x the runnable kernel variants + 2
      * calculate_* routines x the runnable A/B variants + the planned
-     * variant on all 10, in 2 regimes. */
+     * variant on all 10 + planned_kernels on the 2 pipelines, in 2
+     * regimes. */
     const size_t want =
-        2 * (8 * variant_names(true).size() + 2 * facing_variant_names(true).size() + 10);
+        2 * (8 * variant_names(true).size() + 2 * facing_variant_names(true).size() + 10 + 2);
     EXPECT_EQ(doc.at("results").size(), want);
+}
+
+/* "plans": the plan the planned rows ran, one per model, naming a variant
+ * the table has for every routine of the planner. */
+TEST_F(BenchJson, PlansNameThePlannedRowsKernels) {
+    const json doc = document();
+    ASSERT_TRUE(doc.contains("plans") && doc.at("plans").is_array());
+    ASSERT_EQ(doc.at("plans").size(), 1u);
+    const json &p = doc.at("plans")[0];
+    EXPECT_EQ(p.value("model", ""), "character_1344.glb");
+    EXPECT_EQ(p.value("triangles", 0), 1344);
+    EXPECT_EQ(p.value("size_class", -1), sv_size_class(1344));
+    EXPECT_EQ(p.value("class_triangles", 0), sv_size_class_triangles(sv_size_class(1344)));
+    const std::string source = p.value("source", "");
+    EXPECT_TRUE(source == "measured" || source == "wisdom" || source == "built-in") << source;
+    const std::set<std::string> names = all_variant_names();
+    ASSERT_TRUE(p.contains("variants") && p.at("variants").is_object());
+    EXPECT_EQ(p.at("variants").size(), (size_t)SV_NUM_ROUTINES);
+    for (int r = 0; r < SV_NUM_ROUTINES; r++) {
+        const char *routine = sv_routine_name((sv_routine)r);
+        ASSERT_TRUE(p.at("variants").contains(routine)) << routine;
+        EXPECT_TRUE(names.count(p.at("variants").at(routine).get<std::string>())) << routine;
+    }
 }
 
 TEST_F(BenchJson, ModelsReportTheLightsActualRatios) {

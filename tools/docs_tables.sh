@@ -35,7 +35,8 @@ for doc in README.md docs/*.md; do
         cmd=${line#'<!-- BEGIN GENERATED: shadowvol '}; cmd=${cmd%' -->'}
         read -r -a args <<<"$cmd"
         for a in "${args[@]}"; do
-          case "$a" in bench|--report|--compare|--regime|moving|fixed|docs/results/*.json) ;;
+          case "$a" in bench|--report|--compare|--regime|moving|fixed|--routine|docs/results/*.json) ;;
+            pipeline|pipeline_cull|calculate_facing|calculate_cull_bits|count_facing|count_facing_cull|create_sil_triangles|create_cap_triangles|create_shadow_volume|create_shadow_volume_cull) ;;
             *) echo "$doc: refusing to run '$cmd' (only bench --report / --compare of docs/results/)" >&2; exit 2 ;;
           esac
         done
