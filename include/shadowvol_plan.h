@@ -140,6 +140,19 @@ typedef struct sv_surface {
     Bounds bounds;           /* contains every position (appendix B's box test) */
 } sv_surface;
 
+/* As sv_plan_measure, on the caller's own SURFACE rather than the
+ * generated character: the plan of the size class of its triangle count,
+ * measured on it (its own shape, facing and silhouette ratios), lit by 8
+ * point lights on a ring around its bounds. Its arrays are copied first
+ * (no alignment is asked of them; surface->bounds is not read, the
+ * positions' own box is used). Returns the timings taken, -1 when a
+ * variant disagreed with c_ref, or -2 when SURFACE breaks a contract of
+ * sv_shadow_volume_for_light (NULL arrays, fewer than one triangle or a
+ * count not a multiple of 3, an index, SilEdge or vertex out of range, an
+ * odd SilEdge vertex, counts whose volume overflows an int) or has a
+ * plane or position that is not finite: nothing is planned then. */
+int sv_plan_measure_surface(const sv_surface *surface, sv_plan_timing *timings, int maxTimings);
+
 /* The shadow volume of SURFACE for LIGHT in one call: CalculateFacing and
  * the count fused (no second pass over the facing bytes), then, with
  * LIGHTPLANES (the light volume's SV_NUM_LIGHT_PLANES planes; NULL: no

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# `shadowvol tune` (issue 15): measures a class, prints a timing per
+# `shadowvol tune` (issue 15): measures a class (or a model's own surface), prints a timing per
 # routine and variant with the planned one marked, saves this CPU's
 # section of the wisdom file; bad arguments exit 2, an unwritable or
 # foreign file exits 3 and is left as it was.
-# usage: check_tune_cli.sh PATH/TO/shadowvol
+# usage: check_tune_cli.sh PATH/TO/shadowvol [MODELS_DIR]
 set -u
 sv="$1"
+src_models="${2:-$(dirname "$0")/../models}"
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -37,6 +38,16 @@ awk '$1 ~ /^(calc|count|create)/ { if (!($1 in best) || $3 < best[$1]) best[$1] 
            exit bad }' "$tmp/out" \
   || err "a planned variant is neither the fastest nor the static choice within 3% of it"
 
+# tune MODEL: measured on the model's own surface, its class only.
+"$sv" tune "$src_models/character_1344.glb" --wisdom "$tmp/m/wisdom" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] || err "tune MODEL exited $rc: $(cat "$tmp/err")"
+grep -q '^class 0 (.*character_1344.glb, surface .*: 1344 triangles)$' "$tmp/out" || err "tune MODEL: not measured on the model: $(head -5 "$tmp/out")"
+[ "$(grep -c '^class ' "$tmp/out")" -eq 1 ] || err "tune MODEL measured other classes than the model's"
+[ "$(grep -c '<- planned' "$tmp/out")" -eq 6 ] || err "tune MODEL: not one planned variant per routine"
+[ "$(grep -c '^class 0 ' "$tmp/m/wisdom")" -eq 6 ] && ! grep -q '^class [123] ' "$tmp/m/wisdom" \
+  || err "tune MODEL: the wisdom is not the model's class alone"
+
 # --dry-run saves nothing.
 "$sv" tune --class 0 --dry-run --wisdom "$tmp/dry" >/dev/null 2>&1 || err "--dry-run failed"
 [ ! -e "$tmp/dry" ] || err "--dry-run wrote the wisdom file"
@@ -53,6 +64,9 @@ expect 2 --class 9
 expect 2 --class
 expect 2 --sideways
 expect 2 --wisdom ""
+expect 2 "$src_models/character_1344.glb" "$src_models/character_1344.glb"
+expect 3 --dry-run "$tmp/no-such-model.glb"
+expect 3 --dry-run --class 3 "$src_models/character_1344.glb"
 printf 'my notes, not wisdom\n' >"$tmp/notes"
 expect 3 --class 0 --wisdom "$tmp/notes"
 [ "$(cat "$tmp/notes")" = "my notes, not wisdom" ] || err "tune overwrote a file that is not a wisdom file"

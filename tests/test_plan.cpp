@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -166,6 +167,85 @@ TEST_F(PlanTest, MeasuredPlanTakesTheFastestOfItsTimingsAndComputesCRef) {
     expect_plan_computes_c_ref(*p);
     // Other classes were not measured.
     EXPECT_STREQ(sv_plan_for(sv_size_class_triangles(1), SV_PLAN_ESTIMATE)->source, "built-in");
+}
+
+// The caller's own surface: measured on it (a copy, so no alignment is
+// asked: here every array starts 4 bytes past an aligned address), the
+// plan of its class only, and it computes c_ref.
+TEST_F(PlanTest, MeasuringTheCallersSurfacePlansItsClass) {
+    const sv::PreparedSurface s = test_surface();
+    std::vector<Vec4> pos((size_t)s.num_vertices());
+    for (int i = 0; i < s.num_vertices(); i++) {
+        pos[(size_t)i] = {s.positions[3 * (size_t)i], s.positions[3 * (size_t)i + 1],
+                          s.positions[3 * (size_t)i + 2], 1};
+    }
+    // Misaligned copies: planes and indices 4 bytes past their alignment.
+    std::vector<char> planeBytes(sizeof(Plane) * (size_t)s.num_triangles() + 64);
+    std::vector<char> indexBytes(sizeof(int) * (size_t)s.num_indices() + 64);
+    char *pa = planeBytes.data() + (64 - (reinterpret_cast<uintptr_t>(planeBytes.data()) % 64)) % 64 + 4;
+    char *ia = indexBytes.data() + (64 - (reinterpret_cast<uintptr_t>(indexBytes.data()) % 64)) % 64 + 4;
+    std::memcpy(pa, s.planes.data(), sizeof(Plane) * (size_t)s.num_triangles());
+    std::memcpy(ia, s.indices.data(), sizeof(int) * (size_t)s.num_indices());
+    sv_surface v{reinterpret_cast<const Plane *>(pa), reinterpret_cast<const int *>(ia),
+                 s.num_indices(), s.sil_edges.data(), s.num_sil_edges(), pos.data(),
+                 s.num_vertices(), Bounds{}};
+    std::vector<sv_plan_timing> t(64);
+    const int n = sv_plan_measure_surface(&v, t.data(), (int)t.size());
+    ASSERT_GT(n, 0);
+    for (int i = 0; i < std::min(n, (int)t.size()); i++) {
+        EXPECT_EQ(t[(size_t)i].size_class, sv_size_class(s.num_triangles()));
+        EXPECT_GT(t[(size_t)i].ticks, 0);
+    }
+    const sv_plan *p = sv_plan_for(s.num_triangles(), SV_PLAN_ESTIMATE);
+    EXPECT_STREQ(p->source, "measured");
+    expect_plan_computes_c_ref(*p);
+    EXPECT_STREQ(sv_plan_for(sv_size_class_triangles(2), SV_PLAN_ESTIMATE)->source, "built-in");
+}
+
+// A surface that breaks a contract is refused (-2) before anything is
+// measured, and plans nothing.
+TEST_F(PlanTest, MeasuringABadSurfaceIsRefused) {
+    const sv::PreparedSurface s = test_surface();
+    std::vector<Vec4> pos((size_t)s.num_vertices(), Vec4{0, 0, 0, 1});
+    for (int i = 0; i < s.num_vertices(); i++) {
+        pos[(size_t)i] = {s.positions[3 * (size_t)i], s.positions[3 * (size_t)i + 1],
+                          s.positions[3 * (size_t)i + 2], 1};
+    }
+    const sv_surface good{s.planes.data(), s.indices.data(), s.num_indices(), s.sil_edges.data(),
+                          s.num_sil_edges(), pos.data(), s.num_vertices(), Bounds{}};
+    EXPECT_EQ(sv_plan_measure_surface(nullptr, nullptr, 0), -2);
+    sv_surface v = good;
+    v.numIndices = 0;
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "no triangle";
+    v = good;
+    v.numIndices -= 1;
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "not a multiple of 3";
+    v = good;
+    v.planes = nullptr;
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "NULL planes";
+    v = good;
+    v.numVerts -= 1; // the last vertex is used: an index out of range
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "index out of range";
+    std::vector<SilEdge> edges(s.sil_edges.begin(), s.sil_edges.end());
+    edges.back().v2 |= 1;
+    v = good;
+    v.silEdges = edges.data();
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "odd SilEdge vertex";
+    edges = std::vector<SilEdge>(s.sil_edges.begin(), s.sil_edges.end());
+    edges.front().p2 = s.num_triangles() + 1;
+    v.silEdges = edges.data();
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "SilEdge triangle out of range";
+    std::vector<Plane> planes(s.planes.begin(), s.planes.end());
+    planes[7].b = std::nanf("");
+    v = good;
+    v.planes = planes.data();
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "NaN plane";
+    std::vector<Vec4> inf = pos;
+    inf[3].z = INFINITY;
+    v = good;
+    v.positions = inf.data();
+    EXPECT_EQ(sv_plan_measure_surface(&v, nullptr, 0), -2) << "infinite position";
+    EXPECT_STREQ(sv_plan_for(s.num_triangles(), SV_PLAN_ESTIMATE)->source, "built-in");
 }
 
 TEST_F(PlanTest, MeasureFlagMeasuresOnFirstUse) {

@@ -1,12 +1,20 @@
 /*
  * shadowvol tune: per size class, every runnable variant of each routine
- * timed on the planner's generated mesh (every call checked against
+ * timed on the planner's generated mesh, or with MODEL on the model's own
+ * largest surface of each class it has (every call checked against
  * c_ref), a table of the timings with the winner and the static choice
  * marked, then the winners saved as this CPU's section of the wisdom file.
  *
+ * Why a model: the generated character stands in for "a mesh of this
+ * size", but the ranking of the silhouette and cap kernels moves with the
+ * share of SilEdges on the silhouette and of triangles facing away
+ * (docs/benchmark.md): a terrain, a character and a CAD part of one size
+ * can want different kernels.
+ *
  * Exit status: 0 done; 1 a variant disagreed with c_ref (nothing saved);
  * 2 bad arguments; 3 the wisdom file could not be written (or read, when
- * it exists and is not a wisdom file).
+ * it exists and is not a wisdom file), or the model could not be loaded
+ * or prepared, or has no surface in the classes asked for.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -19,29 +27,110 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "shadowvol_gltf.h"
+#include "shadowvol_mesh.h"
 #include "shadowvol_plan.h"
 
 namespace svcli {
 
 void tune_usage(FILE *out) {
     std::fprintf(out,
-                 "usage: shadowvol tune [--class N]... [--wisdom FILE] [--dry-run]\n"
-                 "  Times every variant of every routine this CPU runs on a generated mesh of\n"
-                 "  each size class (0: under 4096 triangles, 1: under 65536, 2: under 524288,\n"
-                 "  3: larger; measured at 2048, 24576, 196608 and 1048576 triangles), checks\n"
-                 "  every call against c_ref, and saves the fastest per routine and class as\n"
-                 "  this CPU's plans (sv_plan_for reads them; see docs/benchmark.md).\n"
-                 "  --class N       measure class N only (repeatable; default: all four)\n"
+                 "usage: shadowvol tune [MODEL.glb|MODEL.gltf] [--class N]... [--wisdom FILE] [--dry-run]\n"
+                 "  Times every variant of every routine this CPU runs on a mesh of each size\n"
+                 "  class (0: under 4096 triangles, 1: under 65536, 2: under 524288, 3: larger),\n"
+                 "  checks every call against c_ref, and saves the fastest per routine and class\n"
+                 "  as this CPU's plans (sv_plan_for reads them; see docs/benchmark.md).\n"
+                 "  Without MODEL a class is measured on the generated character at %d, %d,\n"
+                 "  %d and %d triangles; with MODEL on the model's largest surface in each\n"
+                 "  class it has (its own shape and silhouette share), and only those classes.\n"
+                 "  --class N       measure class N only (repeatable; default: all four, or\n"
+                 "                  those of MODEL's surfaces)\n"
                  "  --wisdom FILE   the wisdom file (default: $SV_WISDOM, else\n"
                  "                  $XDG_CACHE_HOME/shadowvol/wisdom, else ~/.cache/shadowvol/wisdom)\n"
                  "  --dry-run       measure and print, save nothing\n"
                  "exit status: 0 done, 1 a variant disagreed with c_ref, 2 bad arguments,\n"
-                 "3 the wisdom file could not be written\n");
+                 "3 the wisdom file could not be written, or MODEL could not be loaded or has\n"
+                 "no surface in the classes asked for\n",
+                 sv_size_class_triangles(0),
+                 sv_size_class_triangles(1), sv_size_class_triangles(2), sv_size_class_triangles(3));
 }
+
+namespace {
+
+/* One prepared surface of MODEL, and the view the planner measures. */
+struct ModelSurface {
+    std::string name;
+    sv::PreparedSurface prepared;
+    std::vector<Vec4> positions4;
+    sv_surface view() const {
+        const sv::PreparedSurface &p = prepared;
+        return sv_surface{p.planes.data(), p.indices.data(), p.num_indices(), p.sil_edges.data(),
+                          p.num_sil_edges(), positions4.data(), p.num_vertices(),
+                          sv::surface_bounds(p)};
+    }
+};
+
+/* MODEL's surfaces, prepared; false (the reason on stderr) when it cannot
+ * be loaded or prepared. */
+bool load_surfaces(const std::string &path, std::vector<ModelSurface> *out) {
+    try {
+        sv::GltfModel m = sv::load_gltf(path, sv::GltfLoadOptions{});
+        for (sv::GltfSurface &g : m.surfaces) {
+            ModelSurface s;
+            s.name = g.name;
+            try {
+                s.prepared = sv::prepare_surface(g.positions.data(), g.num_vertices(),
+                                                 g.indices.data(), g.indices.size());
+            } catch (const sv::PrepareError &e) {
+                std::fprintf(stderr, "shadowvol tune: %s: surface %s: %s\n", path.c_str(),
+                             g.name.c_str(), e.what());
+                return false;
+            }
+            if (s.prepared.num_triangles() == 0) continue; /* nothing to time */
+            const std::vector<float> &xyz = s.prepared.positions;
+            for (size_t i = 0; i + 2 < xyz.size(); i += 3) {
+                s.positions4.push_back(Vec4{xyz[i], xyz[i + 1], xyz[i + 2], 1});
+            }
+            out->push_back(std::move(s));
+        }
+    } catch (const sv::GltfError &e) {
+        std::fprintf(stderr, "shadowvol tune: %s\n", e.what());
+        return false;
+    } catch (const std::bad_alloc &) {
+        std::fprintf(stderr, "shadowvol tune: %s: out of memory\n", path.c_str());
+        return false;
+    }
+    return true;
+}
+
+/* The timings of class C, a line per routine and variant, the plan's
+ * choice and the static choice marked. */
+void print_class(int c, const std::string &measuredOn, const std::vector<sv_plan_timing> &t) {
+    const sv_plan *p = sv_plan_for(sv_size_class_triangles(c), SV_PLAN_ESTIMATE);
+    std::printf("\nclass %d (%s)\n", c, measuredOn.c_str());
+    std::printf("%-22s %-14s %12s %10s  %s\n", "routine", "variant", "ticks", "vs static", "");
+    for (int r = 0; r < SV_NUM_ROUTINES; r++) {
+        const char *stat = sv_static_variant_name((sv_routine)r);
+        double stat_ticks = 0;
+        for (const sv_plan_timing &x : t) {
+            if (x.routine == r && std::string(x.variant) == stat) stat_ticks = x.ticks;
+        }
+        for (const sv_plan_timing &x : t) {
+            if (x.routine != r) continue;
+            const bool chosen = std::string(x.variant) == p->variant[r];
+            const bool is_static = std::string(x.variant) == stat;
+            std::printf("%-22s %-14s %12.0f %9.2fx  %s%s\n", sv_routine_name((sv_routine)r),
+                        x.variant, x.ticks, x.ticks > 0 ? stat_ticks / x.ticks : 0.0,
+                        chosen ? "<- planned" : "", is_static ? (chosen ? ", static" : "(static)") : "");
+        }
+    }
+}
+
+} // namespace
 
 int tune_main(int argc, char **argv) {
     std::vector<int> classes;
-    std::string path;
+    std::string path, model;
     bool dry = false;
     try {
         ArgReader a(argc, argv);
@@ -56,6 +145,8 @@ int tune_main(int argc, char **argv) {
                 if (path.empty()) usage_error("--wisdom needs a file name");
             } else if (a.is_flag("--dry-run")) {
                 dry = true;
+            } else if (!a.arg().empty() && a.arg()[0] != '-' && model.empty()) {
+                model = a.arg();
             } else {
                 usage_error("unknown argument '" + quoted(a.arg()) + "'");
             }
@@ -63,6 +154,33 @@ int tune_main(int argc, char **argv) {
     } catch (const UsageError &e) {
         std::fprintf(stderr, "shadowvol tune: %s\nTry 'shadowvol tune --help'.\n", e.message.c_str());
         return 2;
+    }
+    /* With a model: per class, its largest surface there. */
+    std::vector<ModelSurface> surfaces;
+    std::vector<const ModelSurface *> on(SV_NUM_SIZE_CLASSES, nullptr);
+    if (!model.empty()) {
+        if (!load_surfaces(model, &surfaces)) return 3;
+        for (const ModelSurface &s : surfaces) {
+            const int c = sv_size_class(s.prepared.num_triangles());
+            if (!on[(size_t)c] || s.prepared.num_triangles() > on[(size_t)c]->prepared.num_triangles()) {
+                on[(size_t)c] = &s;
+            }
+        }
+        if (classes.empty()) {
+            for (int c = 0; c < SV_NUM_SIZE_CLASSES; c++) {
+                if (on[(size_t)c]) classes.push_back(c);
+            }
+        }
+        for (int c : classes) {
+            if (!on[(size_t)c]) {
+                std::fprintf(stderr, "shadowvol tune: %s has no surface in class %d\n", model.c_str(), c);
+                return 3;
+            }
+        }
+        if (classes.empty()) {
+            std::fprintf(stderr, "shadowvol tune: %s has no triangles\n", model.c_str());
+            return 3;
+        }
     }
     if (classes.empty()) {
         for (int c = 0; c < SV_NUM_SIZE_CLASSES; c++) classes.push_back(c);
@@ -78,31 +196,30 @@ int tune_main(int argc, char **argv) {
     std::printf("unit      median TSC ticks per call, 8 moving lights, each call checked against c_ref\n");
     for (int c : classes) {
         std::vector<sv_plan_timing> t(256);
-        const int n = sv_plan_measure(c, t.data(), (int)t.size());
+        std::string measuredOn;
+        int n;
+        if (const ModelSurface *s = on[(size_t)c]) {
+            const sv_surface v = s->view();
+            n = sv_plan_measure_surface(&v, t.data(), (int)t.size());
+            measuredOn = model + ", surface " + s->name + ": " +
+                         std::to_string(s->prepared.num_triangles()) + " triangles";
+        } else {
+            n = sv_plan_measure(c, t.data(), (int)t.size());
+            measuredOn = "the generated character, " + std::to_string(sv_size_class_triangles(c)) +
+                         " triangles";
+        }
+        if (n == -2) { /* a prepared surface always meets the contracts */
+            std::fprintf(stderr, "shadowvol tune: class %d: the surface breaks a contract (a bug: "
+                                 "please report it)\n", c);
+            return 1;
+        }
         if (n < 0) {
             std::fprintf(stderr, "shadowvol tune: class %d: a variant's result differed from c_ref's; "
                                  "nothing saved (a bug: please report it)\n", c);
             return 1;
         }
         t.resize((size_t)std::min(n, (int)t.size()));
-        const sv_plan *p = sv_plan_for(sv_size_class_triangles(c), SV_PLAN_ESTIMATE);
-        std::printf("\nclass %d (%d triangles)\n", c, sv_size_class_triangles(c));
-        std::printf("%-22s %-14s %12s %10s  %s\n", "routine", "variant", "ticks", "vs static", "");
-        for (int r = 0; r < SV_NUM_ROUTINES; r++) {
-            const char *stat = sv_static_variant_name((sv_routine)r);
-            double stat_ticks = 0;
-            for (const sv_plan_timing &x : t) {
-                if (x.routine == r && std::string(x.variant) == stat) stat_ticks = x.ticks;
-            }
-            for (const sv_plan_timing &x : t) {
-                if (x.routine != r) continue;
-                const bool chosen = std::string(x.variant) == p->variant[r];
-                const bool is_static = std::string(x.variant) == stat;
-                std::printf("%-22s %-14s %12.0f %9.2fx  %s%s\n", sv_routine_name((sv_routine)r),
-                            x.variant, x.ticks, x.ticks > 0 ? stat_ticks / x.ticks : 0.0,
-                            chosen ? "<- planned" : "", is_static ? (chosen ? ", static" : "(static)") : "");
-            }
-        }
+        print_class(c, measuredOn, t);
     }
     if (dry) {
         std::printf("\n--dry-run: nothing saved\n");

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <climits>
 #include <cstring>
 #include <deque>
 #include <mutex>
@@ -165,12 +166,8 @@ struct Mesh {
  * AVX2 silhouette and cap kernels (scalar, branchy) win, and the plans
  * made from it were 10-30% slower than the static choice on the
  * character and the real models (scaling run, AMD Zen 5). */
-Mesh make_mesh(int triangles) {
-    const int n = std::max(1, (int)std::lround(std::sqrt((double)triangles / 1344.0)));
-    const svgen::TriMesh t = svgen::build_character(n);
-    Mesh m;
-    m.s = sv::prepare_surface(t.positions.data(), t.num_vertices(), t.indices.data(),
-                              t.indices.size());
+/* The lights and light boxes of M, from its bounds (set here). */
+void light_mesh(Mesh &m) {
     m.positions4.resize((size_t)m.s.num_vertices());
     for (int i = 0; i < m.s.num_vertices(); i++) {
         m.positions4[(size_t)i] = {m.s.positions[3 * (size_t)i], m.s.positions[3 * (size_t)i + 1],
@@ -178,7 +175,10 @@ Mesh make_mesh(int triangles) {
     }
     m.bounds = sv::surface_bounds(m.s);
     const Vec4 c = m.bounds.center, e = m.bounds.extents;
-    const float r = std::max(e.x, std::max(e.y, e.z));
+    /* A flat surface (a ground plane) has a zero extent: the ring of
+     * lights is sized by the largest one, and a degenerate surface of one
+     * point still gets lights apart from it. */
+    const float r = std::max(1e-3f, std::max(e.x, std::max(e.y, e.z)));
     for (int l = 0; l < kLights; l++) {
         /* Point lights on a ring around the character, at several heights:
          * about half the triangles face each (a closed mesh lit from
@@ -197,6 +197,34 @@ Mesh make_mesh(int triangles) {
                               Plane{0, 1, 0, -(by - h)}, Plane{0, -1, 0, by + h},
                               Plane{0, 0, 1, -(bz - h)}, Plane{0, 0, -1, bz + h}};
     }
+}
+
+Mesh make_mesh(int triangles) {
+    const int n = std::max(1, (int)std::lround(std::sqrt((double)triangles / 1344.0)));
+    const svgen::TriMesh t = svgen::build_character(n);
+    Mesh m;
+    m.s = sv::prepare_surface(t.positions.data(), t.num_vertices(), t.indices.data(),
+                              t.indices.size());
+    light_mesh(m);
+    return m;
+}
+
+/* The caller's surface, copied (the kernels' alignment is then the
+ * planner's to give, whatever the caller's arrays have). Its own bounds
+ * are replaced by the positions' (the same box, or a tighter one). */
+Mesh copy_mesh(const sv_surface &v) {
+    Mesh m;
+    const int nt = v.numIndices / 3;
+    m.s.indices.assign(v.indices, v.indices + v.numIndices);
+    m.s.planes.assign(v.planes, v.planes + nt);
+    m.s.sil_edges.assign(v.silEdges, v.silEdges + v.numSilEdges);
+    m.s.positions.resize(3 * (size_t)v.numVerts);
+    for (int i = 0; i < v.numVerts; i++) {
+        m.s.positions[3 * (size_t)i] = v.positions[i].x;
+        m.s.positions[3 * (size_t)i + 1] = v.positions[i].y;
+        m.s.positions[3 * (size_t)i + 2] = v.positions[i].z;
+    }
+    light_mesh(m);
     return m;
 }
 
@@ -355,9 +383,14 @@ int sv_size_class_triangles(int sizeClass) {
     return sizeClass >= 0 && sizeClass < SV_NUM_SIZE_CLASSES ? kClassTriangles[sizeClass] : 0;
 }
 
-int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings) {
-    if (sizeClass < 0 || sizeClass >= SV_NUM_SIZE_CLASSES) return -1;
-    const Mesh m = make_mesh(kClassTriangles[sizeClass]);
+} // extern "C"
+
+namespace {
+
+/* Every runnable variant of every routine timed on M, the winners (the
+ * static choice kept within the margin) installed as SIZECLASS's measured
+ * plan. As sv_plan_measure returns. */
+int measure_mesh(const Mesh &m, int sizeClass, sv_plan_timing *timings, int maxTimings) {
     /* About the same work per class: 1 M triangle-calls per variant. */
     const int rounds = std::max(3, std::min(61, (1 << 20) / (kLights * m.s.num_triangles())));
     Measurer meas(m, rounds);
@@ -396,6 +429,53 @@ int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings) {
     }
     svplan::install(sizeClass, svplan::make_plan(sizeClass, "measured", best, best_ticks), 3);
     return taken;
+}
+
+} // namespace
+
+extern "C" {
+
+int sv_plan_measure(int sizeClass, sv_plan_timing *timings, int maxTimings) {
+    if (sizeClass < 0 || sizeClass >= SV_NUM_SIZE_CLASSES) return -1;
+    return measure_mesh(make_mesh(kClassTriangles[sizeClass]), sizeClass, timings, maxTimings);
+}
+
+int sv_plan_measure_surface(const sv_surface *surface, sv_plan_timing *timings, int maxTimings) {
+    /* The contracts of sv_shadow_volume_for_light (minus alignment, which
+     * the copy gives), checked before anything else is read: a surface
+     * the kernels cannot take makes no plan, and non-finite planes or
+     * positions would make the variants' comparisons with c_ref, not the
+     * variants, decide the result. */
+    constexpr int kBadSurface = -2;
+    if (!surface) return kBadSurface;
+    const sv_surface &v = *surface;
+    if (v.numIndices < 3 || v.numIndices % 3 != 0 || v.numSilEdges < 0 || v.numVerts <= 0 ||
+        v.numVerts > (1 << 30) || 6ll * v.numSilEdges + 2ll * v.numIndices > INT_MAX ||
+        !v.planes || !v.indices || !v.positions || (v.numSilEdges > 0 && !v.silEdges)) {
+        return kBadSurface;
+    }
+    const int nt = v.numIndices / 3;
+    for (int i = 0; i < v.numIndices; i++) {
+        if (v.indices[i] < 0 || v.indices[i] >= v.numVerts) return kBadSurface;
+    }
+    for (int e = 0; e < v.numSilEdges; e++) {
+        const SilEdge &x = v.silEdges[e];
+        if (x.p1 < 0 || x.p1 > nt || x.p2 < 0 || x.p2 > nt || x.v1 < 0 || x.v2 < 0 ||
+            (x.v1 & 1) || (x.v2 & 1) || x.v1 / 2 >= v.numVerts || x.v2 / 2 >= v.numVerts) {
+            return kBadSurface;
+        }
+    }
+    for (int t = 0; t < nt; t++) {
+        const Plane &q = v.planes[t];
+        if (!std::isfinite(q.a) || !std::isfinite(q.b) || !std::isfinite(q.c) || !std::isfinite(q.d)) {
+            return kBadSurface;
+        }
+    }
+    for (int i = 0; i < v.numVerts; i++) {
+        const Vec4 &q = v.positions[i];
+        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return kBadSurface;
+    }
+    return measure_mesh(copy_mesh(v), sv_size_class(nt), timings, maxTimings);
 }
 
 const char *sv_static_variant_name(sv_routine r) {
