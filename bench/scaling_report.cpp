@@ -106,6 +106,52 @@ void print_large_mesh_check(FILE *out, const ScalingRun &run, Routine routine,
     }
 }
 
+/* Where the plan of PLANNED runs other kernels than the fixed variant
+ * FASTEST in ROUTINE: "routine: plan's, not fastest's" for each; "" when
+ * they run the same kernels, so that a gap between the two rows is the
+ * run's noise, not the planner's choice. */
+std::string plan_difference(const BenchVariant *planned, const BenchVariant *fastest,
+                            Routine routine) {
+    if (!planned->plan) return "?";
+    const char *facingName = routine == Routine::pipeline || routine == Routine::pipeline_cull
+                                 ? fastest->pipeline_facing_name
+                                 : fastest->name;
+    std::vector<std::pair<sv_routine, const char *>> uses;
+    switch (routine) {
+    case Routine::calculate_facing: uses = {{SV_ROUTINE_CALCULATE_FACING, facingName}}; break;
+    case Routine::calculate_cull_bits: uses = {{SV_ROUTINE_CALCULATE_CULL_BITS, facingName}}; break;
+    case Routine::count_facing: uses = {{SV_ROUTINE_COUNT_FACING, fastest->name}}; break;
+    case Routine::count_facing_cull: uses = {{SV_ROUTINE_COUNT_FACING_CULL, fastest->name}}; break;
+    case Routine::create_sil_triangles: uses = {{SV_ROUTINE_CREATE_SIL_TRIANGLES, fastest->name}}; break;
+    case Routine::create_cap_triangles: uses = {{SV_ROUTINE_CREATE_CAP_TRIANGLES, fastest->name}}; break;
+    case Routine::pipeline_cull:
+        uses = {{SV_ROUTINE_CALCULATE_FACING, facingName}, {SV_ROUTINE_CALCULATE_CULL_BITS, facingName}};
+        [[fallthrough]];
+    case Routine::create_shadow_volume_cull:
+        uses.push_back({SV_ROUTINE_COUNT_FACING_CULL, fastest->name});
+        break;
+    case Routine::pipeline:
+        uses = {{SV_ROUTINE_CALCULATE_FACING, facingName}};
+        [[fallthrough]];
+    case Routine::create_shadow_volume:
+        uses.push_back({SV_ROUTINE_COUNT_FACING, fastest->name});
+        break;
+    }
+    if (routine == Routine::pipeline || routine == Routine::pipeline_cull ||
+        routine == Routine::create_shadow_volume || routine == Routine::create_shadow_volume_cull) {
+        uses.push_back({SV_ROUTINE_CREATE_SIL_TRIANGLES, fastest->name});
+        uses.push_back({SV_ROUTINE_CREATE_CAP_TRIANGLES, fastest->name});
+    }
+    std::string diff;
+    for (const auto &u : uses) {
+        const char *chosen = planned->plan->variant[u.first];
+        if (u.second && chosen && std::strcmp(chosen, u.second) == 0) continue;
+        diff += (diff.empty() ? "" : "; ") + std::string(sv_routine_name(u.first)) + " " +
+                (chosen ? chosen : "?") + ", not " + (u.second ? u.second : "?");
+    }
+    return diff;
+}
+
 /* Issue 15's two goals that one scaling run can decide, by medians of this
  * run: the planner's choice within 5% of the fastest variant on every mesh,
  * and no variant but the paper's own (c_ref, c_branchless, sse2_paper)
@@ -117,8 +163,12 @@ void print_goal_checks(FILE *out, const ScalingRun &run, Routine routine,
      * plan's kernels unfused, like with like against the fixed variants). */
     for (const BenchVariant *pv : vars) {
         if (!pv->planned) continue;
+        /* Over 5% with other kernels than the fastest's: the planner chose
+         * wrong there. Over 5% with the same kernels: two rows of one code
+         * differ by the run's noise, which no choice can beat. */
         double worst = 0;
-        std::string worstAt, over;
+        std::string worstAt, chose, noise;
+        int sameOver = 0;
         for (const ScalingMesh &m : run.meshes) {
             const Row *planned = scaling_row(m, routine, pv);
             const Row *fastest = fastest_row(m, routine, vars);
@@ -126,18 +176,28 @@ void print_goal_checks(FILE *out, const ScalingRun &run, Routine routine,
             const double ratio = planned->median / fastest->median;
             if (ratio > worst) worst = ratio, worstAt = m.spec.name;
             if (ratio > 1.05) {
-                char s[160];
-                std::snprintf(s, sizeof s, "%s%s (%.0f%% slower than %s)", over.empty() ? "" : ", ",
-                              m.spec.name.c_str(), 100.0 * (ratio - 1), fastest->variant->name);
-                over += s;
+                const std::string diff = plan_difference(planned->variant, fastest->variant, routine);
+                char s[480];
+                std::snprintf(s, sizeof s, "%s%s (%.0f%% slower than %s%s%s)",
+                              (diff.empty() ? noise : chose).empty() ? "" : ", ",
+                              m.spec.name.c_str(), 100.0 * (ratio - 1), fastest->variant->name,
+                              diff.empty() ? "" : ": ", diff.c_str());
+                (diff.empty() ? noise : chose) += s;
+                sameOver += diff.empty();
             }
         }
         if (worst > 0) {
             std::fprintf(out, "  %s vs the fastest variant (medians): %s; worst %+.1f%% on %s\n",
                          pv->name,
-                         over.empty() ? "within 5% on every mesh"
-                                      : ("MORE than 5% slower on " + over).c_str(),
+                         chose.empty() && noise.empty() ? "within 5% on every mesh"
+                         : chose.empty() ? "within 5% on every mesh where its kernels differ"
+                                         : ("MORE than 5% slower with other kernels on " + chose).c_str(),
                          100.0 * (worst - 1), worstAt.c_str());
+            if (!noise.empty()) {
+                std::fprintf(out, "    over 5%% with the fastest's own kernels (noise: the same code "
+                                  "in two rows) on %d mesh%s: %s\n",
+                             sameOver, sameOver == 1 ? "" : "es", noise.c_str());
+            }
         }
     }
     std::string slower;
