@@ -74,14 +74,16 @@ typedef struct sv_plan {
      * mesh, where measured (0 for built-in plans). */
     double ticks[SV_NUM_ROUTINES];
     sv_calculate_facing_fn calculate_facing;
-    /* The same variant's CalculateFacing fused with the count
-     * (sv_calculate_facing_count_fn): what sv_shadow_volume_for_light
-     * calls instead of calculate_facing + kernels.count_facing. */
-    sv_calculate_facing_count_fn calculate_facing_count;
     sv_calculate_cull_bits_fn calculate_cull_bits;
     /* C-F as one variant (name "planned"), for sv_create_shadow_volume and
      * the *_checked entry points. */
     sv_variant kernels;
+    /* The same variant's CalculateFacing fused with the count
+     * (sv_calculate_facing_count_fn): what sv_shadow_volume_for_light
+     * calls instead of calculate_facing + kernels.count_facing. Last, so
+     * that the fields before it keep the offsets they had before it
+     * existed. */
+    sv_calculate_facing_count_fn calculate_facing_count;
 } sv_plan;
 
 enum { SV_PLAN_ESTIMATE = 0, SV_PLAN_MEASURE = 1 };
