@@ -85,8 +85,20 @@ Doc read_doc(const std::string &path) {
                 c.size_class = p.at("size_class").get<int>();
                 c.class_triangles = p.value("class_triangles", 0LL);
                 c.source = p.at("source").get<std::string>();
+                /* In the pipeline's order (A, B, C-F), not the object's. */
+                static const char *const kPlanOrder[] = {
+                    "calculate_facing",  "calculate_cull_bits",  "count_facing",
+                    "count_facing_cull", "create_sil_triangles", "create_cap_triangles"};
+                for (const char *r : kPlanOrder) {
+                    if (p.at("variants").contains(r)) {
+                        c.variants.emplace_back(r, p.at("variants").at(r).get<std::string>());
+                    }
+                }
                 for (const auto &kv : p.at("variants").items()) {
-                    c.variants.emplace_back(kv.key(), kv.value().get<std::string>());
+                    if (std::find(std::begin(kPlanOrder), std::end(kPlanOrder), kv.key()) ==
+                        std::end(kPlanOrder)) {
+                        c.variants.emplace_back(kv.key(), kv.value().get<std::string>());
+                    }
                 }
                 d.plans.push_back(c);
             }

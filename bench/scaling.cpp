@@ -152,6 +152,7 @@ void measure_scaling_mesh(const ScalingRun &run, ScalingMesh &m) {
     const ScalingOptions &so = run.options;
     TableOptions o;
     o.runs = m.runs = scaling_runs(so, m.workload.numTriangles);
+    o.rounds = so.rounds;
     o.moving = true;
     o.fixed = false;
     o.batch = so.batch;

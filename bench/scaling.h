@@ -68,6 +68,7 @@ const std::vector<Routine> &default_scaling_routines();
 struct ScalingOptions {
     bool quick = false;
     int runs = 0;          /* per row on a 1344-triangle mesh; 0: the default */
+    int rounds = 4;        /* as the cycle table's --rounds */
     long maxTriangles = 0; /* larger meshes are left out; 0: no limit */
     uint64_t seed = 1;
     LightTargets targets;

@@ -133,6 +133,8 @@ std::string scaling_json(const ScalingRun &run) {
     j.value(run.options.quick);
     j.key("runs");
     j.value(scaling_runs(run.options, kScalingReferenceTriangles));
+    j.key("rounds");
+    j.value(run.options.rounds);
     j.key("max_triangles");
     if (run.options.maxTriangles) {
         j.value(run.options.maxTriangles);

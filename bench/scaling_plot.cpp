@@ -95,8 +95,8 @@ std::string scaling_svg(const ScalingRun &run) {
                       compiler_version() + ", " + build_flags() + ", commit " + git_commit() +
                       ".");
     d.notes.push_back("Lines: the generated character subdivided n x n (1344 n^2 triangles); "
-                      "hollow markers: the real characters. y: the median call (the lowest of 4 "
-                      "rounds' medians).");
+                      "hollow markers: the real characters. y: the median call (the lowest of " +
+                      std::to_string(run.options.rounds) + " rounds' medians).");
     d.lineKey = "generated character";
     for (const ScalingMesh &m : run.meshes) {
         if (!m.spec.generated) {

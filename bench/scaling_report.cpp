@@ -327,10 +327,10 @@ void print_scaling_header(FILE *out, const ScalingRun &run) {
     const int base = scaling_runs(o, kScalingReferenceTriangles);
     std::fprintf(out,
                  "runs      %d timed calls per row on a mesh of %d triangles or fewer, %d x %d / "
-                 "T above (at least %d),\n          in 4 rounds; every call checked against "
+                 "T above (at least %d),\n          in %d rounds; every call checked against "
                  "c_ref outside the timed region\n",
                  base, kScalingReferenceTriangles, base, kScalingReferenceTriangles,
-                 std::min(base, o.quick ? kMinQuickScalingRuns : kMinScalingRuns));
+                 std::min(base, o.quick ? kMinQuickScalingRuns : kMinScalingRuns), o.rounds);
     std::fflush(out);
 }
 
@@ -361,9 +361,9 @@ void print_scaling_tables(FILE *out, const ScalingRun &run) {
         "the smallest cache that holds\n  them (an L3 shared by several cores, or split in "
         "slices, may be reported whole). Per element:\n  per triangle; create_sil_triangles per "
         "SilEdge; calculate_cull_bits per vertex. min: the fastest call;\n  median: the lowest "
-        "of the 4 rounds' medians; ~: the median call is below %llu x the TSC step or the\n  "
+        "of the %d rounds' medians; ~: the median call is below %llu x the TSC step or the\n  "
         "spread (IQR) of the row's empty regions: mostly timer noise. Units: TSC ticks.\n",
-        (unsigned long long)kNoiseFactor);
+        run.options.rounds, (unsigned long long)kNoiseFactor);
     bool first = true;
     for (const ScalingMesh &m : run.meshes) {
         for (const Row &r : m.table.rows) {

@@ -44,6 +44,8 @@ expect_status 2 "unknown command" frobnicate
 expect_status 2 "unknown option" bench --frobnicate
 expect_status 2 "--runs 0" bench --runs 0
 expect_status 2 "--runs abc" bench --runs abc
+expect_status 2 "--rounds 0" bench --rounds 0
+expect_status 2 "--rounds 65" bench --rounds 65
 expect_status 2 "--regime foo" bench --regime foo
 expect_status 2 "unknown routine" bench --routine no_such_routine
 expect_status 2 "unknown variant" bench --variant no_such_variant

@@ -517,12 +517,14 @@ TEST(ScalingModel, UsersOwnMeshIsMeasured) {
         out << in.rdbuf();
     }
     const Result r = run_shadowvol("bench --scaling --quick --max-triangles 1344 --routine "
-                                   "count_facing --model '" + mine + "' --json '" + dir +
+                                   "count_facing --rounds 3 --model '" + mine + "' --json '" + dir +
                                        "/s.json'",
                                    dir);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("my_own_mesh.glb"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("in 3 rounds;"), std::string::npos) << "--rounds not taken:\n" << r.out;
     const json doc = json::parse(slurp(dir + "/s.json"));
+    EXPECT_EQ(doc.at("options").value("rounds", 0), 3);
     bool found = false;
     for (const json &m : doc.at("models")) found = found || m.at("model") == "my_own_mesh.glb";
     EXPECT_TRUE(found) << doc.at("models").dump();

@@ -49,6 +49,10 @@ namespace {
 constexpr int kDefaultRuns = 4000;
 constexpr int kQuickRuns = 256;
 constexpr int kMaxRuns = 1000000;
+/* --rounds: each row keeps its lowest round median, so more rounds ride
+ * out more of a noisy machine's slow phases; past this, a round of the
+ * default runs is too short to have a median. */
+constexpr int kMaxRounds = 64;
 constexpr int kLights = 64;
 /* Runs are given for a mesh of the paper's size; a larger one gets
  * proportionally fewer (its calls are longer and steadier), at least
@@ -227,6 +231,8 @@ CliOptions parse(int argc, char **argv) {
             c.quick = true;
         } else if (opt == "--runs") {
             c.runs = (int)parse_int(opt, need(), 1, kMaxRuns);
+        } else if (opt == "--rounds") {
+            c.table.rounds = (int)parse_int(opt, need(), 1, kMaxRounds);
         } else if (opt == "--regime") {
             const std::string r = need();
             if (r == "moving" || r == "fixed" || r == "both") {
@@ -415,6 +421,7 @@ int scaling(const CliOptions &c) {
     ScalingOptions &o = cmd.options;
     o.quick = c.quick;
     o.runs = c.runs;
+    o.rounds = c.table.rounds;
     o.maxTriangles = c.maxTriangles;
     o.seed = c.seed;
     o.targets = c.targets;
@@ -489,9 +496,12 @@ void bench_usage(FILE *out) {
         "                   (c: the C variants only), as SV_ISA=LEVEL in the\n"
         "                   environment does\n"
         "  --runs N         timed regions (calls, or batches: --batch) per row (default\n"
-        "                   %d; --quick %d), split over 4 rounds through all rows;\n"
+        "                   %d; --quick %d), split over the rounds through all rows;\n"
         "                   meshes above 1344 triangles get proportionally fewer (at\n"
         "                   least %d)\n"
+        "  --rounds N       passes through all rows (default 4, at most 64); a row\n"
+        "                   keeps its lowest round median, so on a noisy machine (a\n"
+        "                   shared VM) more rounds ride out more of its slow phases\n"
         "  --quick          a short run (a second or two) with every row still checked\n"
         "  --regime R       moving, fixed or both (default both)\n"
         "  --routine NAME   only this routine (repeatable), one of:\n"
@@ -546,8 +556,9 @@ void bench_usage(FILE *out) {
         "                   least %d; --quick %d)\n"
         "  --model M        also measure your own mesh: a glTF FILE or a DIR of them\n"
         "                   (repeatable; every surface merged into one)\n"
-        "  --routine, --variant, --isa, --timer, --batch, --seed, --facing-ratio and\n"
-        "  --silhouette-ratio apply as above; --light and --regime do not.\n"
+        "  --routine, --variant, --isa, --timer, --batch, --rounds, --seed,\n"
+        "  --facing-ratio and --silhouette-ratio apply as above; --light and --regime\n"
+        "  do not.\n"
         "\n"
         "Seed 003: shadowvol bench --silhouette [--quick] [--json FILE] [--max-triangles N]\n"
         "Routine find_silhouette: the classic candidate list, the hash table (8 to 64\n"
