@@ -20,8 +20,9 @@
  *      project has run on (src/plan/builtin.cpp names them and their
  *      source).
  * SV_PLAN_MEASURE measures a class on its first use when neither 1 nor 2
- * has it (tens of milliseconds for the small classes, about a second for
- * the largest); SV_PLAN_ESTIMATE never measures.
+ * has it (tens of milliseconds for the small classes, half a second for
+ * class 2 and a few seconds for the largest, most of it building and
+ * lighting its million-triangle mesh); SV_PLAN_ESTIMATE never measures.
  *
  * Every plan's kernels are those of the variant table, so a plan computes
  * exactly what c_ref computes; its kernels' alignment needs are the largest
@@ -97,14 +98,17 @@ typedef struct sv_plan_timing {
     int size_class;
     sv_routine routine;
     const char *variant;
-    double ticks; /* median TSC ticks per call */
+    double ticks; /* TSC ticks per call: the lowest of the rounds' medians */
 } sv_plan_timing;
 
 /* Measures size class SIZECLASS now (every variant this CPU runs, every
  * routine, moving lights, each call checked against c_ref) and makes the
- * winners this process's plan for the class (a routine keeps its static
- * choice unless another variant is more than 3% faster: closer timings are
- * noise). When TIMINGS is not NULL, up
+ * winners this process's plan for the class. The variants are timed in
+ * rounds, a block of calls of each per round, and a routine keeps its
+ * static choice unless another variant is more than 3% faster both
+ * overall and in 4 of every 5 rounds against the static choice's time in
+ * the same round (closer or less steady timings are noise: a shared
+ * machine has slow phases). When TIMINGS is not NULL, up
  * to MAXTIMINGS entries are written there. Returns the number of timings
  * taken (which may exceed MAXTIMINGS), or -1 when SIZECLASS is out of
  * range or a variant disagreed with c_ref (a bug: nothing is planned). */

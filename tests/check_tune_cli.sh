@@ -24,19 +24,19 @@ done
 [ "$(head -1 "$tmp/w/wisdom")" = "shadowvol-wisdom 1" ] || err "the wisdom file has no header"
 cpu=$(sed -n 's/^cpu  *//p' "$tmp/out")
 grep -qxF "cpu $cpu" "$tmp/w/wisdom" || err "the wisdom is not keyed by this CPU ($cpu)"
-# The planned variant of each routine is the fastest printed for it, or the
-# static choice within 3% of the fastest (the planner's margin against
-# noise, src/plan/planner.cpp); a variant that displaced the static choice
-# beat it by more than the margin.
+# The planned variant of each routine is the static choice, or the fastest
+# printed for it, faster than the static choice by more than the planner's
+# 3% margin against noise (src/plan/planner.cpp; it must also win round
+# by round, which this output does not show).
 awk '$1 ~ /^(calc|count|create)/ { if (!($1 in best) || $3 < best[$1]) best[$1] = $3 }
      /<- planned/ { planned[$1] = $3; pstatic[$1] = /static/ }
      /\(static\)|planned, static/ { stat[$1] = $3 }
      END { for (r in best) {
-             if (planned[r] == best[r] && (pstatic[r] || stat[r] > best[r] * 1.03)) continue
-             if (pstatic[r] && planned[r] <= best[r] * 1.03) continue
+             if (pstatic[r]) continue
+             if (planned[r] == best[r] && stat[r] > best[r] * 1.03) continue
              print r; bad = 1 }
            exit bad }' "$tmp/out" \
-  || err "a planned variant is neither the fastest nor the static choice within 3% of it"
+  || err "a planned variant is neither the static choice nor the fastest by more than 3%"
 
 # tune MODEL: measured on the model's own surface, its class only.
 "$sv" tune "$src_models/character_1344.glb" --wisdom "$tmp/m/wisdom" >"$tmp/out" 2>"$tmp/err"

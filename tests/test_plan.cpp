@@ -144,8 +144,9 @@ TEST_F(PlanTest, MeasuredPlanTakesTheFastestOfItsTimingsAndComputesCRef) {
             if (best < 0 || x.ticks < best) best = x.ticks;
         }
         EXPECT_GE(timed, 1) << sv_routine_name((sv_routine)r);
-        // The fastest, or the static choice when it is within 3% of it
-        // (the planner's margin against noise), with its own timing.
+        // The fastest, or the static choice (kept unless another variant
+        // beats it by the 3% margin overall and round by round: the
+        // rounds are not visible here), with its own timing.
         const char *stat = sv_static_variant_name((sv_routine)r);
         double stat_ticks = -1;
         for (const sv_plan_timing &x : t) {
@@ -153,8 +154,6 @@ TEST_F(PlanTest, MeasuredPlanTakesTheFastestOfItsTimingsAndComputesCRef) {
         }
         if (std::strcmp(p->variant[r], stat) == 0 && p->ticks[r] != best) {
             EXPECT_EQ(p->ticks[r], stat_ticks) << sv_routine_name((sv_routine)r);
-            EXPECT_LE(stat_ticks, best * 1.03) << sv_routine_name((sv_routine)r)
-                                               << ": the static choice kept beyond the margin";
         } else {
             EXPECT_EQ(p->ticks[r], best) << sv_routine_name((sv_routine)r)
                                          << ": the plan is not the fastest";
