@@ -176,6 +176,8 @@ void limits(JsonWriter &j, const BenchRun &run) {
     j.value(l.vector);
     j.key("scalar_loads_per_tick");
     j.value(l.scalarLoads);
+    j.key("core_cycles_per_tick");
+    j.value(l.coreCyclesPerTick);
     j.key("gather_lanes_per_tick");
     j.value(l.gatherLanes);
     j.key("l1_load_bytes_per_tick");

@@ -18,6 +18,11 @@
 ;                       (L1 or L2 bandwidth, by the buffer's size)
 ;   svb_vector_stores   8 x 64-byte or 32-byte stores per iteration, into
 ;                       the first 512 / 256 bytes of the buffer
+;   svb_dependent_adds  32 adds per iteration, each on the one before
+;                       (add rax, rdx with rdx = 1: a register operand, so
+;                       no renamer folds the chain as it may fold
+;                       immediates): one core cycle each, so the rate is
+;                       the core's clock in cycles per TSC tick
 ;   svb_gather_lanes    8 independent vpgatherdd per iteration, 16 (zmm) or
 ;                       8 (ymm) lanes each, all in the buffer's first 1 KiB
 ;                       (each destination cleared first: a gather merges
@@ -25,6 +30,7 @@
 ; The zmm forms need AVX-512F, the ymm forms AVX2: the caller checks CPUID.
 ;
 ; void svb_scalar_loads(const uint8_t *buf, int64_t iters)              (2 KiB)
+; void svb_dependent_adds(int64_t iters)
 ; void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes)
 ; void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes)
 ; void svb_vector_stores_zmm(uint8_t *buf, int64_t iters)               (512 B)
@@ -62,6 +68,21 @@ FUNC svb_scalar_loads, 2, 2, 0
 %assign j j+1
 %endrep
         dec     g1q
+        jnz     .loop
+.done:
+        RET
+ENDFUNC
+
+FUNC svb_dependent_adds, 1, 3, 0
+        test    g0q, g0q
+        jle     .done
+        xor     rvd, rvd
+        mov     g2d, 1
+.loop:
+%rep 32
+        add     rvq, g2q
+%endrep
+        dec     g0q
         jnz     .loop
 .done:
         RET

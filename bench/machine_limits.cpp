@@ -125,6 +125,7 @@ MachineLimits measure_machine_limits() {
     const VectorForms *v = (isa & SV_ISA_AVX512) ? &zmm : (isa & SV_ISA_AVX2) ? &ymm : nullptr;
 
     l.scalarLoads = rate(m, (double)kOps, [&] { svb_scalar_loads(small.p, kOps / 32); });
+    l.coreCyclesPerTick = rate(m, (double)kOps, [] { svb_dependent_adds(kOps / 32); });
     if (v) {
         l.vector = v->name;
         /* 8 gathers, loads or stores per iteration */
@@ -228,6 +229,8 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
                       " the fastest of %d calls, each of 2^20 loads, stores or gathers)\n",
                  kTries);
     std::fprintf(out, "  scalar byte loads (independent, L1)      %6.2f per tick\n", l.scalarLoads);
+    std::fprintf(out, "  core clock (a dependent add chain)       %6.2f cycles per tick\n",
+                 l.coreCyclesPerTick);
     if (std::strcmp(l.vector, "none") == 0) {
         std::fprintf(out, "  vector rates: not measured (no AVX2), so no floors\n");
         return;

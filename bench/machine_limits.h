@@ -53,6 +53,12 @@ struct MachineLimits {
     double l2LoadBytes = 0;      /* the same over l2Buffer bytes */
     size_t l2Buffer = 0;         /* half the L2 (256 KiB when unknown) */
     double storeBytes = 0;       /* vector store bytes per tick, L1 */
+    /* Core cycles per TSC tick (a chain of dependent adds, one cycle
+     * each): the clock the core ran at, over the TSC's. A row's ticks
+     * times it are core cycles, which is what instruction counts per
+     * element (tools/instruction_counts.sh) divide into: instructions per
+     * cycle, against the core's issue width. Turbo makes it a snapshot. */
+    double coreCyclesPerTick = 0;
 };
 
 /* Each primitive timed 25 times (one call of 2^20 loads, stores or gather

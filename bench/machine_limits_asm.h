@@ -20,6 +20,7 @@ extern "C" {
 #endif
 
 void svb_scalar_loads(const uint8_t *buf, int64_t iters);
+void svb_dependent_adds(int64_t iters);
 void svb_vector_loads_zmm(const uint8_t *buf, int64_t iters, int64_t bytes);
 void svb_vector_loads_ymm(const uint8_t *buf, int64_t iters, int64_t bytes);
 void svb_vector_stores_zmm(uint8_t *buf, int64_t iters);

@@ -489,6 +489,12 @@ TEST_F(BenchJson, LimitsReportTheRatesAndAFloorPerRoutine) {
     const std::string vec = l.value("vector", "");
     ASSERT_TRUE(vec == "zmm" || vec == "ymm" || vec == "none") << l.dump();
     EXPECT_GT(l.value("scalar_loads_per_tick", 0.0), 0.0) << l.dump();
+    /* The core's clock over the TSC's: a core between a tenth and ten
+     * times its TSC's rate (a dependent add is one cycle on every x86
+     * core; a chain measured as free would read as infinite). */
+    const double cyclesPerTick = l.value("core_cycles_per_tick", 0.0);
+    EXPECT_GT(cyclesPerTick, 0.1) << l.dump();
+    EXPECT_LT(cyclesPerTick, 10.0) << l.dump();
     ASSERT_TRUE(l.contains("floors") && l.at("floors").is_array()) << l.dump();
     if (vec == "none") {
         EXPECT_TRUE(l.at("floors").empty()) << "floors without the vector rates";
