@@ -83,7 +83,7 @@ printf 'instructions per element (valgrind callgrind, %s: %s triangles, %s SilEd
   "$(sed -n 's/^model  *\([^:]*\):.*/\1/p' "$tmp/bench.txt" | head -1)" "$tris" "$edges" "$verts"
 if [ -n "$result" ]; then
   printf 'cycles per element: %s (median ticks per element) x its core_cycles_per_tick\n\n' "$result"
-  printf '%-24s %-12s %8s %12s %10s %10s\n' routine variant calls instr/call instr/elem cyc/elem IPC
+  printf '%-24s %-12s %8s %12s %10s %10s %6s\n' routine variant calls instr/call instr/elem cyc/elem IPC
 else
   printf '\n%-24s %-12s %8s %12s %10s\n' routine variant calls instr/call instr/elem
 fi
