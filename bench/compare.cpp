@@ -45,6 +45,7 @@ struct Doc {
     std::string path, schema, cpu, commit, timer, compiler;
     double tsc_hz = 0;
     std::vector<std::string> isa;
+    std::string family; /* "family 25 model 1" from cpu.model_key; "" in older documents */
     std::vector<Row> rows;
     std::vector<std::string> variants; /* in the document's order */
     std::vector<PlanChoice> plans;     /* empty in documents written before them */
@@ -77,6 +78,14 @@ Doc read_doc(const std::string &path) {
         d.timer = j.value("timer", std::string("?"));
         d.compiler = j.value("compiler", std::string("?"));
         if (j.at("cpu").contains("isa")) d.isa = j.at("cpu").at("isa").get<std::vector<std::string>>();
+        /* "AuthenticAMD 25/1/1 avx2 AMD EPYC": vendor, family/model/stepping, ... */
+        unsigned fam = 0, mod = 0, step = 0;
+        const std::string key = j.at("cpu").value("model_key", std::string());
+        const size_t sp = key.find(' ');
+        if (sp != std::string::npos &&
+            std::sscanf(key.c_str() + sp + 1, "%u/%u/%u", &fam, &mod, &step) == 3) {
+            d.family = "family " + std::to_string(fam) + " model " + std::to_string(mod);
+        }
         if (j.contains("plans")) {
             for (const json &p : j.at("plans")) {
                 PlanChoice c;
@@ -403,7 +412,8 @@ int report_many(const std::vector<Doc> &docs, const std::string &routine) {
         }
         const bool has512 = std::find(d.isa.begin(), d.isa.end(), "avx512f") != d.isa.end();
         const bool vbmi = std::find(d.isa.begin(), d.isa.end(), "avx512vbmi") != d.isa.end();
-        std::string out = "| " + d.cpu + ", TSC " + fixed(d.tsc_hz / 1e9, 2) + " GHz | " +
+        std::string out = "| " + d.cpu + (d.family.empty() ? "" : " (" + d.family + ")") + ", TSC " +
+                          fixed(d.tsc_hz / 1e9, 2) + " GHz | " +
                           (vbmi ? "AVX-512 VBMI" : has512 ? "AVX-512" : "AVX2") + " | " + d.commit;
         double best = HUGE_VAL, paper = 0;
         for (const std::string &v : variants) {

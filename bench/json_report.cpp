@@ -3,6 +3,8 @@
  */
 #include "json_report.h"
 
+#include "shadowvol_plan.h"
+
 #include <cstdlib>
 
 #include "json_writer.h"
@@ -237,6 +239,12 @@ void write_machine_fields(JsonWriter &j, const MachineTiming &m) {
     j.value(cpu_has_invariant_tsc());
     j.key("pinned_cpu");
     j.value(m.cpu);
+    /* The brand string alone does not tell one CPU generation from
+     * another ("AMD EPYC" on Zen 1, 3 and 5 guests): the wisdom file's
+     * key has the family, model and stepping. */
+    char key[256];
+    j.key("model_key");
+    j.value(sv_cpu_model_key(key, sizeof key));
     j.end_object();
     j.key("compiler");
     j.value(compiler_version());

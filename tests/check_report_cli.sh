@@ -32,7 +32,8 @@ awk -F'|' 'NR == 1 { for (i = 1; i <= NF; i++) { gsub(/ /, "", $i); col[$i] = i 
 
 # The planner's choices of a document with "plans".
 cat >"$tmp/plans.json" <<'J'
-{"schema": "shadowvol-bench/1", "cpu": {"model": "Test CPU", "tsc_hz": 2e9, "isa": ["sse2", "avx2"]},
+{"schema": "shadowvol-bench/1", "cpu": {"model": "Test CPU", "tsc_hz": 2e9, "isa": ["sse2", "avx2"],
+                                        "model_key": "AuthenticAMD 25/1/1 avx2 Test CPU"},
  "commit": "abc1234", "timer": "rdtscp", "compiler": "gcc",
  "results": [{"model": "m.glb", "triangles": 1344, "routine": "pipeline", "variant": "c_ref",
               "regime": "moving", "ticks_per_element_median": 6.0, "checked": true},
@@ -46,6 +47,10 @@ grep -q '^| size class | measured on | meshes (triangles) | source | calculate_f
   || err "no planner's-choices header: $(cat "$tmp/plans")"
 grep -q '^| 0 | 1344 | 1344 | measured | avx2 | sse2_paper |$' "$tmp/plans" || err "no planner's-choices row"
 grep -q '^| `pipeline` | 6.00 | 2.00 | 3.0x |$' "$tmp/plans" || err "the pipeline row is wrong: $(cat "$tmp/plans")"
+
+# The family and model from cpu.model_key, where a result has it.
+"$sv" bench --report "$tmp/plans.json" "$with" --routine pipeline >"$tmp/fam" 2>"$tmp/err" || err "several with a key: $(cat "$tmp/err")"
+grep -q '^| Test CPU (family 25 model 1), TSC 2.00 GHz | AVX2 | abc1234 |' "$tmp/fam" || err "no family in the CPU column: $(cat "$tmp/fam")"
 
 # Bad use.
 "$sv" bench --report "$with" "$without" >/dev/null 2>&1; [ $? -eq 2 ] || err "several files without --routine did not exit 2"

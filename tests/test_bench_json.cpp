@@ -419,6 +419,19 @@ TEST_F(BenchJson, DocumentMatchesTheSchemaAndCoversEveryRow) {
 
 /* "plans": the plan the planned rows ran, one per model, naming a variant
  * the table has for every routine of the planner. */
+/* cpu.model_key: the wisdom file's key of this CPU (vendor, family/model/
+ * stepping, ISA level, brand), which tells CPU generations apart where
+ * the brand string does not. */
+TEST_F(BenchJson, CpuCarriesItsModelKey) {
+    const json doc = document();
+    char key[256];
+    EXPECT_EQ(doc.at("cpu").value("model_key", ""), std::string(sv_cpu_model_key(key, sizeof key)));
+    unsigned f = 0, m = 0, st = 0;
+    const std::string k = doc.at("cpu").value("model_key", "");
+    ASSERT_NE(k.find(' '), std::string::npos) << k;
+    EXPECT_EQ(std::sscanf(k.c_str() + k.find(' ') + 1, "%u/%u/%u", &f, &m, &st), 3) << k;
+}
+
 TEST_F(BenchJson, PlansNameThePlannedRowsKernels) {
     const json doc = document();
     ASSERT_TRUE(doc.contains("plans") && doc.at("plans").is_array());
