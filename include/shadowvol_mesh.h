@@ -138,6 +138,10 @@ PreparedSurface prepare_surface(const float *positions, std::size_t num_vertices
  * and the volume stays closed (closure holds for any facing). */
 Plane triangle_plane(const float p0[3], const float p1[3], const float p2[3]);
 
+/* The welded positions as (x, y, z, 1), one per vertex: what appendix B
+ * (sv_calculate_cull_bits_*) and sv_surface read. */
+std::vector<Vec4> positions_vec4(const PreparedSurface &s);
+
 /* The double-length shadow vertex buffer (section 3): for welded vertex v,
  * element 2v = (x, y, z, 1) and 2v + 1 = (x, y, z, 0). The same buffer
  * serves every light when a vertex program subtracts the light origin from

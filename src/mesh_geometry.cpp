@@ -43,6 +43,15 @@ Plane triangle_plane(const float p0[3], const float p1[3], const float p2[3]) {
     return Plane{(float)nx, (float)ny, (float)nz, (float)d};
 }
 
+std::vector<Vec4> positions_vec4(const PreparedSurface &s) {
+    std::vector<Vec4> out((std::size_t)s.num_vertices());
+    for (int v = 0; v < s.num_vertices(); v++) {
+        const float *p = &s.positions[3 * (std::size_t)v];
+        out[(std::size_t)v] = Vec4{p[0], p[1], p[2], 1.0f};
+    }
+    return out;
+}
+
 AlignedVector<Vec4> shadow_vertices(const PreparedSurface &s) {
     const int n = s.num_vertices();
     AlignedVector<Vec4> out((std::size_t)n * 2);

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "cli_args.h"
-#include "shadowvol_gltf.h"
+#include "model_load.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_plan.h"
 
@@ -57,50 +57,11 @@ void tune_usage(FILE *out) {
 
 namespace {
 
-/* One prepared surface of MODEL, and the view the planner measures. */
-struct ModelSurface {
-    std::string name;
-    sv::PreparedSurface prepared;
-    std::vector<Vec4> positions4;
-    sv_surface view() const {
-        const sv::PreparedSurface &p = prepared;
-        return sv_surface{p.planes.data(), p.indices.data(), p.num_indices(), p.sil_edges.data(),
-                          p.num_sil_edges(), positions4.data(), p.num_vertices(),
-                          sv::surface_bounds(p)};
-    }
-};
-
-/* MODEL's surfaces, prepared; false (the reason on stderr) when it cannot
- * be loaded or prepared. */
-bool load_surfaces(const std::string &path, std::vector<ModelSurface> *out) {
-    try {
-        sv::GltfModel m = sv::load_gltf(path, sv::GltfLoadOptions{});
-        for (sv::GltfSurface &g : m.surfaces) {
-            ModelSurface s;
-            s.name = g.name;
-            try {
-                s.prepared = sv::prepare_surface(g.positions.data(), g.num_vertices(),
-                                                 g.indices.data(), g.indices.size());
-            } catch (const sv::PrepareError &e) {
-                std::fprintf(stderr, "shadowvol tune: %s: surface %s: %s\n", path.c_str(),
-                             g.name.c_str(), e.what());
-                return false;
-            }
-            if (s.prepared.num_triangles() == 0) continue; /* nothing to time */
-            const std::vector<float> &xyz = s.prepared.positions;
-            for (size_t i = 0; i + 2 < xyz.size(); i += 3) {
-                s.positions4.push_back(Vec4{xyz[i], xyz[i + 1], xyz[i + 2], 1});
-            }
-            out->push_back(std::move(s));
-        }
-    } catch (const sv::GltfError &e) {
-        std::fprintf(stderr, "shadowvol tune: %s\n", e.what());
-        return false;
-    } catch (const std::bad_alloc &) {
-        std::fprintf(stderr, "shadowvol tune: %s: out of memory\n", path.c_str());
-        return false;
-    }
-    return true;
+/* A prepared surface as the planner measures it (positions as Vec4, in
+ * POSITIONS, which must outlive the view). */
+sv_surface view_of(const sv::PreparedSurface &p, const std::vector<Vec4> &positions) {
+    return sv_surface{p.planes.data(), p.indices.data(), p.num_indices(), p.sil_edges.data(),
+                      p.num_sil_edges(), positions.data(), p.num_vertices(), sv::surface_bounds(p)};
 }
 
 /* The timings of class C, a line per routine and variant, the plan's
@@ -156,11 +117,12 @@ int tune_main(int argc, char **argv) {
         return 2;
     }
     /* With a model: per class, its largest surface there. */
-    std::vector<ModelSurface> surfaces;
-    std::vector<const ModelSurface *> on(SV_NUM_SIZE_CLASSES, nullptr);
+    LoadedModel loaded;
+    std::vector<const Surface *> on(SV_NUM_SIZE_CLASSES, nullptr);
     if (!model.empty()) {
-        if (!load_surfaces(model, &surfaces)) return 3;
-        for (const ModelSurface &s : surfaces) {
+        if (!load_model("tune", model, "", -1, &loaded)) return 3;
+        for (const Surface &s : loaded.surfaces) {
+            if (s.prepared.num_triangles() == 0) continue; /* nothing to time */
             const int c = sv_size_class(s.prepared.num_triangles());
             if (!on[(size_t)c] || s.prepared.num_triangles() > on[(size_t)c]->prepared.num_triangles()) {
                 on[(size_t)c] = &s;
@@ -198,10 +160,11 @@ int tune_main(int argc, char **argv) {
         std::vector<sv_plan_timing> t(256);
         std::string measuredOn;
         int n;
-        if (const ModelSurface *s = on[(size_t)c]) {
-            const sv_surface v = s->view();
+        if (const Surface *s = on[(size_t)c]) {
+            const std::vector<Vec4> positions = sv::positions_vec4(s->prepared);
+            const sv_surface v = view_of(s->prepared, positions);
             n = sv_plan_measure_surface(&v, t.data(), (int)t.size());
-            measuredOn = model + ", surface " + s->name + ": " +
+            measuredOn = model + ", surface " + s->source.name + ": " +
                          std::to_string(s->prepared.num_triangles()) + " triangles";
         } else {
             n = sv_plan_measure(c, t.data(), (int)t.size());

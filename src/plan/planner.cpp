@@ -209,11 +209,7 @@ std::array<Plane, SV_NUM_LIGHT_PLANES> light_box(const Mesh &m, const Vec4 &ligh
 
 /* The lights and light boxes of M, from its bounds (set here). */
 void light_mesh(Mesh &m) {
-    m.positions4.resize((size_t)m.s.num_vertices());
-    for (int i = 0; i < m.s.num_vertices(); i++) {
-        m.positions4[(size_t)i] = {m.s.positions[3 * (size_t)i], m.s.positions[3 * (size_t)i + 1],
-                                   m.s.positions[3 * (size_t)i + 2], 1};
-    }
+    m.positions4 = sv::positions_vec4(m.s);
     m.bounds = sv::surface_bounds(m.s);
     const Vec4 c = m.bounds.center, e = m.bounds.extents;
     /* A flat surface (a ground plane) has a zero extent: the ring of

@@ -445,15 +445,6 @@ raster::RowBand band_rows(int b, int height) {
     return {b * kBandRows, std::min(height, (b + 1) * kBandRows)};
 }
 
-std::vector<Vec4> positions_vec4(const PreparedSurface &p) {
-    std::vector<Vec4> out((std::size_t)p.num_vertices());
-    for (int v = 0; v < p.num_vertices(); v++) {
-        out[(std::size_t)v] = {p.positions[3 * (std::size_t)v], p.positions[3 * (std::size_t)v + 1],
-                               p.positions[3 * (std::size_t)v + 2], 1.0f};
-    }
-    return out;
-}
-
 } // namespace
 
 Frame render_frame(const Scene &scene, const RenderOptions &opt) {

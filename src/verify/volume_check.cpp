@@ -143,11 +143,7 @@ FacingInput facing_input(const PreparedSurface &s, const VerifyLight &l) {
     for (int t = 0; t < nt; t++) in.casts[t] = in.facing[t] ? 0 : 1;
     if (!l.culled) return in;
 
-    std::vector<Vec4> p4((size_t)nv);
-    for (int v = 0; v < nv; v++) {
-        p4[v] = {s.positions[3 * (size_t)v], s.positions[3 * (size_t)v + 1],
-                 s.positions[3 * (size_t)v + 2], 1};
-    }
+    const std::vector<Vec4> p4 = positions_vec4(s);
     const Bounds b = surface_bounds(s);
     in.cull_bits.assign((size_t)nv, 0);
     if (sv_calculate_cull_bits_c_ref(p4.data(), nv, &b, l.planes, in.cull_bits.data())) {
