@@ -8,6 +8,7 @@
 #include <limits.h>
 
 #include "shadowvol.h"
+#include "contracts_internal.h"
 
 const char *sv_status_string(int status) {
     switch (status) {
@@ -87,7 +88,7 @@ static int check_cull_bits(const sv_variant *v, const uint8_t *cullBits, int num
 #endif
 }
 
-static int check_vertex_indices(const int *indices, int numIndices, int numVerts) {
+int sv_check_vertex_indices(const int *indices, int numIndices, int numVerts) {
     int i;
     for (i = 0; i < numIndices; i++) {
         if (indices[i] < 0 || indices[i] >= numVerts) {
@@ -100,7 +101,7 @@ static int check_vertex_indices(const int *indices, int numIndices, int numVerts
 /* Each edge names triangles in [0, numTriangles] (numTriangles is the
  * dangling edges' slot) and even vertex numbers; below 2 * numVerts when the
  * vertex count is known (numVerts >= 0). */
-static int check_sil_edges(const SilEdge *edges, int numEdges, int numTriangles, int numVerts) {
+int sv_check_sil_edges(const SilEdge *edges, int numEdges, int numTriangles, int numVerts) {
     int i;
     for (i = 0; i < numEdges; i++) {
         const SilEdge *e = &edges[i];
@@ -137,7 +138,7 @@ int sv_count_facing_cull_checked(const sv_variant *v, uint8_t *facing, int numTr
     if (numTriangles > INT_MAX / 3) return SV_E_OVERFLOW;
     if (numTriangles > 0 && (!facing || !indices || !cullBits)) return SV_E_NULL;
     if ((s = check_facing_bytes(facing, numTriangles))) return s;
-    if ((s = check_vertex_indices(indices, 3 * numTriangles, numVerts))) return s;
+    if ((s = sv_check_vertex_indices(indices, 3 * numTriangles, numVerts))) return s;
     if (numTriangles > 0 && (s = check_cull_bits(v, cullBits, numVerts))) return s;
     return v->count_facing_cull(facing, numTriangles, indices, cullBits);
 }
@@ -156,7 +157,7 @@ int sv_create_sil_triangles_checked(const sv_variant *v, int *shadowIndices, siz
      * (checked apart: numTriangles + 1 overflows at INT_MAX) */
     if ((s = check_facing_bytes(facing, numTriangles))) return s;
     if ((s = check_facing_sentinel(facing, numTriangles))) return s;
-    if ((s = check_sil_edges(silEdges, numSilEdges, numTriangles, -1))) return s;
+    if ((s = sv_check_sil_edges(silEdges, numSilEdges, numTriangles, -1))) return s;
     return v->create_sil_triangles(shadowIndices, facing, silEdges, numSilEdges);
 }
 
@@ -176,7 +177,7 @@ int sv_create_cap_triangles_checked(const sv_variant *v, int *shadowIndices, siz
     }
     if (capacity < 2u * (size_t)numIndices) return SV_E_CAPACITY;
     if ((s = check_facing_bytes(facing, numIndices / 3))) return s;
-    if ((s = check_vertex_indices(indices, numIndices, numVerts))) return s;
+    if ((s = sv_check_vertex_indices(indices, numIndices, numVerts))) return s;
     return v->create_cap_triangles(shadowIndices, facing, indices, numIndices);
 }
 
@@ -204,8 +205,8 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
     }
     if ((s = check_facing_bytes(facing, numTriangles))) return s;
     if ((s = check_facing_sentinel(facing, numTriangles))) return s;
-    if ((s = check_vertex_indices(indices, numIndices, numVerts))) return s;
-    if ((s = check_sil_edges(silEdges, numSilEdges, numTriangles, numVerts))) return s;
+    if ((s = sv_check_vertex_indices(indices, numIndices, numVerts))) return s;
+    if ((s = sv_check_sil_edges(silEdges, numSilEdges, numTriangles, numVerts))) return s;
     if (cullBits && numTriangles > 0 && (s = check_cull_bits(v, cullBits, numVerts))) return s;
     return sv_create_shadow_volume(v, shadowIndices, indices, numIndices, silEdges,
                                    numSilEdges, facing, cullBits);

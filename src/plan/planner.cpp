@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "plan_internal.h"
+#include "../contracts_internal.h"
 #include "model_gen.h"
 #include "shadowvol_mesh.h"
 
@@ -161,14 +162,6 @@ struct Mesh {
     std::array<std::array<Plane, SV_NUM_LIGHT_PLANES>, kLights> boxes{};
 };
 
-/* The mesh a class is measured on: the project's generated character
- * (tools/generate_models, the paper's 1344-triangle stand-in), each quad
- * subdivided n x n to the class's size, lit from around it. A height field
- * lit from low above was used first: its facing regions are large and
- * only a few percent of its SilEdges lie on the silhouette, where the
- * AVX2 silhouette and cap kernels (scalar, branchy) win, and the plans
- * made from it were 10-30% slower than the static choice on the
- * character and the real models (scaling run, AMD Zen 5). */
 /* The light box of LIGHT on M: a cube around the light, planes pointing
  * in, its half size bisected so that a quarter of the triangles lie
  * outside it (all three vertices culled), as the benchmark's light
@@ -229,6 +222,14 @@ void light_mesh(Mesh &m) {
     }
 }
 
+/* The mesh a class is measured on: the project's generated character
+ * (tools/generate_models, the paper's 1344-triangle stand-in), each quad
+ * subdivided n x n to the class's size, lit from around it. A height field
+ * lit from low above was used first: its facing regions are large and
+ * only a few percent of its SilEdges lie on the silhouette, where the
+ * AVX2 silhouette and cap kernels (scalar, branchy) win, and the plans
+ * made from it were 10-30% slower than the static choice on the
+ * character and the real models (scaling run, AMD Zen 5). */
 Mesh make_mesh(int triangles) {
     const int n = std::max(1, (int)std::lround(std::sqrt((double)triangles / 1344.0)));
     const svgen::TriMesh t = svgen::build_character(n);
@@ -374,7 +375,7 @@ struct Measurer {
      * the cycle table and the scaling run, whose rows keep their lowest
      * round median): a slow phase over some rounds moves the overall
      * median, not the lowest round. */
-    double median(int i) const {
+    double figure(int i) const {
         const std::vector<double> r = round_medians(i);
         return *std::min_element(r.begin(), r.end());
     }
@@ -504,7 +505,7 @@ int measure_mesh(const Mesh &m, int sizeClass, sv_plan_timing *timings, int maxT
     if (meas.failed) return -1;
     int task_of[SV_NUM_ROUTINES][2] = {}; /* the best's and the static choice's task */
     for (const Timed &t : timed) {
-        record(t.routine, t.name, meas.median(t.task));
+        record(t.routine, t.name, meas.figure(t.task));
         if (best[t.routine] == t.name) task_of[t.routine][0] = t.task;
         if (std::strcmp(t.name, sv_static_variant_name(t.routine)) == 0) task_of[t.routine][1] = t.task;
     }
@@ -557,15 +558,9 @@ int sv_plan_measure_surface(const sv_surface *surface, sv_plan_timing *timings, 
         return kBadSurface;
     }
     const int nt = v.numIndices / 3;
-    for (int i = 0; i < v.numIndices; i++) {
-        if (v.indices[i] < 0 || v.indices[i] >= v.numVerts) return kBadSurface;
-    }
-    for (int e = 0; e < v.numSilEdges; e++) {
-        const SilEdge &x = v.silEdges[e];
-        if (x.p1 < 0 || x.p1 > nt || x.p2 < 0 || x.p2 > nt || x.v1 < 0 || x.v2 < 0 ||
-            (x.v1 & 1) || (x.v2 & 1) || x.v1 / 2 >= v.numVerts || x.v2 / 2 >= v.numVerts) {
-            return kBadSurface;
-        }
+    if (sv_check_vertex_indices(v.indices, v.numIndices, v.numVerts) != SV_OK ||
+        sv_check_sil_edges(v.silEdges, v.numSilEdges, nt, v.numVerts) != SV_OK) {
+        return kBadSurface;
     }
     for (int t = 0; t < nt; t++) {
         const Plane &q = v.planes[t];
