@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "shadowvol_plan.h"
+
 namespace svbench {
 
 namespace {
@@ -94,20 +96,18 @@ Doc read_doc(const std::string &path) {
                 c.size_class = p.at("size_class").get<int>();
                 c.class_triangles = p.value("class_triangles", 0LL);
                 c.source = p.at("source").get<std::string>();
-                /* In the pipeline's order (A, B, C-F), not the object's. */
-                static const char *const kPlanOrder[] = {
-                    "calculate_facing",  "calculate_cull_bits",  "count_facing",
-                    "count_facing_cull", "create_sil_triangles", "create_cap_triangles"};
-                for (const char *r : kPlanOrder) {
-                    if (p.at("variants").contains(r)) {
-                        c.variants.emplace_back(r, p.at("variants").at(r).get<std::string>());
-                    }
+                /* In the planner's routine order (A, B, C-F), not the
+                 * object's (alphabetical); a routine this build does not
+                 * know keeps its place after them. */
+                const json &vs = p.at("variants");
+                for (int r = 0; r < SV_NUM_ROUTINES; r++) {
+                    const char *name = sv_routine_name((sv_routine)r);
+                    if (vs.contains(name)) c.variants.emplace_back(name, vs.at(name).get<std::string>());
                 }
-                for (const auto &kv : p.at("variants").items()) {
-                    if (std::find(std::begin(kPlanOrder), std::end(kPlanOrder), kv.key()) ==
-                        std::end(kPlanOrder)) {
-                        c.variants.emplace_back(kv.key(), kv.value().get<std::string>());
-                    }
+                for (const auto &kv : vs.items()) {
+                    const bool known = std::any_of(c.variants.begin(), c.variants.end(),
+                                                   [&](const auto &rv) { return rv.first == kv.key(); });
+                    if (!known) c.variants.emplace_back(kv.key(), kv.value().get<std::string>());
                 }
                 d.plans.push_back(c);
             }

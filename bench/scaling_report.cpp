@@ -113,41 +113,43 @@ void print_large_mesh_check(FILE *out, const ScalingRun &run, Routine routine,
 std::string plan_difference(const BenchVariant *planned, const BenchVariant *fastest,
                             Routine routine) {
     if (!planned->plan) return "?";
-    const char *facingName = routine == Routine::pipeline || routine == Routine::pipeline_cull
-                                 ? fastest->pipeline_facing_name
-                                 : fastest->name;
-    std::vector<std::pair<sv_routine, const char *>> uses;
+    /* The planner's routines that ROUTINE runs. */
+    std::vector<sv_routine> uses;
     switch (routine) {
-    case Routine::calculate_facing: uses = {{SV_ROUTINE_CALCULATE_FACING, facingName}}; break;
-    case Routine::calculate_cull_bits: uses = {{SV_ROUTINE_CALCULATE_CULL_BITS, facingName}}; break;
-    case Routine::count_facing: uses = {{SV_ROUTINE_COUNT_FACING, fastest->name}}; break;
-    case Routine::count_facing_cull: uses = {{SV_ROUTINE_COUNT_FACING_CULL, fastest->name}}; break;
-    case Routine::create_sil_triangles: uses = {{SV_ROUTINE_CREATE_SIL_TRIANGLES, fastest->name}}; break;
-    case Routine::create_cap_triangles: uses = {{SV_ROUTINE_CREATE_CAP_TRIANGLES, fastest->name}}; break;
-    case Routine::pipeline_cull:
-        uses = {{SV_ROUTINE_CALCULATE_FACING, facingName}, {SV_ROUTINE_CALCULATE_CULL_BITS, facingName}};
-        [[fallthrough]];
+    case Routine::calculate_facing: uses = {SV_ROUTINE_CALCULATE_FACING}; break;
+    case Routine::calculate_cull_bits: uses = {SV_ROUTINE_CALCULATE_CULL_BITS}; break;
+    case Routine::count_facing: uses = {SV_ROUTINE_COUNT_FACING}; break;
+    case Routine::count_facing_cull: uses = {SV_ROUTINE_COUNT_FACING_CULL}; break;
+    case Routine::create_sil_triangles: uses = {SV_ROUTINE_CREATE_SIL_TRIANGLES}; break;
+    case Routine::create_cap_triangles: uses = {SV_ROUTINE_CREATE_CAP_TRIANGLES}; break;
+    case Routine::create_shadow_volume:
+        uses = {SV_ROUTINE_COUNT_FACING, SV_ROUTINE_CREATE_SIL_TRIANGLES, SV_ROUTINE_CREATE_CAP_TRIANGLES};
+        break;
     case Routine::create_shadow_volume_cull:
-        uses.push_back({SV_ROUTINE_COUNT_FACING_CULL, fastest->name});
+        uses = {SV_ROUTINE_COUNT_FACING_CULL, SV_ROUTINE_CREATE_SIL_TRIANGLES,
+                SV_ROUTINE_CREATE_CAP_TRIANGLES};
         break;
     case Routine::pipeline:
-        uses = {{SV_ROUTINE_CALCULATE_FACING, facingName}};
-        [[fallthrough]];
-    case Routine::create_shadow_volume:
-        uses.push_back({SV_ROUTINE_COUNT_FACING, fastest->name});
+        uses = {SV_ROUTINE_CALCULATE_FACING, SV_ROUTINE_COUNT_FACING,
+                SV_ROUTINE_CREATE_SIL_TRIANGLES, SV_ROUTINE_CREATE_CAP_TRIANGLES};
+        break;
+    case Routine::pipeline_cull:
+        uses = {SV_ROUTINE_CALCULATE_FACING, SV_ROUTINE_CALCULATE_CULL_BITS,
+                SV_ROUTINE_COUNT_FACING_CULL, SV_ROUTINE_CREATE_SIL_TRIANGLES,
+                SV_ROUTINE_CREATE_CAP_TRIANGLES};
         break;
     }
-    if (routine == Routine::pipeline || routine == Routine::pipeline_cull ||
-        routine == Routine::create_shadow_volume || routine == Routine::create_shadow_volume_cull) {
-        uses.push_back({SV_ROUTINE_CREATE_SIL_TRIANGLES, fastest->name});
-        uses.push_back({SV_ROUTINE_CREATE_CAP_TRIANGLES, fastest->name});
-    }
+    /* What the fixed row runs for each: its own kernels; for A and B its
+     * own, or in a pipeline row the facing variant it was paired with. */
+    const bool pipe = routine == Routine::pipeline || routine == Routine::pipeline_cull;
     std::string diff;
-    for (const auto &u : uses) {
-        const char *chosen = planned->plan->variant[u.first];
-        if (u.second && chosen && std::strcmp(chosen, u.second) == 0) continue;
-        diff += (diff.empty() ? "" : "; ") + std::string(sv_routine_name(u.first)) + " " +
-                (chosen ? chosen : "?") + ", not " + (u.second ? u.second : "?");
+    for (const sv_routine u : uses) {
+        const char *theirs = u <= SV_ROUTINE_CALCULATE_CULL_BITS && pipe ? fastest->pipeline_facing_name
+                                                                          : fastest->name;
+        const char *chosen = planned->plan->variant[u];
+        if (theirs && chosen && std::strcmp(chosen, theirs) == 0) continue;
+        diff += (diff.empty() ? "" : "; ") + std::string(sv_routine_name(u)) + " " +
+                (chosen ? chosen : "?") + ", not " + (theirs ? theirs : "?");
     }
     return diff;
 }
