@@ -7,6 +7,7 @@
 set -u
 sv="$1"; src="$2"
 command -v valgrind >/dev/null || { echo "SKIP: no valgrind"; exit 77; }
+command -v python3 >/dev/null || { echo "SKIP: no python3 (the tool reads --json with it)"; exit 77; }
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT

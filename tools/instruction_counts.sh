@@ -19,7 +19,7 @@
 # core_cycles_per_tick (the core clock over the TSC's, measured by --limits
 # with a dependent add chain) give cycles per element, and their ratio is
 # the kernel's instructions per cycle. Needs valgrind (apt-get install
-# valgrind); takes about a minute.
+# valgrind), and python3 for --json; takes about a minute.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 result=""
@@ -28,6 +28,7 @@ sv="${1:-build/shadowvol}"
 [ -x "$sv" ] || { echo "tools/instruction_counts.sh: $sv is not built" >&2; exit 2; }
 command -v valgrind >/dev/null || { echo "tools/instruction_counts.sh: needs valgrind (apt-get install valgrind)" >&2; exit 2; }
 [ -z "$result" ] || [ -r "$result" ] || { echo "tools/instruction_counts.sh: cannot read $result" >&2; exit 2; }
+[ -z "$result" ] || command -v python3 >/dev/null || { echo "tools/instruction_counts.sh: --json needs python3 (apt-get install python3)" >&2; exit 2; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \

@@ -34,12 +34,12 @@ esac
 # (src/gljudge) its off-screen llvmpipe GL context; libtbb-dev (oneTBB) runs a
 # frame's jobs and screen bands in parallel; clang and libclang-rt-dev
 # (libFuzzer) build the fuzz targets (tests/fuzz: the test and fuzz jobs);
-# valgrind counts the kernels' instructions (tools/instruction_counts.sh,
-# the ctest tools_instruction_counts).
+# valgrind counts the kernels' instructions and python3 reads a result for
+# them (tools/instruction_counts.sh, the ctest tools_instruction_counts).
 packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
           libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user
           libosmesa6-dev libtbb-dev)
-[ "$job" = bench ] || packages+=(clang libclang-rt-dev valgrind)
+[ "$job" = bench ] || packages+=(clang libclang-rt-dev valgrind python3)
 # The cross builds (tools/run.sh cross): MinGW-w64's x86-64 compilers with
 # the posix thread model (the x86-64 half of the mingw-w64 set: the 32-bit
 # Windows compilers are not needed), wine64 to run their programs,
