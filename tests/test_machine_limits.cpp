@@ -7,6 +7,8 @@
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include <gtest/gtest.h>
+#include <algorithm>
+#include <x86intrin.h>
 
 #include <cstdint>
 #include <cstring>
@@ -79,6 +81,25 @@ TEST(MachineLimits, ScalarLoadsKeepTheAbiAndWriteNothing) {
         EXPECT_EQ(g.changed(0, kBuffer), 0u) << iters;
         EXPECT_TRUE(g.guards_intact()) << iters;
     }
+}
+
+// The core-clock chain: it takes only a count (no memory), keeps the ABI
+// for every count, the non-positive ones included, and does its work: the
+// chain of 32 adds per iteration costs measurably more for more
+// iterations (a loop that skipped it would time the same for any count).
+TEST(MachineLimits, DependentAddsKeepTheAbi) {
+    SCOPED_TRACE(seed_trace());
+    Rng rng = rng_for("MachineLimits.DependentAdds");
+    for (int64_t iters : {0L, -1L, 1L, 3L, 1000L}) checked_call(rng, svb_dependent_adds, iters);
+    uint64_t shortest[2] = {UINT64_MAX, UINT64_MAX};
+    for (int round = 0; round < 20; round++) {
+        for (int k = 0; k < 2; k++) {
+            const uint64_t t0 = __rdtsc();
+            svb_dependent_adds(k ? 200000 : 1000);
+            shortest[k] = std::min<uint64_t>(shortest[k], __rdtsc() - t0);
+        }
+    }
+    EXPECT_GT(shortest[1], 10 * shortest[0]) << "the chain did not run its iterations";
 }
 
 // One instance per vector form (ymm, zmm), skipped where the CPU (or
