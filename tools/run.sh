@@ -26,27 +26,16 @@ case "$job" in
   *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS] | tools/run.sh cross" >&2; exit 2 ;;
 esac
 
-# Debian packages the build and the tests need.
-# libtinygltf-dev builds from its header with nlohmann-json3-dev (and
-# libstb-dev, named by its Debian notes); assimp-testmodels gives the loader
-# tests third-party malformed glTF files; qemu-user runs the test suite as
-# CPUs without AVX-512 and without AVX; libosmesa6-dev gives the Mesa judge
-# (src/gljudge) its off-screen llvmpipe GL context; libtbb-dev (oneTBB) runs a
-# frame's jobs and screen bands in parallel; clang and libclang-rt-dev
-# (libFuzzer) build the fuzz targets (tests/fuzz: the test and fuzz jobs);
-# valgrind counts the kernels' instructions and python3 reads a result for
-# them (tools/instruction_counts.sh, the ctest tools_instruction_counts).
-packages=(nasm cmake ninja-build g++ libgtest-dev libbenchmark-dev binutils git
-          libtinygltf-dev nlohmann-json3-dev libstb-dev assimp-testmodels qemu-user
-          libosmesa6-dev libtbb-dev)
-[ "$job" = bench ] || packages+=(clang libclang-rt-dev valgrind python3)
-# The cross builds (tools/run.sh cross): MinGW-w64's x86-64 compilers with
-# the posix thread model (the x86-64 half of the mingw-w64 set: the 32-bit
-# Windows compilers are not needed), wine64 to run their programs,
-# gcc/g++-multilib for 32-bit x86, and googletest's sources, which both
-# compile (Debian's libgtest-dev is native 64-bit only).
-[ "$job" = cross ] && packages+=(gcc-mingw-w64-x86-64-posix g++-mingw-w64-x86-64-posix wine64
-                                 gcc-multilib g++-multilib googletest)
+# The Debian packages this job needs: tools/packages.txt, the one list
+# (each line names the jobs it serves; every job builds, so every job
+# takes build's lines too).
+packages_for() {
+  awk -v job="$1" '!/^#/ && NF >= 2 {
+      n = split($2, jobs, ",")
+      for (i = 1; i <= n; i++) if (jobs[i] == "build" || jobs[i] == job) { print $1; break }
+    }' tools/packages.txt
+}
+mapfile -t packages < <(packages_for "$job")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
