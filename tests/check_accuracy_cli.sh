@@ -79,7 +79,7 @@ assert len(seen) == len(variants) * len(placements)
 print("JSON: %d rows checked field by field" % len(seen))
 EOF
 else
-  echo "NOTE: python3 not found: the JSON was checked by grep only."
+  err "python3 not found: the JSON's fields cannot be checked (tools/run.sh test installs it)"
 fi
 
 # The plot: an SVG document with a point label per variant.

@@ -31,6 +31,8 @@ for m in d["meshes"]:
         assert r["ok"] is True and r["calls"] > 0 and r["ticks_per_triangle"] > 0, r
     assert 0 <= m["bfg_vs_planes_facing_differ"] <= m["facing_compared"]
 PY
+else
+  err "python3 not found: the JSON's fields cannot be checked (tools/run.sh test installs it)"
 fi
 for args in "--planes --backface" "--planes=1" "--planes --variant c_ref" "--planes --model x.glb"; do
   # shellcheck disable=SC2086

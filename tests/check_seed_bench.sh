@@ -64,7 +64,7 @@ for sz in b["sizes"]:
 print("JSON: %d silhouette meshes, %d back-face sizes checked" % (len(s["meshes"]), len(b["sizes"])))
 PY
 else
-  echo "NOTE: python3 not found: the JSON was not checked field by field."
+  err "python3 not found: the JSON's fields cannot be checked (tools/run.sh test installs it)"
 fi
 
 # Usage errors: exit 2.

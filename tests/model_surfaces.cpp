@@ -7,17 +7,18 @@
 #include <cstdio>
 
 #include "shadowvol_gltf.h"
+#include "test_conditions.h"
+#include <gtest/gtest.h>
 
 namespace svtest {
 
-std::vector<std::string> seed_model_paths() {
-    std::vector<std::string> p{std::string(SV_MODELS_DIR) + "/character_1344.glb"};
-    const std::string dir = SV_SHARED_MODELS_DIR;
+std::vector<std::string> seed_model_paths(const std::string &set) {
+    if (set == "bundled") return {std::string(SV_MODELS_DIR) + "/character_1344.glb"};
+    const std::string dir = shared_models_dir();
     DIR *d = opendir(dir.c_str());
     if (!d) {
-        std::printf("[  NOTE    ] %s is missing: only the bundled character is tested\n",
-                    dir.c_str());
-        return p;
+        ADD_FAILURE() << dir << " cannot be read";
+        return {};
     }
     std::vector<std::string> shared;
     while (const dirent *e = readdir(d)) {
@@ -26,8 +27,7 @@ std::vector<std::string> seed_model_paths() {
     }
     closedir(d);
     std::sort(shared.begin(), shared.end());
-    p.insert(p.end(), shared.begin(), shared.end());
-    return p;
+    return shared;
 }
 
 std::vector<sv::PreparedSurface> prepared_surfaces(const std::string &path) {

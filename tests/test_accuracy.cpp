@@ -492,8 +492,7 @@ TEST(ExactPredicate, ArrayRoutinesMatchThePredicate) {
     Rng rng = svtest::rng_for("ExactPredicate.Arrays");
     SCOPED_TRACE(svtest::seed_trace());
     svtest::IsaLimitLifted lifted;
-    const bool avx2 = (sv_cpu_isa() & SV_ISA_AVX2) != 0;
-    if (!avx2) std::printf("[  SKIPPED ] exact_avx2: this CPU lacks AVX2\n");
+    const bool avx2 = svtest::in_this_run(SV_ISA_SSE2 | SV_ISA_AVX2, "exact_avx2");
     for (int n = 0; n <= 130; n++) {
         for (bool nonfinite : {false, true}) {
             const RawMesh m = random_mesh(rng, n, nonfinite);
@@ -546,13 +545,19 @@ float plane_value(Rng &rng, bool extremes) {
     return ordinary(rng, 2.0);
 }
 
-TEST(Variants, SimdTwinsAreBitIdenticalToTheirDefinitions) {
+// The AVX2 twins only: one instance named by its tier, so that it runs in
+// the avx2 ctest entry alone (tests/test_conditions.h) and skips there
+// where the CPU lacks AVX2.
+class SimdTwins : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(Tier, SimdTwins, ::testing::Values("avx2"),
+                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+
+TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
     Rng rng = svtest::rng_for("Variants.SimdTwins");
     SCOPED_TRACE(svtest::seed_trace());
     svtest::IsaLimitLifted lifted;
-    if (!(sv_cpu_isa() & SV_ISA_AVX2)) {
-        std::printf("[  SKIPPED ] the AVX2 twins: this CPU lacks AVX2\n");
-        return;
+    if (!svtest::in_this_run(SV_ISA_SSE2 | SV_ISA_AVX2, "the AVX2 twins")) {
+        GTEST_SKIP() << "the AVX2 twins: this CPU lacks AVX2";
     }
     for (bool extremes : {false, true}) {
         for (unsigned csr : {kCallerMxcsr[0], kCallerMxcsr[1], kCallerMxcsr[2]}) {
@@ -615,7 +620,7 @@ TEST(Variants, NegativeCountsWriteNothing) {
     sv_calculate_facing_double(nullptr, -2, &l, f.data());
     sv_calculate_facing_fixed16(nullptr, -3, &l, f.data());
     sv_calculate_facing_eps_bias(nullptr, -4, &l, 0.0f, nullptr, f.data());
-    if (sv_cpu_isa() & SV_ISA_AVX2) {
+    if (svtest::in_this_run(SV_ISA_SSE2 | SV_ISA_AVX2, "the AVX2 twins")) {
         sv_calculate_facing_fma_avx2(nullptr, -1, &l, f.data());
         sv_calculate_facing_double_avx2(nullptr, -1, &l, f.data());
         sv_calculate_facing_fixed16_avx2(nullptr, -1, &l, f.data());
@@ -779,7 +784,7 @@ TEST(Variants, BoundedDifferenceContracts) {
     svtest::IsaLimitLifted lifted;
     std::vector<const acc::Variant *> vars;
     for (const acc::Variant &v : acc::variants()) {
-        if (acc::runnable(v)) vars.push_back(&v);
+        if (svtest::in_this_run(v.isa, v.name)) vars.push_back(&v);
     }
     struct Stats {
         int64_t tests = 0, in_band = 0, wrong_in_band = 0;
@@ -1007,7 +1012,7 @@ TEST(Variants, IndependentOfTheCallersMxcsr) {
         const Vec4 l{ordinary(rng) * sc, ordinary(rng) * sc, ordinary(rng) * sc,
                      li % 5 == 0 ? 0.0f : 1.0f};
         for (const acc::Variant &v : acc::variants()) {
-            if (!acc::runnable(v) || std::strncmp(v.name, "c_ref", 5) == 0) continue;
+            if (!svtest::in_this_run(v.isa, v.name) || std::strncmp(v.name, "c_ref", 5) == 0) continue;
             std::vector<uint8_t> want((std::size_t)nt + 1);
             v.run(data, l, nullptr, want.data());
             for (unsigned csr : kCallerMxcsr) {

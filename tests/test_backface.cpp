@@ -89,16 +89,12 @@ template <class F> Result run(F f, int nt, int nv) {
     return r;
 }
 
-// The block methods this CPU runs (the others named once).
+// The block methods this ctest entry checks (svtest::in_this_run).
 const std::vector<const sv::BackfaceBlockVariant *> &runnable_block_variants() {
     static const std::vector<const sv::BackfaceBlockVariant *> v = [] {
         std::vector<const sv::BackfaceBlockVariant *> r;
         for (const sv::BackfaceBlockVariant &b : sv::backface_block_variants()) {
-            if ((b.isa & sv_cpu_isa_detected()) == b.isa) {
-                r.push_back(&b);
-            } else {
-                std::printf("[  SKIPPED ] %s: this CPU lacks its instruction set\n", b.name);
-            }
+            if (svtest::in_this_run(b.isa, b.name)) r.push_back(&b);
         }
         return r;
     }();
@@ -145,11 +141,16 @@ Vec4 random_view(Rng &rng, const Bounds &b) {
                 b.center.z + (float)(dist * r * d[2] / len), 1};
 }
 
-TEST(Backface, EveryModelEveryMethodAndTheBound) {
+// Once per model set (bundled, SharedModels: tests/model_surfaces.h).
+class BackfaceModels : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(ModelSets, BackfaceModels, ::testing::ValuesIn(svtest::model_sets()),
+                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+
+TEST_P(BackfaceModels, EveryModelEveryMethodAndTheBound) {
     Rng rng = svtest::rng_for("Backface.Models");
     SCOPED_TRACE(svtest::seed_trace());
     long decided = 0, uncertain = 0, wrong_in_band = 0;
-    for (const std::string &path : svtest::seed_model_paths()) {
+    for (const std::string &path : svtest::seed_model_paths(GetParam())) {
         for (const sv::PreparedSurface &s : svtest::prepared_surfaces(path)) {
             SCOPED_TRACE(path);
             const sv::AlignedVector<sv_cull_triangle> t32v = sv::cull_triangles(s);

@@ -200,7 +200,7 @@ void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lig
             // Appendix A: every implementation gives the reference's bytes.
             std::vector<uint8_t> ref_bytes;
             for (int i = 0; i < nfv; i++) {
-                if ((fv[i].isa & sv_cpu_isa()) != fv[i].isa) continue;
+                if (!svtest::in_this_run(fv[i].isa, fv[i].name)) continue;
                 GuardedBuffer f((std::size_t)nt + 1, 0);
                 with_mxcsr(csr, [&] { fv[i].calculate_facing(s.planes.data(), nt, &l, f.data()); });
                 ASSERT_TRUE(f.guards_intact()) << fv[i].name;
@@ -216,7 +216,7 @@ void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lig
             // The accuracy variants, each within its contract.
             std::size_t mine = 0;
             for (const acc::Variant &v : acc::variants()) {
-                if (!acc::runnable(v)) continue;
+                if (!svtest::in_this_run(v.isa, v.name)) continue;
                 GuardedBuffer f((std::size_t)nt + 1, 0);
                 with_mxcsr(csr, [&] { v.run(data, l, nullptr, f.data()); });
                 ASSERT_TRUE(f.guards_intact()) << v.name;
@@ -575,7 +575,7 @@ TEST(Extreme, NanAndInfinitePositions) {
         SCOPED_TRACE(light_text(l));
         std::vector<uint8_t> ref;
         for (int i = 0; i < nfv; i++) {
-            if ((fv[i].isa & sv_cpu_isa()) != fv[i].isa) continue;
+            if (!svtest::in_this_run(fv[i].isa, fv[i].name)) continue;
             GuardedBuffer f((std::size_t)nt + 1, 0);
             fv[i].calculate_facing(s.planes.data(), nt, &l, f.data());
             ASSERT_TRUE(f.guards_intact());
@@ -584,7 +584,7 @@ TEST(Extreme, NanAndInfinitePositions) {
             ASSERT_EQ(b, ref) << fv[i].name;
         }
         for (const acc::Variant &v : acc::variants()) {
-            if (!acc::runnable(v)) continue;
+            if (!svtest::in_this_run(v.isa, v.name)) continue;
             GuardedBuffer f((std::size_t)nt + 1, 0);
             v.run(data, l, nullptr, f.data());
             ASSERT_TRUE(f.guards_intact()) << v.name;

@@ -20,6 +20,7 @@
 #include "shadowvol.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_plan.h"
+#include "test_conditions.h"
 
 namespace {
 
@@ -125,12 +126,12 @@ int reference_volume(const Mesh &m, const Vec4 &light, const Plane *lightPlanes,
                                    m.surface.numSilEdges, facing.data(), cb);
 }
 
-// The ISA levels this CPU reaches, for sv_set_isa_limit.
+// The ISA levels this ctest entry checks, for sv_set_isa_limit.
 std::vector<const char *> isa_levels() {
     std::vector<const char *> levels{"c", "sse2"};
-    const unsigned isa = sv_cpu_isa_detected();
-    if (isa & SV_ISA_AVX2) levels.push_back("avx2");
-    if (isa & SV_ISA_AVX512) levels.push_back("avx512");
+    if (svtest::in_this_run(SV_ISA_SSE2 | SV_ISA_AVX2, "ISA level avx2")) levels.push_back("avx2");
+    if (svtest::in_this_run(SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "ISA level avx512"))
+        levels.push_back("avx512");
     return levels;
 }
 
@@ -223,7 +224,7 @@ TEST(ForLight, FusedFacingCountMatchesFacingThenCount) {
     std::mt19937 rng(99);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     for (int k = 0; k < nf; k++) {
-        if ((fv[k].isa & sv_cpu_isa()) != fv[k].isa) continue;
+        if (!svtest::in_this_run(fv[k].isa, fv[k].name)) continue;
         ASSERT_NE(fv[k].calculate_facing_count, nullptr) << fv[k].name;
         for (int n = 0; n <= 200; n++) {
             std::vector<Plane> planes((size_t)n);

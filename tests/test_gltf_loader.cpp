@@ -11,6 +11,7 @@
 // ../shared/models when that folder exists, and models/character_1344.glb.
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+#include "test_conditions.h"
 #include "shadowvol_gltf.h"
 #include "shadowvol_mesh.h"
 
@@ -1413,10 +1414,7 @@ TEST(GltfAssimpModels, EachLoadsOrFailsCleanly) {
 }
 
 TEST(GltfSharedModels, LoadWithExpectedCounts) {
-    const fs::path root = SV_SHARED_MODELS_DIR;
-    if (!fs::is_directory(root)) {
-        GTEST_SKIP() << "shared models folder not found: " << root;
-    }
+    const fs::path root = svtest::shared_models_dir();
     // Totals over all surfaces; per surface, vertices are the glTF vertices
     // of its primitives (README "glTF verts"). Each model instances each of
     // its meshes exactly once (RobotExpressive: 14 meshes, 14 nodes), so
@@ -1458,10 +1456,7 @@ TEST(GltfSharedModels, LoadWithExpectedCounts) {
 // characters are closed with the README's welded vertex counts: the weld
 // guarantee held through node matrices and skinning.
 TEST(GltfSharedModels, CharactersAreClosedAfterWelding) {
-    const fs::path root = SV_SHARED_MODELS_DIR;
-    if (!fs::is_directory(root)) {
-        GTEST_SKIP() << "shared models folder not found: " << root;
-    }
+    const fs::path root = svtest::shared_models_dir();
     const std::pair<const char *, int64_t> models[] = {
         {"CesiumMan.glb", 2338}, {"Fox.glb", 290}, {"RiggedFigure.glb", 130}, {"spot_lowres.glb", 829}};
     for (const auto &[name, welded] : models) {

@@ -106,7 +106,12 @@ TEST(MachineLimits, DependentAddsKeepTheAbi) {
 // SV_ISA) lacks it: Forms/MachineLimits.VectorPrimitivesKeepTheAbiAndTheirBytes/zmm.
 class MachineLimitsForm : public ::testing::TestWithParam<std::string> {};
 
-INSTANTIATE_TEST_SUITE_P(Forms, MachineLimitsForm, ::testing::Values("ymm", "zmm"), param_name);
+// Named by tier (avx2_ymm, avx512_zmm), so each runs in its tier's ctest
+// entry (tests/test_conditions.h).
+INSTANTIATE_TEST_SUITE_P(Forms, MachineLimitsForm, ::testing::Values("ymm", "zmm"),
+                         [](const ::testing::TestParamInfo<std::string> &i) {
+                             return std::string(i.param == "ymm" ? "avx2_" : "avx512_") + i.param;
+                         });
 
 TEST_P(MachineLimitsForm, VectorPrimitivesKeepTheAbiAndTheirBytes) {
     SCOPED_TRACE(seed_trace());

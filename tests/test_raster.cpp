@@ -18,6 +18,7 @@
 #include "rasterizer.h"
 #include "shadowvol.h"
 #include "shadowvol_scene.h"
+#include "test_conditions.h"
 
 namespace {
 
@@ -33,11 +34,7 @@ std::vector<const RowKernels *> runnable_kernels() {
     const RowKernels *const *all = row_kernels_all(&n);
     std::vector<const RowKernels *> out;
     for (int i = 0; i < n; i++) {
-        if ((all[i]->isa & sv_cpu_isa()) == all[i]->isa) {
-            out.push_back(all[i]);
-        } else {
-            std::printf("NOTE: row kernels '%s' not run: this CPU lacks them\n", all[i]->name);
-        }
+        if (svtest::in_this_run(all[i]->isa, all[i]->name)) out.push_back(all[i]);
     }
     return out;
 }

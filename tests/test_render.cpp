@@ -26,6 +26,7 @@
 #include "images.h"
 #include "scene_options.h"
 #include "shadowvol_scene.h"
+#include "test_conditions.h"
 #include "truth.h"
 
 namespace {
@@ -72,14 +73,15 @@ void expect_truth_holds(const Scene &scene, const Frame &f, const std::string &w
 
 std::vector<std::string> shared_models() {
     std::vector<std::string> out;
-    DIR *d = opendir(SV_SHARED_MODELS_DIR);
+    const std::string dir = svtest::shared_models_dir();
+    DIR *d = opendir(dir.c_str());
     if (!d) {
-        std::printf("NOTE: %s not found: the real characters are not rendered\n", SV_SHARED_MODELS_DIR);
+        ADD_FAILURE() << dir << " cannot be read";
         return out;
     }
     while (dirent *e = readdir(d)) {
         const std::string n = e->d_name;
-        if (n.size() > 4 && n.substr(n.size() - 4) == ".glb") out.push_back(std::string(SV_SHARED_MODELS_DIR) + "/" + n);
+        if (n.size() > 4 && n.substr(n.size() - 4) == ".glb") out.push_back(dir + "/" + n);
     }
     closedir(d);
     std::sort(out.begin(), out.end());
@@ -100,8 +102,10 @@ TEST(Render, BundledCharacterMatchesTruthInBothModes) {
     }
 }
 
-TEST(Render, EveryRealModelMatchesTruth) {
-    for (const std::string &path : shared_models()) {
+TEST(Render, EverySharedModelsCharacterMatchesTruth) {
+    const std::vector<std::string> models = shared_models();
+    EXPECT_FALSE(models.empty()) << "no .glb in " << svtest::shared_models_dir();
+    for (const std::string &path : models) {
         Scene scene = model_on_ground(path);
         scene.lights = three_lights(scene);
         validate_scene(scene);

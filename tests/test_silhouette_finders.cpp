@@ -66,7 +66,7 @@ struct Finders {
         const std::vector<DirectedEdge> net = sv::net_silhouette(buf.data(), nref);
         const int need = sv::hash_columns_needed(mesh);
         for (const sv::ConnectivityVariant &v : sv::connectivity_variants()) {
-            if ((v.isa & sv_cpu_isa_detected()) != v.isa) continue;
+            if (!svtest::in_this_run(v.isa, v.name)) continue;
             const std::size_t n =
                 v.fn(conn, s->indices.data(), s->num_triangles(), facing.data(), buf.data());
             EXPECT_EQ(sv::canonical_silhouette(buf.data(), n), exact) << v.name;
@@ -138,11 +138,16 @@ std::vector<Vec4> lights_for(const sv::PreparedSurface &s, Rng &rng, int count) 
 // every mesh it times.
 constexpr int kBigSurface = 12000;
 
-TEST(SilhouetteFinders, EveryModelAndLightMatchesTheSilEdges) {
+// Once per model set (bundled, SharedModels: tests/model_surfaces.h).
+class SilhouetteModels : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(ModelSets, SilhouetteModels, ::testing::ValuesIn(svtest::model_sets()),
+                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+
+TEST_P(SilhouetteModels, EveryModelAndLightMatchesTheSilEdges) {
     Rng rng = svtest::rng_for("SilhouetteFinders.Models");
     SCOPED_TRACE(svtest::seed_trace());
     int surfaces = 0, lights = 0;
-    for (const std::string &path : svtest::seed_model_paths()) {
+    for (const std::string &path : svtest::seed_model_paths(GetParam())) {
         std::vector<sv::PreparedSurface> ss = svtest::prepared_surfaces(path);
         for (std::size_t k = 0; k < ss.size(); k++) {
             const sv::PreparedSurface &s = ss[k];
@@ -162,8 +167,8 @@ TEST(SilhouetteFinders, EveryModelAndLightMatchesTheSilEdges) {
     std::printf("[  NOTE    ] %d surfaces, %d (surface, light) pairs\n", surfaces, lights);
 }
 
-TEST(SilhouetteFinders, QuadraticAndLinearTablesAgreeWithTheSilEdges) {
-    for (const std::string &path : svtest::seed_model_paths()) {
+TEST_P(SilhouetteModels, QuadraticAndLinearTablesAgreeWithTheSilEdges) {
+    for (const std::string &path : svtest::seed_model_paths(GetParam())) {
         for (const sv::PreparedSurface &s : svtest::prepared_surfaces(path)) {
             SCOPED_TRACE(path);
             const int nt = s.num_triangles();
@@ -325,7 +330,7 @@ TEST(SilhouetteFinders, BadSetUpThrows) {
     const uint8_t facing[4] = {1, 1, 1, 1};
     DirectedEdge out[1];
     for (const sv::ConnectivityVariant &v : sv::connectivity_variants()) {
-        if ((v.isa & sv_cpu_isa_detected()) != v.isa) continue;
+        if (!svtest::in_this_run(v.isa, v.name)) continue;
         EXPECT_EQ(v.fn(c, nullptr, 0, facing, out), 0u) << v.name;
     }
 }

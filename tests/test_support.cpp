@@ -130,12 +130,7 @@ std::vector<const sv_variant *> runnable_variants() {
     const sv_variant *all = sv_variants(&n);
     std::vector<const sv_variant *> out;
     for (int i = 0; i < n; i++) {
-        if ((all[i].isa & sv_cpu_isa()) == all[i].isa) {
-            out.push_back(&all[i]);
-        } else {
-            std::printf("[  SKIPPED ] variant %s: this CPU lacks its instruction set\n",
-                        all[i].name);
-        }
+        if (in_this_run(all[i].isa, all[i].name)) out.push_back(&all[i]);
     }
     return out;
 }

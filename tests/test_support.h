@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "shadowvol.h"
+#include "test_conditions.h"
 #if defined(SV_HAVE_ABI_CHECKER)
 #include "checked_call.h"
 #endif
@@ -146,7 +147,8 @@ R checked_call(Rng &, R (*fn)(P...), A... args) {
 }
 #endif
 
-// The variants this CPU runs; the others are reported as skipped by name.
+// The variants of sv_variants() this ctest entry checks (in_this_run:
+// the baseline and the entry's ISA tier, test_conditions.h).
 std::vector<const sv_variant *> runnable_variants();
 
 // Whether this platform's build has the named variant at all: the asm
