@@ -29,6 +29,11 @@ fi
 grep -q '"schema": "shadowvol-render/1"' "$tmp/render.json" || err "JSON without its schema"
 grep -q '"passed": true' "$tmp/render.json" || err "JSON does not say passed"
 grep -q '"width": 1280' "$tmp/render.json" || err "the default size is not 1280x1024"
+# index_lists: one row per volume (the lights' "volumes" summed), each with
+# its count and a 16-hex-digit FNV-1a 64 of the list (tools/pin_bytes.sh).
+volumes=$(( $(sed -n 's/^ *"volumes": \([0-9]*\),$/\1/p' "$tmp/render.json" | paste -sd+) + 0 ))
+rows=$(grep -c '{"light": [0-9]*, "surface": [0-9]*, "zfail": [a-z]*, "indices": [1-9][0-9]*, "silhouette_indices": [0-9]*, "indices_fnv1a64": "[0-9a-f]\{16\}"}' "$tmp/render.json")
+[ "$volumes" -gt 0 ] && [ "$rows" = "$volumes" ] || err "index_lists: $rows row(s) for $volumes volume(s)"
 
 # A small scene of every light kind, both modes, written elsewhere.
 for mode in zpass zfail; do

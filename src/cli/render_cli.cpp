@@ -44,6 +44,24 @@ constexpr int kExitMismatch = 1, kExitUsage = 2, kExitBadModel = 3;
 
 double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz : 0; }
 
+/* FNV-1a 64 over the list as little-endian int32s, in order, as 16 hex
+ * digits: a fingerprint of the exact index list the library returned, so
+ * tools/pin_bytes.sh can pin the volumes apart from the pictures (a volume
+ * may change while the pixels stay the same, and the reverse). */
+std::string indices_fnv1a64(const int *indices, std::size_t n) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (std::size_t i = 0; i < n; i++) {
+        const uint32_t v = (uint32_t)indices[i];
+        for (int b = 0; b < 32; b += 8) {
+            h ^= (v >> b) & 0xffu;
+            h *= 0x100000001b3ull;
+        }
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
+    return hex;
+}
+
 } // namespace
 
 bool make_dir(const std::string &d) {
@@ -402,6 +420,21 @@ int render_main(int argc, char **argv) {
             j.end_object();
             j.key("stencil_counters");
             counters_json(j, lf.stencil_counters);
+            /* One row per volume (a surface that casts), with its light's
+             * number so each row stands alone for grep. */
+            j.key("index_lists");
+            j.begin_array();
+            for (const sv::render::Volume &v : lf.volumes) {
+                j.begin_object(true);
+                j.key("light"), j.value((int)li);
+                j.key("surface"), j.value(v.surface);
+                j.key("zfail"), j.value(v.zfail);
+                j.key("indices"), j.value((long long)v.indices.size());
+                j.key("silhouette_indices"), j.value(v.silhouette_indices);
+                j.key("indices_fnv1a64"), j.value(indices_fnv1a64(v.indices.data(), v.indices.size()));
+                j.end_object();
+            }
+            j.end_array();
             if (li < cmps.size()) {
                 const sv::render::Comparison &c = cmps[li];
                 j.key("truth");
