@@ -14,10 +14,11 @@ inc="-I$src/src/check/"
 skip() { echo "SKIP: $*"; exit 77; }
 case "$abi" in
   elf32|elf32_qemu)
-    gcc -m32 -x c /dev/null -c -o probe32.o 2>/dev/null || skip "no gcc -m32 (Debian gcc-multilib)"
-    # The probe above compiles nothing that includes a libc header: a
-    # machine with gcc-multilib half installed passes it and then fails
-    # here, which is a failure, not a skip.
+    # The probe includes a libc header and links: `gcc -m32` alone runs
+    # without the 32-bit headers and libraries (gcc-multilib), and an empty
+    # probe passed there and the build below failed.
+    printf '#include <stdio.h>\nint main(void) { return puts("") < 0; }\n' |
+        gcc -m32 -x c - -o probe32 2>/dev/null || skip "no gcc -m32 with its libc (Debian gcc-multilib)"
     nasm $inc -f elf32 "$src/src/check/abi_checked_call.asm" -o acc32.o
     nasm $inc -f elf32 "$src/tests/abi_selfcheck.asm" -o sc32.o
     gcc -m32 -O2 -I"$src/src/check" "$src/tests/abi_selfcheck_main.c" \
