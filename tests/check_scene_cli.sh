@@ -6,13 +6,29 @@
 # counts with the same bytes; each kind of bad input must end with its
 # documented exit status and a message, never a crash.
 # usage: check_scene_cli.sh PATH/TO/shadowvol DEMO_SCENE SHARED_MODELS_DIR [SIZE] [bundled|shared]
-# (shared: the animated real characters too, exit 77 when their folder is missing)
+# (bundled: the demo scene, the bench rows and bad input; shared: the animated
+# real characters alone, exit 77 when their folder is missing)
 set -u
 sv="$1"; demo="$2"; shared="$3"; size="${4:-320x256}"; set="${5:-bundled}"
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
+
+# Every animated real character, on the ground, under the three light kinds:
+# the entry cli_scene_shared_models alone (exit 77 without the folder).
+if [ "$set" = shared ]; then
+  [ -d "$shared" ] || { echo "SKIP: $shared not found: the animated characters cannot be played"; exit 77; }
+  for m in Fox CesiumMan RobotExpressive RiggedFigure; do
+    f="$shared/$m.glb"
+    [ -f "$f" ] || { err "missing $f"; continue; }
+    "$sv" scene "$f" --ground --frames 3 --fps 4 --size "$size" --out "$tmp/$m" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    tail -4 "$tmp/out"
+    [ $rc -eq 0 ] || err "scene $m exited $rc: $(tail -5 "$tmp/out") $(cat "$tmp/err")"
+  done
+  exit $fail
+fi
 
 # The demo scene: its own lights, camera and walk cycle.
 "$sv" scene --size "$size" --frames 4 --json "$tmp/demo.json" --out "$tmp/demo" >"$tmp/out" 2>"$tmp/err"
@@ -40,23 +56,6 @@ done
 for k in 000 001 002; do
   cmp -s "$tmp/t1/frame_$k.png" "$tmp/full/frame_$k.png" || err "frame $k differs with --full"
 done
-
-# Every animated real character, on the ground, under the three light kinds:
-# the entry cli_scene_shared_models alone (exit 77 without the folder).
-if [ "$set" = shared ]; then
-played=0
-[ -d "$shared" ] || { echo "SKIP: $shared not found: the animated characters cannot be played"; exit 77; }
-for m in Fox CesiumMan RobotExpressive RiggedFigure; do
-  f="$shared/$m.glb"
-  [ -f "$f" ] || { err "missing $f"; continue; }
-  "$sv" scene "$f" --ground --frames 3 --fps 4 --size "$size" --out "$tmp/$m" >"$tmp/out" 2>"$tmp/err"
-  rc=$?
-  tail -4 "$tmp/out"
-  [ $rc -eq 0 ] || err "scene $m exited $rc: $(tail -5 "$tmp/out") $(cat "$tmp/err")"
-  played=$((played + 1))
-done
-exit $fail
-fi
 
 # The benchmark's per-frame rows: every figure with its check.
 "$sv" bench --scene --quick --json "$tmp/bench.json" >"$tmp/out" 2>"$tmp/err"
