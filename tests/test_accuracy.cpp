@@ -488,7 +488,7 @@ RawMesh random_mesh(Rng &rng, int triangles, bool nonfinite) {
     return m;
 }
 
-TEST(ExactPredicate, ArrayRoutinesMatchThePredicate) {
+SV_TIERED_TEST(ExactPredicate, ArrayRoutinesMatchThePredicate) {
     Rng rng = svtest::rng_for("ExactPredicate.Arrays");
     SCOPED_TRACE(svtest::seed_trace());
     svtest::IsaLimitLifted lifted;
@@ -613,7 +613,7 @@ TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
     }
 }
 
-TEST(Variants, NegativeCountsWriteNothing) {
+SV_TIERED_TEST(Variants, NegativeCountsWriteNothing) {
     GuardedBuffer f(0, 0);
     const Vec4 l{0, 0, 1, 1};
     sv_calculate_facing_fma(nullptr, -1, &l, f.data());
@@ -778,7 +778,7 @@ std::vector<Tri> adversarial_triangles(Rng &rng, const Vec4 &l, int count) {
     return out;
 }
 
-TEST(Variants, BoundedDifferenceContracts) {
+SV_TIERED_TEST(Variants, BoundedDifferenceContracts) {
     Rng rng = svtest::rng_for("Variants.BoundedDifference");
     SCOPED_TRACE(svtest::seed_trace());
     svtest::IsaLimitLifted lifted;
@@ -985,7 +985,7 @@ TEST(EpsBias, HysteresisDoesNotFlicker) {
 
 // ---- The caller's MXCSR --------------------------------------------------------
 
-TEST(Variants, IndependentOfTheCallersMxcsr) {
+SV_TIERED_TEST(Variants, IndependentOfTheCallersMxcsr) {
     Rng rng = svtest::rng_for("Variants.Mxcsr");
     SCOPED_TRACE(svtest::seed_trace());
     svtest::IsaLimitLifted lifted;

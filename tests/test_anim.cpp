@@ -869,7 +869,7 @@ TEST(AnimSkinning, TableAndDispatch) {
                 sv_isa_level_name());
 }
 
-TEST(AnimSkinning, KernelsMatchTheReferenceBitForBit) {
+SV_TIERED_TEST(AnimSkinning, KernelsMatchTheReferenceBitForBit) {
     svtest::Rng rng(svtest::seed() ^ 0x5c1);
     const std::vector<const sv::SkinningKernel *> kernels = runnable_kernels();
     const int joints = 37;
@@ -928,7 +928,7 @@ double extent(const std::vector<float> &p) {
     return std::max({double(hi[0]) - lo[0], double(hi[1]) - lo[1], double(hi[2]) - lo[2]});
 }
 
-TEST(AnimSharedModels, LoadPoseAndPlay) {
+SV_TIERED_TEST(AnimSharedModels, LoadPoseAndPlay) {
     const std::vector<const sv::SkinningKernel *> kernels = runnable_kernels();
     std::string missing;
     for (const Character &c : kCharacters) {
@@ -1030,7 +1030,7 @@ inline uint64_t ticks() {
     return uint64_t(hi) << 32 | lo;
 }
 
-TEST(AnimSharedModels, SkinningTicksPerVertex) {
+SV_TIERED_TEST(AnimSharedModels, SkinningTicksPerVertex) {
     const std::vector<const sv::SkinningKernel *> kernels = runnable_kernels();
     std::printf("[ ticks    ] skinning, rdtsc ticks per vertex (minimum / median of 201 "
                 "runs, warm cache, joint matrices computed outside the timed region)\n");

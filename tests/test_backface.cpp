@@ -89,16 +89,14 @@ template <class F> Result run(F f, int nt, int nv) {
     return r;
 }
 
-// The block methods this ctest entry checks (svtest::in_this_run).
-const std::vector<const sv::BackfaceBlockVariant *> &runnable_block_variants() {
-    static const std::vector<const sv::BackfaceBlockVariant *> v = [] {
-        std::vector<const sv::BackfaceBlockVariant *> r;
-        for (const sv::BackfaceBlockVariant &b : sv::backface_block_variants()) {
-            if (svtest::in_this_run(b.isa, b.name)) r.push_back(&b);
-        }
-        return r;
-    }();
-    return v;
+// The block methods this ctest entry checks (svtest::in_this_run; asked
+// in each test, which is what marks it as one that loops over variants).
+std::vector<const sv::BackfaceBlockVariant *> runnable_block_variants() {
+    std::vector<const sv::BackfaceBlockVariant *> r;
+    for (const sv::BackfaceBlockVariant &b : sv::backface_block_variants()) {
+        if (svtest::in_this_run(b.isa, b.name)) r.push_back(&b);
+    }
+    return r;
 }
 
 // Every method on one surface and view: the non-compact one against the
@@ -146,7 +144,7 @@ class BackfaceModels : public ::testing::TestWithParam<std::string> {};
 INSTANTIATE_TEST_SUITE_P(ModelSets, BackfaceModels, ::testing::ValuesIn(svtest::model_sets()),
                          [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
 
-TEST_P(BackfaceModels, EveryModelEveryMethodAndTheBound) {
+SV_TIERED_TEST_P(BackfaceModels, EveryModelEveryMethodAndTheBound) {
     Rng rng = svtest::rng_for("Backface.Models");
     SCOPED_TRACE(svtest::seed_trace());
     long decided = 0, uncertain = 0, wrong_in_band = 0;
@@ -204,7 +202,7 @@ TEST_P(BackfaceModels, EveryModelEveryMethodAndTheBound) {
 // block's padding lanes hold would-be front-facing garbage that must not
 // count. The block methods equal the scalar compact one; the non-compact
 // one equals its reference.
-TEST(Backface, EveryCountAndPaddingLanes) {
+SV_TIERED_TEST(Backface, EveryCountAndPaddingLanes) {
     Rng rng = svtest::rng_for("Backface.Counts");
     SCOPED_TRACE(svtest::seed_trace());
     const float specials[] = {0.0f, -0.0f, NAN, INFINITY, -INFINITY, 1e30f, -1e30f, 1e-40f};
@@ -270,7 +268,7 @@ TEST(Backface, EveryCountAndPaddingLanes) {
 
 // The caller's FTZ/DAZ and rounding mode change nothing: subnormal views
 // and normals' products.
-TEST(Backface, CallerMxcsrHasNoEffect) {
+SV_TIERED_TEST(Backface, CallerMxcsrHasNoEffect) {
     Rng rng = svtest::rng_for("Backface.Mxcsr");
     sv::AlignedVector<sv_cull_block4> blocks(64);
     std::vector<sv_cull_triangle16> t16(256);
@@ -303,7 +301,7 @@ TEST(Backface, CallerMxcsrHasNoEffect) {
     EXPECT_LT(n0, 256);
 }
 
-TEST(Backface, BadInput) {
+SV_TIERED_TEST(Backface, BadInput) {
     // More than 65536 vertices: the 16-bit layouts refuse, unless the
     // vertex numbers are dropped (the decision alone).
     std::vector<float> pos;

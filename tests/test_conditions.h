@@ -25,6 +25,8 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <string>
 
 namespace svtest {
@@ -43,6 +45,10 @@ const char *tier_of_this_run();
 // recorded, and the program exits 77 naming it: never a silent pass.
 bool in_this_run(unsigned isa, const char *name);
 
+// Registers a test that loops over a routine's variants (SV_TIERED_TEST);
+// returns true, for a static initializer.
+bool declare_tiered(const char *suite_dot_name);
+
 // Whether this entry is the shared-models one (SV_TEST_SHARED_MODELS=1).
 bool shared_models_run();
 
@@ -52,3 +58,16 @@ bool shared_models_run();
 std::string shared_models_dir();
 
 } // namespace svtest
+
+// A test that loops over a routine's variants (it calls in_this_run, or a
+// helper that does) is declared with these instead of TEST / TEST_P: a tier's
+// entry runs them, over the baseline and that tier's variants, and the
+// tier's parameterised tests, and nothing else (the other tests ran in the
+// baseline entry). A test that calls in_this_run undeclared fails, so none
+// is left out of the tier entries unnoticed.
+#define SV_TIERED_TEST(suite, name)                                                               \
+    static const bool sv_tiered_##suite##_##name = ::svtest::declare_tiered(#suite "." #name);   \
+    TEST(suite, name)
+#define SV_TIERED_TEST_P(suite, name)                                                             \
+    static const bool sv_tiered_##suite##_##name = ::svtest::declare_tiered(#suite "." #name);   \
+    TEST_P(suite, name)

@@ -82,7 +82,7 @@ TEST(Contracts, CountFacingCullRefusesIndicesOutOfRange) {
         << "3 * numTriangles would overflow int";
 }
 
-TEST(Contracts, SilTrianglesCapacityIsExactlySixPerEdge) {
+SV_TIERED_TEST(Contracts, SilTrianglesCapacityIsExactlySixPerEdge) {
     Rng rng = rng_for("Contracts.SilCapacity");
     // every edge a silhouette edge: the output fills the bound exactly
     const int n = 37;
@@ -185,7 +185,7 @@ TEST(Contracts, ShadowVolumeCapacityAndOverflow) {
 // the wrapped count checked no facing byte at all). The bytes are now
 // checked up to numTriangles and facing[numTriangles] apart: the bad byte
 // at 1 is found long before the end of the (nominal) array.
-TEST(Contracts, SilTrianglesAtIntMaxTrianglesDoesNotOverflow) {
+SV_TIERED_TEST(Contracts, SilTrianglesAtIntMaxTrianglesDoesNotOverflow) {
     const svtest::IsaLimitLifted lifted;
     uint8_t facing[4] = {0, 2, 1, 1};
     alignas(16) int out[6];
@@ -199,7 +199,7 @@ TEST(Contracts, SilTrianglesAtIntMaxTrianglesDoesNotOverflow) {
 // Issue 17: facing[numTriangles] must be 1 (dangling edges point at it).
 // One triangle with facing {0, 0} and its three dangling edges used to
 // return 6 indices with status ok: an open volume.
-TEST(Contracts, FacingSentinelMustBeOne) {
+SV_TIERED_TEST(Contracts, FacingSentinelMustBeOne) {
     const svtest::IsaLimitLifted lifted;
     alignas(16) int indices[4] = {0, 1, 2, 0};
     const SilEdge edges[3] = {{0, 1, 0, 2}, {0, 1, 2, 4}, {0, 1, 4, 0}};
@@ -226,7 +226,7 @@ TEST(Contracts, FacingSentinelMustBeOne) {
 // 0..6 only. Four triangles whose vertices all have cull byte 0x80: c_ref
 // culls all four (count 4), sse2_paper none (0). Its checked entry points
 // now refuse such cull bytes; the other variants take all 8 bits.
-TEST(Contracts, Sse2PaperRefusesCullBitSeven) {
+SV_TIERED_TEST(Contracts, Sse2PaperRefusesCullBitSeven) {
     const svtest::IsaLimitLifted lifted;
     alignas(16) int indices[12] = {0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2};
     uint8_t cull[4] = {0x80, 0x80, 0x80, 0x80};

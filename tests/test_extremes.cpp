@@ -303,7 +303,7 @@ std::vector<Vec4> lights_around(float s) {
 
 // ---- Coordinates at the ends of the float range --------------------------------
 
-TEST(Extreme, CoordinatesNearFltMax) {
+SV_TIERED_TEST(Extreme, CoordinatesNearFltMax) {
     for (float s : {FLT_MAX, FLT_MAX / 2, 0x1p126f}) {
         const sv::PreparedSurface o = prepare(octahedron(s));
         std::vector<Vec4> l = lights_around(s);
@@ -328,7 +328,7 @@ TEST(Extreme, CoordinatesNearFltMax) {
     check_everything(t, l, Reference::bigint, "octahedron at 1.5 * 2^127");
 }
 
-TEST(Extreme, CoordinatesNearTheSmallestNormalFloat) {
+SV_TIERED_TEST(Extreme, CoordinatesNearTheSmallestNormalFloat) {
     // Integer meshes scaled by 2^-126 (FLT_MIN): every coordinate normal.
     const sv::PreparedSurface c = prepare(cube(5, FLT_MIN));
     std::vector<Vec4> l;
@@ -344,7 +344,7 @@ TEST(Extreme, CoordinatesNearTheSmallestNormalFloat) {
 // Subnormal coordinates: the predicate, the accuracy variants and their
 // preparation give the same answer with and without FTZ/DAZ; the
 // reference's bytes under FTZ/DAZ stay within its FTZ/DAZ bound.
-TEST(Extreme, SubnormalCoordinatesWithAndWithoutFtzDaz) {
+SV_TIERED_TEST(Extreme, SubnormalCoordinatesWithAndWithoutFtzDaz) {
     const float d = 0x1p-149f;
     const sv::PreparedSurface c = prepare(cube(7, d));
     std::vector<Vec4> l = {{3 * d, 2 * d, 20 * d, 1},  {-5 * d, 3 * d, 3 * d, 1},
@@ -402,7 +402,7 @@ TEST(Extreme, SubnormalCoordinatesWithAndWithoutFtzDaz) {
 
 // ---- Lights where the decision is balanced on an edge ------------------------------
 
-TEST(Extreme, LightExactlyOnATrianglesPlane) {
+SV_TIERED_TEST(Extreme, LightExactlyOnATrianglesPlane) {
     // The cube's face planes (axis-aligned: the reference is exact there)...
     const sv::PreparedSurface c = prepare(cube(4, 1));
     std::vector<Vec4> l = {{1, 1, 4, 1}, {9, -3, 4, 1}, {4, 2, 2, 1}, {0, 2, -7, 1}, {2, 0, 2, 1}};
@@ -440,7 +440,7 @@ TEST(Extreme, LightExactlyOnATrianglesPlane) {
     }
 }
 
-TEST(Extreme, LightAtAVertex) {
+SV_TIERED_TEST(Extreme, LightAtAVertex) {
     const sv::PreparedSurface ch = prepare(character());
     std::vector<Vec4> l;
     for (int v = 0; v < ch.num_vertices(); v += 193) {
@@ -467,7 +467,7 @@ TEST(Extreme, LightAtAVertex) {
                      "cube, light at a corner");
 }
 
-TEST(Extreme, LightAtInfinityAlongAnAxis) {
+SV_TIERED_TEST(Extreme, LightAtInfinityAlongAnAxis) {
     std::vector<Vec4> axes;
     for (int i = 0; i < 6; i++) {
         Vec4 l{0, 0, 0, 0};
@@ -482,7 +482,7 @@ TEST(Extreme, LightAtInfinityAlongAnAxis) {
     check_everything(ch, axes, Reference::bigint, "character, directional along the axes");
 }
 
-TEST(Extreme, LightAtInfinityAlongAFaceNormal) {
+SV_TIERED_TEST(Extreme, LightAtInfinityAlongAFaceNormal) {
     const sv::PreparedSurface ch = prepare(character());
     std::vector<Vec4> l;
     for (int t = 0; t < ch.num_triangles(); t += 331) {
@@ -504,7 +504,7 @@ TEST(Extreme, LightAtInfinityAlongAFaceNormal) {
 
 // ---- Degenerate and non-finite input ------------------------------------------------
 
-TEST(Extreme, ZeroAreaTriangles) {
+SV_TIERED_TEST(Extreme, ZeroAreaTriangles) {
     // A closed tetrahedron whose bottom face is split at the midpoint m of
     // the edge a-b into two triangles, plus the zero-area triangle (a, m, b)
     // and its reverse (together they keep the mesh closed), plus triangles
@@ -535,7 +535,7 @@ TEST(Extreme, ZeroAreaTriangles) {
     }
 }
 
-TEST(Extreme, NanAndInfinitePositions) {
+SV_TIERED_TEST(Extreme, NanAndInfinitePositions) {
     // Preparation refuses them, naming the vertex.
     for (float bad : {kNaN, kInf, -kInf}) {
         Mesh m = cube(1, 1);
@@ -612,7 +612,7 @@ TEST(Extreme, NanAndInfinitePositions) {
     }
 }
 
-TEST(Extreme, NanAndInfiniteLightComponents) {
+SV_TIERED_TEST(Extreme, NanAndInfiniteLightComponents) {
     const sv::PreparedSurface ch = prepare(character());
     std::vector<Vec4> l;
     for (float bad : {kNaN, kInf, -kInf}) {
@@ -632,7 +632,7 @@ TEST(Extreme, NanAndInfiniteLightComponents) {
 
 // ---- Counts at the limits of int -------------------------------------------------
 
-TEST(Extreme, CountsThatWouldOverflowIntAreRejected) {
+SV_TIERED_TEST(Extreme, CountsThatWouldOverflowIntAreRejected) {
     svtest::IsaLimitLifted lifted;
     // Tiny real arrays and huge counts: the checks come before any read, so
     // AddressSanitizer would catch a routine that looked past them.

@@ -172,7 +172,7 @@ void expect_same_volume(const Mesh &m, const Vec4 &light, const Plane *lightPlan
     }
 }
 
-TEST(ForLight, SameVolumeAsTheReferenceAtEveryIsaLevelAndSize) {
+SV_TIERED_TEST(ForLight, SameVolumeAsTheReferenceAtEveryIsaLevelAndSize) {
     IsaLimitGuard guard;
     std::mt19937 rng(20261203);
     std::vector<int> sizes;
@@ -218,7 +218,7 @@ TEST(ForLight, MeasuredPlanGivesTheSameVolume) {
     }
 }
 
-TEST(ForLight, FusedFacingCountMatchesFacingThenCount) {
+SV_TIERED_TEST(ForLight, FusedFacingCountMatchesFacingThenCount) {
     int nf = 0;
     const sv_facing_variant *fv = sv_facing_variants(&nf);
     std::mt19937 rng(99);
@@ -259,7 +259,7 @@ template <class T> T *off16(std::vector<T> &buf) {
 // stand-in must take over), planes and positions by one float (every
 // facing and cull kernel loads them unaligned). At every ISA level, with
 // and without a light volume.
-TEST(ForLight, MisalignedInputArraysGiveTheSameVolume) {
+SV_TIERED_TEST(ForLight, MisalignedInputArraysGiveTheSameVolume) {
     IsaLimitGuard guard;
     std::mt19937 rng(1515);
     std::vector<Mesh> meshes;
@@ -301,7 +301,7 @@ TEST(ForLight, MisalignedInputArraysGiveTheSameVolume) {
 // before the fused kernels): CalculateFacing, then the plan's CountFacing,
 // stood in for when the facing bytes are not aligned as it needs
 // (sse2_paper's movdqa at the sse2 level).
-TEST(ForLight, PlanWithoutTheFusedCountGivesTheSameVolume) {
+SV_TIERED_TEST(ForLight, PlanWithoutTheFusedCountGivesTheSameVolume) {
     IsaLimitGuard guard;
     std::mt19937 rng(2626);
     std::vector<Mesh> meshes;

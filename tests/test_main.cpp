@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,21 @@ constexpr int kSkipped = 77;
 
 // Calls of in_this_run() that let a variant of the entry's tier run.
 int tier_variants_run = 0;
+
+// The tests declared with SV_TIERED_TEST(_P), as Suite.Name.
+std::set<std::string> &tiered_tests() {
+    static std::set<std::string> s;
+    return s;
+}
+
+// A test's Suite.Name: without the instantiation's prefix and the
+// parameter's suffix.
+std::string suite_dot_name(const char *suite, const char *name) {
+    std::string s = suite, n = name;
+    if (s.rfind('/') != std::string::npos) s = s.substr(s.rfind('/') + 1);
+    if (n.find('/') != std::string::npos) n = n.substr(0, n.find('/'));
+    return s + "." + n;
+}
 
 std::vector<std::string> &variants_not_run() {
     static std::vector<std::string> v;
@@ -85,6 +101,9 @@ void narrow_filter_to_this_entry() {
                 // Its tier's entry only; in an SV_ISA-limited entry, only
                 // the variants dispatch may run there.
                 keep = pv.tier == tier && (!limited || (pv.level & allowed) == pv.level);
+            } else if (keep && !tier.empty()) {
+                // A tier's entry: the tests that loop over variants alone.
+                keep = tiered_tests().count(suite_dot_name(s->name(), t->name())) != 0;
             }
             if (!keep) out += ":" + full;
         }
@@ -121,6 +140,11 @@ std::string entry_condition_unmet() {
 
 } // namespace
 
+bool declare_tiered(const char *suite_dot_name) {
+    tiered_tests().insert(suite_dot_name);
+    return true;
+}
+
 const char *isa_tier(unsigned isa) {
     if (isa & (SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2)) return "avx512vbmi";
     if (isa & SV_ISA_AVX512) return "avx512";
@@ -134,6 +158,18 @@ const char *tier_of_this_run() {
 }
 
 bool in_this_run(unsigned isa, const char *name) {
+    // A loop over variants outside a test declared SV_TIERED_TEST would
+    // never run in the tier entries: say so (a test of one variant, named
+    // by it, is tier-filtered by its name instead).
+    const ::testing::TestInfo *cur = ::testing::UnitTest::GetInstance()->current_test_info();
+    ParamVariant own;
+    if (cur && !param_variant(cur->name(), own) &&
+        !tiered_tests().count(suite_dot_name(cur->test_suite_name(), cur->name()))) {
+        static std::set<std::string> told;
+        if (told.insert(suite_dot_name(cur->test_suite_name(), cur->name())).second)
+            ADD_FAILURE() << "this test loops over variants (in_this_run): declare it with SV_TIERED_TEST "
+                             "or SV_TIERED_TEST_P (tests/test_conditions.h) so that the tier entries run it";
+    }
     const char *tier = isa_tier(isa);
     if (*tier && std::strcmp(tier, tier_of_this_run()) != 0) return false;
     if ((isa & sv_cpu_isa()) == isa) {

@@ -262,7 +262,7 @@ void check_closed(const sv::PreparedSurface &s, const char *name, int lights = 2
 
 // ---- The meshes --------------------------------------------------------
 
-TEST(MeshPrep, CubeSplitAtSeamsWeldsTo8) {
+SV_TIERED_TEST(MeshPrep, CubeSplitAtSeamsWeldsTo8) {
     Mesh m = cube24();
     sv::PreparedSurface s = prep(m);
     expect_counts(s.report, {8, 12, 0, 18, 0, 18, 0, 0, 18, 0});
@@ -290,14 +290,14 @@ TEST(MeshPrep, CubeSplitAtSeamsWeldsTo8) {
     check_closed(s, "MeshPrep.CubeSplitAtSeamsWeldsTo8");
 }
 
-TEST(MeshPrep, Tetrahedron) {
+SV_TIERED_TEST(MeshPrep, Tetrahedron) {
     sv::PreparedSurface s = prep(tetrahedron());
     expect_counts(s.report, {4, 4, 0, 6, 0, 6, 0, 0, 6, 0});
     check_structure(s);
     check_closed(s, "MeshPrep.Tetrahedron");
 }
 
-TEST(MeshPrep, OpenQuadHasDanglingEdges) {
+SV_TIERED_TEST(MeshPrep, OpenQuadHasDanglingEdges) {
     Mesh m;
     uint32_t a = m.v(0, 0, 0), b = m.v(1, 0, 0), c = m.v(1, 1, 0), d = m.v(0, 1, 0);
     m.tri(a, b, c);
@@ -312,7 +312,7 @@ TEST(MeshPrep, OpenQuadHasDanglingEdges) {
     check_closed(s, "MeshPrep.OpenQuadHasDanglingEdges");
 }
 
-TEST(MeshPrep, ThreeWayEdge) {
+SV_TIERED_TEST(MeshPrep, ThreeWayEdge) {
     // Three triangles fan off edge 0-1: 0->1, 1->0, 0->1. One pair, one
     // dangling use, and the six outer edges dangling.
     Mesh m;
@@ -339,7 +339,7 @@ TEST(MeshPrep, ThreeWayEdge) {
     check_closed(s, "MeshPrep.ThreeWayEdge");
 }
 
-TEST(MeshPrep, FourWayEdges) {
+SV_TIERED_TEST(MeshPrep, FourWayEdges) {
     // Balanced: 0->1, 1->0, 0->1, 1->0: two pairs.
     Mesh m;
     uint32_t v0 = m.v(0, 0, 0), v1 = m.v(1, 0, 0);
@@ -361,7 +361,7 @@ TEST(MeshPrep, FourWayEdges) {
     check_closed(t, "MeshPrep.FourWayEdges.same_direction");
 }
 
-TEST(MeshPrep, TwoTrianglesSharingAnEdgeInTheSameDirection) {
+SV_TIERED_TEST(MeshPrep, TwoTrianglesSharingAnEdgeInTheSameDirection) {
     // Inconsistent winding: both use 0->1. Neither pairs: both dangling.
     Mesh m;
     uint32_t a = m.v(0, 0, 0), b = m.v(1, 0, 0), c = m.v(1, 1, 0), d = m.v(1, -1, 0);
@@ -382,7 +382,7 @@ TEST(MeshPrep, TwoTrianglesSharingAnEdgeInTheSameDirection) {
     check_closed(fs, "MeshPrep.TwoTrianglesSharingAnEdgeInTheSameDirection.flipped_face");
 }
 
-TEST(MeshPrep, DegenerateTrianglesAreDroppedAndCounted) {
+SV_TIERED_TEST(MeshPrep, DegenerateTrianglesAreDroppedAndCounted) {
     Mesh m = tetrahedron();
     uint32_t dup = m.v(1, 0, 0); // same position as vertex 1
     m.tri(0, 0, 1);   // two equal indices
@@ -405,7 +405,7 @@ TEST(MeshPrep, DegenerateTrianglesAreDroppedAndCounted) {
     EXPECT_EQ(t.triangle_source, (std::vector<int>{1}));
 }
 
-TEST(MeshPrep, ZeroAreaSliverKeepsTheMeshClosed) {
+SV_TIERED_TEST(MeshPrep, ZeroAreaSliverKeepsTheMeshClosed) {
     // Tetrahedron A B C D with edge A-B split by M on ONE side only: the
     // other side is closed by the zero-area triangle (A, M, B). It is kept
     // (dropping it would open the mesh), its plane is (0,0,0,0), it never
@@ -438,7 +438,7 @@ TEST(MeshPrep, ZeroAreaSliverKeepsTheMeshClosed) {
     EXPECT_EQ(q.a, 0.0f);
 }
 
-TEST(MeshPrep, NegativeZeroWeldsWithPositiveZero) {
+SV_TIERED_TEST(MeshPrep, NegativeZeroWeldsWithPositiveZero) {
     Mesh m;
     // The -0.0 copy of b comes first, so it leads its group: stored as +0.0.
     uint32_t b2 = m.v(1, -0.0f, 0);
@@ -462,7 +462,7 @@ TEST(MeshPrep, NegativeZeroWeldsWithPositiveZero) {
     EXPECT_EQ(t.report.welded_vertices, 2);
 }
 
-TEST(MeshPrep, TorusBeyond16BitIndices) {
+SV_TIERED_TEST(MeshPrep, TorusBeyond16BitIndices) {
     Mesh m = torus(300, 300); // 301 * 301 = 90601 input vertices, 180000 triangles
     sv::PreparedSurface s = prep(m);
     expect_counts(s.report, {90000, 180000, 0, 270000, 0, 270000, 0, 0, 270000, 0});
@@ -471,7 +471,7 @@ TEST(MeshPrep, TorusBeyond16BitIndices) {
     check_closed(s, "MeshPrep.TorusBeyond16BitIndices", 4);
 }
 
-TEST(MeshPrep, RandomSoupsOfInconsistentNonManifoldTriangles) {
+SV_TIERED_TEST(MeshPrep, RandomSoupsOfInconsistentNonManifoldTriangles) {
     // Random triangles over few vertices, random winding: every edge kind at
     // once (3-, 4-, 5-way, same direction, boundary). The rule must still
     // give closed volumes.

@@ -308,7 +308,7 @@ TEST(Planes, ReferenceAgreesWithTrianglePlane) {
     EXPECT_GT(compared, 1000);
 }
 
-TEST(Planes, EveryTailEveryScale) {
+SV_TIERED_TEST(Planes, EveryTailEveryScale) {
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("EveryTailEveryScale");
     const auto variants = runnable();
@@ -330,7 +330,7 @@ TEST(Planes, EveryTailEveryScale) {
     }
 }
 
-TEST(Planes, FlushToZeroToo) {
+SV_TIERED_TEST(Planes, FlushToZeroToo) {
     // FTZ/DAZ change the results of subnormal inputs; both sides alike.
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("FlushToZeroToo");
@@ -346,7 +346,7 @@ TEST(Planes, FlushToZeroToo) {
     _mm_setcsr(saved);
 }
 
-TEST(Planes, NegativeCountsWriteNothing) {
+SV_TIERED_TEST(Planes, NegativeCountsWriteNothing) {
     const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const int idx[3] = {0, 1, 2};
     const Vec4 l{0, 0, 1, 1};
@@ -371,7 +371,7 @@ TEST(Planes, NegativeCountsWriteNothing) {
 // degenerate, or degenerate in one lane position only, over several
 // blocks of 256 triangles (every lane of the SIMD step rewritten by the
 // scalar reference).
-TEST(Planes, VertexZeroAtPageStartAndDegenerateLanes) {
+SV_TIERED_TEST(Planes, VertexZeroAtPageStartAndDegenerateLanes) {
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("VertexZeroAtPageStart");
     const auto variants = runnable();
@@ -409,7 +409,7 @@ class PlanesModels : public ::testing::TestWithParam<std::string> {};
 INSTANTIATE_TEST_SUITE_P(ModelSets, PlanesModels, ::testing::Values("bundled", "SharedModels"),
                          [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
 
-TEST_P(PlanesModels, RealMeshes) {
+SV_TIERED_TEST_P(PlanesModels, RealMeshes) {
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("RealMeshes");
     const auto variants = runnable();

@@ -79,7 +79,7 @@ std::vector<uint8_t> closed_mesh_sum(const Mesh &m, const RowKernels *k, int w, 
     return std::vector<uint8_t>(t.stencil.begin(), t.stencil.end());
 }
 
-TEST(Raster, ClosedMeshSumsToZeroAtEveryPixel) {
+SV_TIERED_TEST(Raster, ClosedMeshSumsToZeroAtEveryPixel) {
     /* Every pixel centre covered by the character's front faces is covered
      * as often by its back faces: no pixel is lost or counted twice on any
      * of its 2016 shared edges. Views from all around, at sizes that put
@@ -105,7 +105,7 @@ TEST(Raster, ClosedMeshSumsToZeroAtEveryPixel) {
     }
 }
 
-TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
+SV_TIERED_TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
     /* Quads split along a diagonal that passes exactly through pixel
      * centres (vertices at half-integer positions), in both windings and
      * all four diagonal directions, and axis-aligned edges on centres: each
@@ -151,7 +151,7 @@ TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
     }
 }
 
-TEST(Raster, BottomLeftRuleAsLlvmpipe) {
+SV_TIERED_TEST(Raster, BottomLeftRuleAsLlvmpipe) {
     /* A right triangle with corners on pixel centres (2.5, 2.5), (10.5,
      * 2.5), (2.5, 10.5): its left edge (x = 2.5) owns its centres; its top
      * edge (y = 2.5, the triangle below it) and its hypotenuse (x + y =
@@ -214,7 +214,7 @@ TEST(Raster, FrontIsCounterClockwiseWithYUp) {
     EXPECT_EQ(t.stencil[3 * w + 2], 255);
 }
 
-TEST(Raster, StencilWrapsAround256) {
+SV_TIERED_TEST(Raster, StencilWrapsAround256) {
     const int w = 8, h = 8;
     for (const RowKernels *k : runnable_kernels()) {
         const Rasterizer r(k);
@@ -231,7 +231,7 @@ TEST(Raster, StencilWrapsAround256) {
     }
 }
 
-TEST(Raster, ZPassAndZFailAgainstTheDepth) {
+SV_TIERED_TEST(Raster, ZPassAndZFailAgainstTheDepth) {
     /* A receiver at depth 0.5; a triangle in front counts in z-pass only,
      * one behind in z-fail only; a triangle at exactly the receiver's
      * depth fails LESS, so it counts in z-fail. */
@@ -259,7 +259,7 @@ TEST(Raster, ZPassAndZFailAgainstTheDepth) {
     }
 }
 
-TEST(Raster, VertexAtInfinityLandsAtTheVanishingPoint) {
+SV_TIERED_TEST(Raster, VertexAtInfinityLandsAtTheVanishingPoint) {
     /* The extruded vertices have w = 0: a direction. Straight ahead
      * (0, 0, -1, 0) in eye space projects to the screen's centre at depth
      * 1 - 2^-21 with the infinite projection. */
@@ -285,7 +285,7 @@ TEST(Raster, VertexAtInfinityLandsAtTheVanishingPoint) {
     }
 }
 
-TEST(Raster, NearPlaneClipsAVolumeWatertight) {
+SV_TIERED_TEST(Raster, NearPlaneClipsAVolumeWatertight) {
     /* The character from so close that the near plane cuts it: the part in
      * front of the near plane is gone, so z-pass sums are no longer zero
      * where the cut is; but pixels whose whole column lies behind the near
@@ -303,7 +303,7 @@ TEST(Raster, NearPlaneClipsAVolumeWatertight) {
     }
 }
 
-TEST(Raster, DepthDoesNotDependOnCornerOrder) {
+SV_TIERED_TEST(Raster, DepthDoesNotDependOnCornerOrder) {
     /* The same triangle drawn in all six corner orders (a near cap is the
      * triangle reversed), also cut by the near plane and the sides, gives
      * bitwise the same depths: a receiver never fights its own cap. */
@@ -347,7 +347,7 @@ TEST(Raster, DepthDoesNotDependOnCornerOrder) {
     }
 }
 
-TEST(Raster, SimdKernelsMatchTheCBitForBit) {
+SV_TIERED_TEST(Raster, SimdKernelsMatchTheCBitForBit) {
     /* Random triangles of every shape (slivers, huge, cut by the near and
      * side planes, vertices at w = 0), drawn in all three passes over a
      * random depth buffer by each kernel: the buffers and the counters are
@@ -402,7 +402,7 @@ TEST(Raster, SimdKernelsMatchTheCBitForBit) {
     }
 }
 
-TEST(Raster, KernelsWriteNothingOutsideTheSpan) {
+SV_TIERED_TEST(Raster, KernelsWriteNothingOutsideTheSpan) {
     /* One row span at every start and end inside a row of 40 pixels, over
      * a buffer whose other pixels hold a pattern: every kernel changes
      * only pixels of [x_begin, x_end), and matches the C there. */

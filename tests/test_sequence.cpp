@@ -88,7 +88,7 @@ TEST(Sequence, OnlyTheCharacterMovesAndTimesClamp) {
     EXPECT_EQ(seq.scene().surfaces[(std::size_t)ch].prepared.positions, before);
 }
 
-TEST(Sequence, StaticVolumesAreReusedAndKernelsAgree) {
+SV_TIERED_TEST(Sequence, StaticVolumesAreReusedAndKernelsAgree) {
     render::RenderOptions o;
     o.width = kW, o.height = kH;
     render::VolumeCache cache;

@@ -143,7 +143,7 @@ class SilhouetteModels : public ::testing::TestWithParam<std::string> {};
 INSTANTIATE_TEST_SUITE_P(ModelSets, SilhouetteModels, ::testing::ValuesIn(svtest::model_sets()),
                          [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
 
-TEST_P(SilhouetteModels, EveryModelAndLightMatchesTheSilEdges) {
+SV_TIERED_TEST_P(SilhouetteModels, EveryModelAndLightMatchesTheSilEdges) {
     Rng rng = svtest::rng_for("SilhouetteFinders.Models");
     SCOPED_TRACE(svtest::seed_trace());
     int surfaces = 0, lights = 0;
@@ -167,7 +167,7 @@ TEST_P(SilhouetteModels, EveryModelAndLightMatchesTheSilEdges) {
     std::printf("[  NOTE    ] %d surfaces, %d (surface, light) pairs\n", surfaces, lights);
 }
 
-TEST_P(SilhouetteModels, QuadraticAndLinearTablesAgreeWithTheSilEdges) {
+SV_TIERED_TEST_P(SilhouetteModels, QuadraticAndLinearTablesAgreeWithTheSilEdges) {
     for (const std::string &path : svtest::seed_model_paths(GetParam())) {
         for (const sv::PreparedSurface &s : svtest::prepared_surfaces(path)) {
             SCOPED_TRACE(path);
@@ -205,7 +205,7 @@ TEST_P(SilhouetteModels, QuadraticAndLinearTablesAgreeWithTheSilEdges) {
 // A soup over few vertices: boundary edges, edges of three and more uses,
 // edges used twice in one direction; every count from 0 (loop tails of the
 // 8- and 16-triangle SIMD steps).
-TEST(SilhouetteFinders, RandomSoupsWithNonManifoldEdges) {
+SV_TIERED_TEST(SilhouetteFinders, RandomSoupsWithNonManifoldEdges) {
     Rng rng = svtest::rng_for("SilhouetteFinders.Soups");
     SCOPED_TRACE(svtest::seed_trace());
     int differ = 0, overflowed = 0;
@@ -310,7 +310,7 @@ TEST(SilhouetteFinders, HashOverflowIsReportedNeverWrong) {
     }
 }
 
-TEST(SilhouetteFinders, BadSetUpThrows) {
+SV_TIERED_TEST(SilhouetteFinders, BadSetUpThrows) {
     sv::SilhouetteMesh m;
     m.num_vertices = 65536;
     EXPECT_THROW(sv::make_hash_finder(m, 16, 8, false), sv::SilhouetteError);
