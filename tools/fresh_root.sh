@@ -85,10 +85,15 @@ if [ "${1:-}" = --in-namespace ]; then
   # A CI runner's environment: no terminal (stdin from /dev/null, output to
   # a pipe), root, the default PATH, CI set; nothing of this shell's
   # environment leaks in (env -i).
-  status=0
+  # In the background and waited for: bash runs a trap only once the
+  # foreground command ends, and a signal (the outer part forwards its
+  # own) must end the job at once, through the EXIT trap's cleanup.
   env -i HOME=/root USER=root LOGNAME=root SHELL=/bin/bash CI=true \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    chroot "$root" /bin/bash -lc "$inner_cmd" </dev/null 2>&1 || status=$?
+    chroot "$root" /bin/bash -lc "$inner_cmd" </dev/null 2>&1 &
+  trap 'exit 129' HUP; trap 'exit 130' INT; trap 'exit 143' TERM
+  status=0
+  wait $! || status=$?
   end_leftovers
   unmount_all || exit 3
   trap - EXIT
@@ -178,6 +183,7 @@ remove_root() {
   fi
   rm -rf --one-file-system -- "$1"
 }
+rm -f "$fresh_dir"/.output-*
 for old in "$fresh_dir"/root-*; do
   [ -d "$old" ] || continue
   [ "${FRESH_KEEP:-0}" = 1 ] && continue
@@ -241,17 +247,38 @@ stamp_lines() {
   done
 }
 t0=$SECONDS
-status=0
-# With pipefail the pipeline's status is the job's (stamp_lines ends 0).
+# The job and the log writer in the background, joined by a FIFO, so that
+# an interrupt (Ctrl-C, kill) reaches this shell's trap during the wait and
+# is passed on to the namespace's shell, which ends the job's processes and
+# unmounts before exiting; the root is then removed below as usual.
+fifo="$fresh_dir/.output-$stamp"
+mkfifo "$fifo"
+stamp_lines <"$fifo" >"$log" &
+stamp_pid=$!
 unshare --mount --propagation private -- "$repo/tools/fresh_root.sh" --in-namespace "$root" "$shared" "$inner" \
-  | stamp_lines >"$log" || status=$?
+  >"$fifo" 2>&1 </dev/null &
+job_pid=$!
+interrupted=""
+# shellcheck disable=SC2317  # called by the traps below
+forward() { interrupted="$1"; say "interrupted ($1): ending the job"; kill -s TERM "$job_pid" 2>/dev/null || true; }
+trap 'forward HUP' HUP; trap 'forward INT' INT; trap 'forward TERM' TERM
+status=0
+# wait returns early (above 128) when a trap ran; wait again while the job
+# is still cleaning up.
+until wait "$job_pid"; do
+  status=$?
+  kill -0 "$job_pid" 2>/dev/null || break
+done
+trap - HUP INT TERM
+wait "$stamp_pid" || true
+rm -f "$fifo"
 inside=$((SECONDS - t0))
 
 # The phases inside, from the log's timestamps: apt-get (the installer's
 # announcement to its last dpkg line), each CMake configure (hidden by
 # run.sh: the gap before its build's first ninja line), each build (to
 # ctest's start) and each ctest run (to its "Total Test time").
-awk '
+inside_phases="$(awk '
   { t = $1 + 0; sub(/^ *[0-9]+ /, ""); line = $0 }
   line ~ /^tools\/run.sh: installing / && apt0 == "" { apt0 = t }
   apt0 != "" && nb == 0 && line ~ /^(Setting up|Processing triggers for|Unpacking|Selecting previously) / { aptend = t }
@@ -261,20 +288,15 @@ awk '
   line ~ /Total Test time/ { ce[nc] = t }
   { last = t }
   END {
-    if (apt0 != "") printf "%-40s %6d s\n", "apt-get update + install", (aptend != "" ? aptend : last) - apt0
+    if (apt0 != "") printf "%-38s %6d s\n", "apt-get update + install", (aptend != "" ? aptend : last) - apt0
     for (b = 1; b <= nb; b++) {
-      printf "%-40s %6d s\n", "configure " b " (cmake, output hidden)", bs[b] - bprev[b]
-      printf "%-40s %6d s\n", "build " b, be[b] - bs[b]
+      printf "%-38s %6d s\n", "configure " b " (cmake, output hidden)", bs[b] - bprev[b]
+      printf "%-38s %6d s\n", "build " b, be[b] - bs[b]
       for (c = 1; c <= nc; c++) if (cb[c] == b)
-        printf "%-40s %6d s%s\n", "ctest run " c " (build " b ")", (ce[c] != "" ? ce[c] : last) - cs[c], (ce[c] != "" ? "" : " (did not finish)")
+        printf "%-38s %6d s%s\n", "ctest run " c " (build " b ")", (ce[c] != "" ? ce[c] : last) - cs[c], (ce[c] != "" ? "" : " (did not finish)")
     }
-  }' "$log" >"$log.phases"
+  }' "$log")"
 
-echo
-echo "== tools/run.sh fresh $job: phases (seconds) =="
-printf '%s\n' "${phase_times[@]}"
-sed 's/^/  /' "$log.phases"
-printf '%-40s %6d s\n' "the job in the root, in all" "$inside"
 # Each ctest run's summary: its pass line, its time, and the entries that
 # failed or did not run (a skip is such an entry).
 echo
@@ -291,13 +313,21 @@ if ! grep -q '^ *[0-9]* Test project ' "$log"; then
   echo "(no ctest run; the end of the log:)"
   tail -15 "$log"
 fi
-echo
-printf '%-40s %6d s\n' "tools/run.sh fresh $job, in all" $((SECONDS - t_all))
-echo "log: $log (exit $status)"
 
+t0=$SECONDS
 if [ "${FRESH_KEEP:-0}" = 1 ]; then
   say "kept the root $root (FRESH_KEEP=1): nothing is mounted in it"
 else
   remove_root "$root" || status=3
 fi
+removed=$((SECONDS - t0))
+
+echo
+echo "== tools/run.sh fresh $job: phases (seconds) =="
+printf '%s\n' "${phase_times[@]}"
+[ -z "$inside_phases" ] || printf '%s\n' "$inside_phases" | sed 's/^/  /'
+printf '%-40s %6d s\n' "the job in the root, in all" "$inside"
+[ "${FRESH_KEEP:-0}" = 1 ] || printf '%-40s %6d s\n' "remove the root" "$removed"
+printf '%-40s %6d s\n' "tools/run.sh fresh $job, in all" $((SECONDS - t_all))
+echo "log: $log (exit $status${interrupted:+, interrupted by SIG$interrupted})"
 exit "$status"
