@@ -303,12 +303,13 @@ echo
 echo "== ctest summaries =="
 awk '
   { sub(/^ *[0-9]+ /, "") }
-  /^Test project / { n++; print "-- ctest run " n ": " $0; list = 0; next }
+  /^Test project / { if (n && !done) print "(did not finish)"; n++; done = 0; print "-- ctest run " n ": " $0; list = 0; next }
   /tests passed, [0-9]+ tests? failed out of/ { print; next }
-  /^Total Test time/ { print; next }
+  /^Total Test time/ { print; done = 1; next }
   /^The following tests (did not run|FAILED):/ { print; list = 1; next }
   list && /^[[:space:]]+[0-9]+ - / { print; next }
-  { list = 0 }' "$log"
+  { list = 0 }
+  END { if (n && !done) print "(did not finish)" }' "$log"
 if ! grep -q '^ *[0-9]* Test project ' "$log"; then
   echo "(no ctest run; the end of the log:)"
   tail -15 "$log"
