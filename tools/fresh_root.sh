@@ -73,8 +73,12 @@ if [ "${1:-}" = --in-namespace ]; then
     done
   }
   trap 'end_leftovers; unmount_all' EXIT
-  # Binds made recursive and slave: nothing mounted or unmounted in the root
-  # propagates back to the host's /dev or /sys.
+  # A signal (the outer part forwards its own) exits through the EXIT
+  # trap's cleanup; set before anything is mounted or started.
+  trap 'exit 129' HUP; trap 'exit 130' INT; trap 'exit 143' TERM
+  # /dev and /sys with what is mounted under them (/dev/pts, /dev/shm),
+  # made slaves: the namespace is private already, and nothing mounted or
+  # unmounted in the root could propagate back to the host's even without it.
   mount -t proc proc "$root/proc"; mounted+=("$root/proc")
   mount --rbind /dev "$root/dev"; mount --make-rslave "$root/dev"; mounted+=("$root/dev")
   mount --rbind /sys "$root/sys"; mount --make-rslave "$root/sys"; mounted+=("$root/sys")
@@ -84,14 +88,12 @@ if [ "${1:-}" = --in-namespace ]; then
   fi
   # A CI runner's environment: no terminal (stdin from /dev/null, output to
   # a pipe), root, the default PATH, CI set; nothing of this shell's
-  # environment leaks in (env -i).
-  # In the background and waited for: bash runs a trap only once the
-  # foreground command ends, and a signal (the outer part forwards its
-  # own) must end the job at once, through the EXIT trap's cleanup.
+  # environment leaks in (env -i). In the background and waited for: bash
+  # runs a trap only once the foreground command ends, and a signal must
+  # end the job at once.
   env -i HOME=/root USER=root LOGNAME=root SHELL=/bin/bash CI=true \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
     chroot "$root" /bin/bash -lc "$inner_cmd" </dev/null 2>&1 &
-  trap 'exit 129' HUP; trap 'exit 130' INT; trap 'exit 143' TERM
   status=0
   wait $! || status=$?
   end_leftovers
@@ -101,6 +103,9 @@ if [ "${1:-}" = --in-namespace ]; then
 fi
 
 # ---- outside ----
+# One block, which bash reads whole before running it: a checkout or an
+# edit of this file during a long run cannot change what the run does.
+{
 cd "$(dirname "$0")/.."
 repo="$PWD"
 
@@ -120,6 +125,8 @@ fresh_dir="${FRESH_DIR:-build-fresh}"
 mkdir -p "$fresh_dir"
 fresh_dir="$(cd "$fresh_dir" && pwd)"
 case "$fresh_dir" in /|/dev|/dev/*|/proc|/proc/*|/sys|/sys/*) die "FRESH_DIR=$fresh_dir is not a place for roots" ;; esac
+# The job inherits the lock: if this script is killed outright (SIGKILL),
+# its job, still running in the root, keeps it until it ends.
 exec 9>"$fresh_dir/lock"
 flock -n 9 || die "another fresh run holds $fresh_dir/lock"
 
@@ -332,3 +339,4 @@ printf '%-40s %6d s\n' "the job in the root, in all" "$inside"
 printf '%-40s %6d s\n' "tools/run.sh fresh $job, in all" $((SECONDS - t_all))
 echo "log: $log (exit $status${interrupted:+, interrupted by SIG$interrupted})"
 exit "$status"
+}
