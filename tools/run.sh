@@ -10,6 +10,10 @@
 #                                                  under wine64 and for 32-bit x86
 #                                                  natively and under qemu-i386
 #                                                  (docs/platforms.md)
+#   tools/run.sh fresh [JOB [ARGS]]                JOB (default: test) in a clean
+#                                                  minimal Debian root made with
+#                                                  mmdebstrap (tools/fresh_root.sh,
+#                                                  docs/testing.md); root only, long
 #
 # BUILD_DIR (default: build) chooses the build directory; FUZZ_BUILD_DIR
 # (default: build-fuzz) the fuzz build's (clang, SV_FUZZ=ON, only the fuzz
@@ -22,17 +26,18 @@ cd "$(dirname "$0")/.."
 job="${1:-}"
 [ $# -gt 0 ] && shift
 case "$job" in
-  bench|test|fuzz|cross) ;;
-  *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS] | tools/run.sh cross" >&2; exit 2 ;;
+  bench|test|fuzz|cross|fresh) ;;
+  *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS] | tools/run.sh cross | tools/run.sh fresh [JOB [ARGS]]" >&2; exit 2 ;;
 esac
 
 # The Debian packages this job needs: tools/packages.txt, the one list
 # (each line names the jobs it serves; every job builds, so every job
-# takes build's lines too).
+# takes build's lines too, except fresh: it builds nothing on this machine,
+# the job it runs installs its own packages inside the clean root).
 packages_for() {
   awk -v job="$1" '!/^#/ && NF >= 2 {
       n = split($2, jobs, ",")
-      for (i = 1; i <= n; i++) if (jobs[i] == "build" || jobs[i] == job) { print $1; break }
+      for (i = 1; i <= n; i++) if ((jobs[i] == "build" && job != "fresh") || jobs[i] == job) { print $1; break }
     }' tools/packages.txt
 }
 mapfile -t packages < <(packages_for "$job")
@@ -46,6 +51,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+if [ "$job" = fresh ]; then
+  exec tools/fresh_root.sh "$@"
 fi
 
 launcher=()
