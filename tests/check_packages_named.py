@@ -24,8 +24,10 @@ import fnmatch
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 
 
 def read_packages(path):
@@ -138,8 +140,17 @@ def main():
     cross_job = {p for p, (jobs, _) in packages.items() if jobs & {"build", "cross"}}
     problems = []
 
-    listing = subprocess.run(["ctest", "--show-only=json-v1"], cwd=build_dir, check=True,
-                             capture_output=True, text=True).stdout
+    # ctest lists the entries from a copy of the build's CTestTestfile.cmake
+    # files: run in the build folder itself, it would truncate the
+    # Testing/Temporary/LastTest.log of the ctest run this check is part of.
+    with tempfile.TemporaryDirectory() as mirror:
+        for dirpath, _, filenames in os.walk(build_dir):
+            if "CTestTestfile.cmake" in filenames:
+                dest = os.path.join(mirror, os.path.relpath(dirpath, build_dir))
+                os.makedirs(dest, exist_ok=True)
+                shutil.copy(os.path.join(dirpath, "CTestTestfile.cmake"), dest)
+        listing = subprocess.run(["ctest", "--show-only=json-v1"], cwd=mirror, check=True,
+                                 capture_output=True, text=True).stdout
     tests = json.loads(listing)["tests"]
     if not tests:
         problems.append(f"ctest in {build_dir} lists no test")
