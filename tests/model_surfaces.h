@@ -12,14 +12,10 @@
 
 namespace svtest {
 
-// The models of one set: "bundled" (the bundled character) or
-// "SharedModels" (every .glb of ../shared/models, sorted). The seed tests
-// are instantiated once per set (ModelSets/...: the SharedModels instance
-// runs in the shared-models ctest entry, tests/test_conditions.h).
+// The models of one set of svtest::model_sets() (tests/test_conditions.h):
+// "bundled" (the bundled character) or "SharedModels" (every .glb of
+// ../shared/models, sorted).
 std::vector<std::string> seed_model_paths(const std::string &set);
-
-// The two sets, for INSTANTIATE_TEST_SUITE_P.
-inline std::vector<std::string> model_sets() { return {"bundled", "SharedModels"}; }
 
 // The surfaces of a model, each prepared on its own.
 std::vector<sv::PreparedSurface> prepared_surfaces(const std::string &path);

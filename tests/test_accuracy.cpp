@@ -550,7 +550,7 @@ float plane_value(Rng &rng, bool extremes) {
 // where the CPU lacks AVX2.
 class SimdTwins : public ::testing::TestWithParam<std::string> {};
 INSTANTIATE_TEST_SUITE_P(Tier, SimdTwins, ::testing::Values("avx2"),
-                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+                         svtest::param_name);
 
 TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
     Rng rng = svtest::rng_for("Variants.SimdTwins");

@@ -45,9 +45,6 @@
 #include <string>
 #include <vector>
 
-#ifndef SV_SHARED_MODELS_DIR
-#error "SV_SHARED_MODELS_DIR must name the shared models folder"
-#endif
 
 namespace {
 

@@ -142,7 +142,7 @@ Vec4 random_view(Rng &rng, const Bounds &b) {
 // Once per model set (bundled, SharedModels: tests/model_surfaces.h).
 class BackfaceModels : public ::testing::TestWithParam<std::string> {};
 INSTANTIATE_TEST_SUITE_P(ModelSets, BackfaceModels, ::testing::ValuesIn(svtest::model_sets()),
-                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+                         svtest::param_name);
 
 SV_TIERED_TEST_P(BackfaceModels, EveryModelEveryMethodAndTheBound) {
     Rng rng = svtest::rng_for("Backface.Models");

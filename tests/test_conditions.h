@@ -28,12 +28,18 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 namespace svtest {
 
 // The ISA tier of a variant with ISA bits ISA (SV_ISA_*): "" for the
 // baseline (C, SSE2), else "avx2", "avx512" or "avx512vbmi".
 const char *isa_tier(unsigned isa);
+
+// Why a variant with ISA bits ISA cannot run here: "" when it can, "held
+// down by the ISA limit (SV_ISA=...)", or "this CPU lacks its instruction
+// set".
+std::string isa_missing(unsigned isa);
 
 // This entry's tier (SV_TEST_ISA), "" for the baseline.
 const char *tier_of_this_run();
@@ -48,6 +54,11 @@ bool in_this_run(unsigned isa, const char *name);
 // Registers a test that loops over a routine's variants (SV_TIERED_TEST);
 // returns true, for a static initializer.
 bool declare_tiered(const char *suite_dot_name);
+
+// The two model sets a test of the real characters is instantiated over:
+// "bundled" (the bundled character) and "SharedModels" (../shared/models;
+// that instance runs in the shared-models entry).
+inline std::vector<std::string> model_sets() { return {"bundled", "SharedModels"}; }
 
 // Whether this entry is the shared-models one (SV_TEST_SHARED_MODELS=1).
 bool shared_models_run();

@@ -35,9 +35,6 @@
 #ifndef SV_MODELS_DIR
 #error "SV_MODELS_DIR must name the repository's models/ folder"
 #endif
-#ifndef SV_SHARED_MODELS_DIR
-#error "SV_SHARED_MODELS_DIR must name the shared models folder"
-#endif
 #ifndef SV_ASSIMP_GLTF2_DIR
 #error "SV_ASSIMP_GLTF2_DIR must name assimp-testmodels' glTF2 folder"
 #endif

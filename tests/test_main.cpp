@@ -52,12 +52,24 @@ const char *env(const char *name) {
     return v && *v ? v : nullptr;
 }
 
-// The ISA bits a tier needs of the CPU.
-unsigned tier_bits(const std::string &tier) {
-    if (tier == "avx2") return SV_ISA_SSE2 | SV_ISA_AVX2;
-    if (tier == "avx512") return SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512;
-    if (tier == "avx512vbmi") return SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512 | SV_ISA_AVX512_VBMI;
-    return 0;
+// The ISA tiers, highest first: the name (a variant's name starts with it),
+// the bit that puts a variant in the tier, and the bits the CPU needs for it.
+struct Tier {
+    const char *name;
+    unsigned mark;
+    unsigned needs;
+};
+constexpr Tier kTiers[] = {
+    {"avx512vbmi", SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2,
+     SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512 | SV_ISA_AVX512_VBMI},
+    {"avx512", SV_ISA_AVX512, SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512},
+    {"avx2", SV_ISA_AVX2, SV_ISA_SSE2 | SV_ISA_AVX2},
+};
+
+const Tier *tier_named(const std::string &name) {
+    for (const Tier &t : kTiers)
+        if (name == t.name) return &t;
+    return nullptr;
 }
 
 // A parameterised test's variant: the name after the last '/' when it names
@@ -72,10 +84,13 @@ bool param_variant(const std::string &test_name, ParamVariant &out) {
     if (slash == std::string::npos) return false;
     const std::string p = test_name.substr(slash + 1);
     auto starts = [&](const char *s) { return p.compare(0, std::strlen(s), s) == 0; };
-    if (starts("avx512vbmi")) out = {"avx512vbmi", tier_bits("avx512vbmi")};
-    else if (starts("avx512")) out = {"avx512", tier_bits("avx512")};
-    else if (starts("avx2")) out = {"avx2", tier_bits("avx2")};
-    else if (starts("sse2")) out = {"", SV_ISA_SSE2};
+    for (const Tier &t : kTiers) {
+        if (starts(t.name)) {
+            out = {t.name, t.needs};
+            return true;
+        }
+    }
+    if (starts("sse2")) out = {"", SV_ISA_SSE2};
     else if (starts("c_")) out = {"", 0};
     else return false; // another parameter (a model set): every tier's entry
     return true;
@@ -118,8 +133,9 @@ void narrow_filter_to_this_entry() {
 std::string entry_condition_unmet() {
     const char *tier = tier_of_this_run();
     if (*tier) {
-        const unsigned need = tier_bits(tier);
-        if (!need) return std::string("SV_TEST_ISA=") + tier + " is no tier (avx2, avx512, avx512vbmi)";
+        const Tier *t = tier_named(tier);
+        if (!t) return std::string("SV_TEST_ISA=") + tier + " is no tier (avx2, avx512, avx512vbmi)";
+        const unsigned need = t->needs;
         if ((sv_cpu_isa_detected() & need) != need) {
             char names[128];
             return std::string("this CPU lacks the ") + tier + " tier (it has: " +
@@ -146,10 +162,16 @@ bool declare_tiered(const char *suite_dot_name) {
 }
 
 const char *isa_tier(unsigned isa) {
-    if (isa & (SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2)) return "avx512vbmi";
-    if (isa & SV_ISA_AVX512) return "avx512";
-    if (isa & SV_ISA_AVX2) return "avx2";
+    for (const Tier &t : kTiers)
+        if (isa & t.mark) return t.name;
     return "";
+}
+
+std::string isa_missing(unsigned isa) {
+    if ((isa & sv_cpu_isa()) == isa) return "";
+    if ((isa & sv_cpu_isa_detected()) == isa && sv_isa_limit_name())
+        return std::string("held down by the ISA limit (SV_ISA=") + sv_isa_limit_name() + ")";
+    return "this CPU lacks its instruction set";
 }
 
 const char *tier_of_this_run() {
@@ -172,15 +194,15 @@ bool in_this_run(unsigned isa, const char *name) {
     }
     const char *tier = isa_tier(isa);
     if (*tier && std::strcmp(tier, tier_of_this_run()) != 0) return false;
-    if ((isa & sv_cpu_isa()) == isa) {
+    const std::string why = isa_missing(isa);
+    if (why.empty()) {
         if (*tier) tier_variants_run++;
         return true;
     }
     if ((isa & sv_cpu_isa_detected()) == isa) return false; // held down by SV_ISA: out of scope
-    const ::testing::TestInfo *t = ::testing::UnitTest::GetInstance()->current_test_info();
     variants_not_run().push_back(std::string(name) + " in " +
-                                 (t ? std::string(t->test_suite_name()) + "." + t->name() : "?") +
-                                 ": this CPU lacks its instruction set");
+                                 (cur ? std::string(cur->test_suite_name()) + "." + cur->name() : "?") +
+                                 ": " + why);
     return false;
 }
 

@@ -406,8 +406,8 @@ SV_TIERED_TEST(Planes, VertexZeroAtPageStartAndDegenerateLanes) {
 // ../shared/models (the SharedModels instance runs in the shared-models
 // ctest entry, tests/test_conditions.h; a character missing there skips).
 class PlanesModels : public ::testing::TestWithParam<std::string> {};
-INSTANTIATE_TEST_SUITE_P(ModelSets, PlanesModels, ::testing::Values("bundled", "SharedModels"),
-                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+INSTANTIATE_TEST_SUITE_P(ModelSets, PlanesModels, ::testing::ValuesIn(svtest::model_sets()),
+                         svtest::param_name);
 
 SV_TIERED_TEST_P(PlanesModels, RealMeshes) {
     SCOPED_TRACE(svtest::seed_trace());

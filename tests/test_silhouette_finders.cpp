@@ -141,7 +141,7 @@ constexpr int kBigSurface = 12000;
 // Once per model set (bundled, SharedModels: tests/model_surfaces.h).
 class SilhouetteModels : public ::testing::TestWithParam<std::string> {};
 INSTANTIATE_TEST_SUITE_P(ModelSets, SilhouetteModels, ::testing::ValuesIn(svtest::model_sets()),
-                         [](const ::testing::TestParamInfo<std::string> &i) { return i.param; });
+                         svtest::param_name);
 
 SV_TIERED_TEST_P(SilhouetteModels, EveryModelAndLightMatchesTheSilEdges) {
     Rng rng = svtest::rng_for("SilhouetteFinders.Models");

@@ -149,13 +149,6 @@ std::vector<std::string> facing_variant_names() { return names_of(sv_facing_vari
 
 std::string param_name(const ::testing::TestParamInfo<std::string> &info) { return info.param; }
 
-std::string isa_missing(unsigned isa) {
-    if ((isa & sv_cpu_isa()) == isa) return "";
-    if ((isa & sv_cpu_isa_detected()) == isa && sv_isa_limit_name())
-        return std::string("held down by the ISA limit (SV_ISA=") + sv_isa_limit_name() + ")";
-    return "this CPU lacks its instruction set";
-}
-
 // The instance's own stream for the checker's garbage: named by the whole
 // name, variant included.
 static Rng instance_rng() {

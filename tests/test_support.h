@@ -173,9 +173,6 @@ std::vector<std::string> facing_variant_names();
 // gtest's name for an instance: the variant's own.
 std::string param_name(const ::testing::TestParamInfo<std::string> &info);
 
-// Why sv_cpu_isa() cannot run ISA; empty when it can.
-std::string isa_missing(unsigned isa);
-
 // The fixture of the four kernels' variants (sv_variants()). v is the
 // variant; abi is the generator of the checker's garbage, one per instance.
 // The cases come from rng_for(name of the test without the variant), so
