@@ -34,7 +34,7 @@
 ;   slower: three movsxd loads instead of the split qword (the load ports
 ;   are what it is short of), and one 16-byte vmovdqu with vmovq and
 ;   vpextrd into GPRs (which would also read 4 bytes past the last
-;   triangle). The figures: docs/benchmark.md, "Design measurements".
+;   triangle). The figures: docs/BENCHMARK.md, "Design measurements".
 ;   The count is that of facing afterwards: a tail call of
 ;   sv_count_facing_avx2 (which is cheaper than keeping it exact across the
 ;   padded list).
@@ -60,7 +60,7 @@
 ;   bytes that were 0. Stack: < 4 KiB.
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

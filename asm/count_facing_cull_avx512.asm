@@ -25,7 +25,7 @@
 ;      sv_count_facing_avx512.
 ;   The lookups stay scalar: on the reference machine (AMD Zen 5 class) a
 ;   vpgatherdd zmm costs more than its 16 lanes as scalar loads, whatever
-;   the mask, and blocks the load ports meanwhile (docs/benchmark.md, "Design measurements"). The only data-dependent branch is
+;   the mask, and blocks the load ports meanwhile (docs/BENCHMARK.md, "Design measurements"). The only data-dependent branch is
 ;   the exit of pass 2's loop, once per chunk.
 ;
 ; int sv_count_facing_cull_avx512(uint8_t *facing, int numTriangles,
@@ -52,7 +52,7 @@
 ;   facing[0 .. n-1]; writes only facing bytes that were 0.
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

@@ -16,7 +16,7 @@
 ;      masked). M >= 1024: the call goes to sv_count_facing_cull_avx512 (a
 ;      tail call; same arguments), as soon as a block of 128 numbers shows
 ;      it (a full scan first made this variant slower than c_ref on the
-;      large meshes: docs/benchmark.md, "Design measurements").
+;      large meshes: docs/BENCHMARK.md, "Design measurements").
 ;   1. The table: cullBits[0 .. M] into zmm16 .. zmm(16 + M / 64), plain
 ;      loads; the last, partial register is the 64 bytes ending at
 ;      cullBits[M] moved into place by vpermb (a masked load only when the
@@ -47,7 +47,7 @@
 ;      whose masked-off part lies on a page that is unmapped or not yet
 ;      touched costs several times a whole small call, even when it reads
 ;      no byte there (timed with the arrays ending at such a page; the
-;      figures: docs/benchmark.md, "Design measurements"). Left: a table
+;      figures: docs/BENCHMARK.md, "Design measurements"). Left: a table
 ;      under 64 bytes and meshes under 64 triangles. The other AVX-512
 ;      kernels' masked tails still pay it.
 ;   3. The count: a tail call of sv_count_facing_avx512.
@@ -86,7 +86,7 @@
 ;   (SV_ISA_AVX512_VBMI). Stack: under 1 KiB.
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

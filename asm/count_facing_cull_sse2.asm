@@ -67,7 +67,7 @@
 ;   listing's code (issue 3 asks for the faithful behaviour, pinned).
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2005 Id Software, Inc. Written by J.M.P. van Waveren.
 ; Port: Copyright (C) 2026 the shadowvol authors.

@@ -28,7 +28,7 @@
 ;   Why a list: appendix F's scheme with one vpermd and one 32-byte store
 ;   per triangle, its offsets from a prefix-sum multiply, was measured
 ;   first (the 1344-triangle character, moving light, the Zen 5-class core
-;   this was written on) and was slower than this one (docs/benchmark.md, "Design measurements").
+;   this was written on) and was slower than this one (docs/BENCHMARK.md, "Design measurements").
 ;
 ; int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const int *indices, int numIndices)
@@ -54,7 +54,7 @@
 ;   indices[0 .. numIndices-1]. Stack: < 4 KiB (no probe needed).
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

@@ -33,7 +33,7 @@
 ;   vpgatherdd lane for the facing bytes costs several scalar byte loads;
 ;   phase 1 alone (about 7 instructions per edge) runs near the issue
 ;   width, so its two look-ups per edge are the floor of this routine.
-;   The figures: docs/benchmark.md, "Design measurements".
+;   The figures: docs/BENCHMARK.md, "Design measurements".
 ;
 ; int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
 ;                                  const SilEdge *silEdges, int numSilEdges)
@@ -57,7 +57,7 @@
 ;   (no probe needed).
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 

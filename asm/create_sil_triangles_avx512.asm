@@ -47,7 +47,7 @@
 ;   call: there its scalar lookups beat the window, which slides and
 ;   refills, on every such mesh measured (`shadowvol bench --scaling`),
 ;   while on the smaller meshes this path wins or ties. The figures per
-;   model: docs/benchmark.md, "Design measurements".
+;   model: docs/BENCHMARK.md, "Design measurements".
 ;   C. Output: per listed pair of edges, vpbroadcastq of each (v1, v2),
 ;      one vpermt2d into (v1 v2 v2 v1 v1 v2) twice, a vpxord of the ^1
 ;      patterns of their f1 (a 4-entry table), one masked store of twelve
@@ -87,7 +87,7 @@
 ;   kernel's (< 4 KiB) while a wide chunk is handed to it.
 ;
 ; Cost: not kept here (figures go stale); `shadowvol bench` measures it
-;   on the machine at hand and docs/benchmark.md has the current table.
+;   on the machine at hand and docs/BENCHMARK.md has the current table.
 ;
 ; Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 
@@ -377,7 +377,7 @@ FUNC sv_create_sil_triangles_avx512
 
 .chunk_via_avx2:        ; A chunk too wide for the bitmap: the AVX2 kernel does it
         ; (its scalar lookups measured faster on such chunks than sixteen
-        ; lookups folded into masks here: docs/benchmark.md).
+        ; lookups folded into masks here: docs/BENCHMARK.md).
         ; An ordinary System V call: what must survive goes to the frame,
         ; and the vector registers kept across chunks are reloaded after.
         mov     [rsp+SIL_SAVE_AFTER], rvq

@@ -22,7 +22,7 @@ include(CMakePackageConfigHelpers)
 get_target_property(_sv_core_sources shadowvol SOURCES)
 get_target_property(_sv_core_options shadowvol COMPILE_OPTIONS)
 # The per-platform asm definitions (SV_HAVE_ASM_*: which variants
-# src/variants.c lists), or the shared library's table would lack the asm.
+# src/core/variants.c lists), or the shared library's table would lack the asm.
 get_target_property(_sv_core_definitions shadowvol COMPILE_DEFINITIONS)
 add_library(shadowvol_shared SHARED ${_sv_core_sources})
 set_target_properties(shadowvol_shared PROPERTIES
@@ -43,7 +43,7 @@ target_include_directories(shadowvol_shared PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 # The planner's generated character (src/plan/planner.cpp).
-target_include_directories(shadowvol_shared PRIVATE ${PROJECT_SOURCE_DIR}/tools/generate_models)
+target_include_directories(shadowvol_shared PRIVATE ${PROJECT_SOURCE_DIR}/src/modelgen)
 # The object-level link check: a shared library must have no undefined
 # symbol that the libraries it names do not provide.
 target_link_options(shadowvol_shared PRIVATE -Wl,--no-undefined)

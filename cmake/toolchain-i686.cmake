@@ -1,6 +1,6 @@
 # 32-bit x86 Linux (cdecl, ELF32) with the host GCC and Debian's multilib
 # (gcc-multilib, g++-multilib). The programs run natively on an x86-64
-# Linux and under qemu-i386 as 32-bit CPUs (docs/platforms.md):
+# Linux and under qemu-i386 as 32-bit CPUs (docs/PLATFORMS.md):
 #   cmake -S . -B build-i686 -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-i686.cmake
 #   cmake --build build-i686 --target shadowvol_tests && ctest --test-dir build-i686
 #

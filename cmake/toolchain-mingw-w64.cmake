@@ -1,5 +1,5 @@
 # Windows x64 with Debian's mingw-w64 (x86_64-w64-mingw32-gcc/g++), the
-# tests run under wine64 (docs/platforms.md):
+# tests run under wine64 (docs/PLATFORMS.md):
 #   cmake -S . -B build-win64 -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-mingw-w64.cmake
 #   cmake --build build-win64 --target shadowvol_tests && ctest --test-dir build-win64
 set(CMAKE_SYSTEM_NAME Windows)

@@ -100,7 +100,7 @@ int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
 
 /* ---- Appendices A and B in SIMD, and their table -------------------------
  * Each is BIT-IDENTICAL to the reference above (same operations in the same
- * order, no FMA; see src/facing_simd.c), with the same contract. */
+ * order, no FMA; see src/core/x86/facing_simd.c), with the same contract. */
 typedef void (*sv_calculate_facing_fn)(const Plane *planes, int numTriangles,
                                        const Vec4 *light, uint8_t *facing);
 typedef int (*sv_calculate_cull_bits_fn)(const Vec4 *positions, int numVerts,

@@ -112,7 +112,7 @@ public:
  * uses of non-manifold edges, both uses of an edge used twice in the same
  * direction) becomes its own dangling SilEdge (p2 = num_triangles). This
  * keeps every shadow volume closed, for ANY facing bytes (so for every
- * light, with or without cull bits): see the proof in src/mesh_prep.cpp.
+ * light, with or without cull bits): see the proof in src/mesh/mesh_prep.cpp.
  * An empty mesh (no triangles, or all degenerate) is valid: no indices, no
  * SilEdges, no planes.
  * Throws PrepareError on: a NULL array with a non-zero count, num_indices %

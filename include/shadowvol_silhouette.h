@@ -24,7 +24,7 @@
  *                           as multisets (net: opposite pairs on one
  *                           undirected edge removed),
  * and on a surface where no undirected edge has more than two uses the
- * two are the same. tests/test_silhouette_finders.cpp checks both
+ * two are the same. tests/unit/test_silhouette_finders.cpp checks both
  * statements on every model and many lights.
  *
  * Output room: every finder writes at most silhouette_capacity(mesh) edges

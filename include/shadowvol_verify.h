@@ -108,7 +108,7 @@ struct InSpaceCounts {
  * boundary to decide (degenerate or collinear triangles, three vertices at
  * one position, features below about 1e-7 of the radius), the result is
  * "cannot decide" (LightResult::undecided, with the reason): neither a
- * pass nor a failure. Measured (tests/test_verify.cpp): tetrahedra of
+ * pass nor a failure. Measured (tests/unit/test_verify.cpp): tetrahedra of
  * radius 1.7e-38 to 8.7e35 decide and pass; scaled 1e-40 they pass too, but
  * at 1e-45 (coordinates on float's denormal grid, where the lights' float
  * positions fall onto the mesh's own grid) too many points are undecidable:

@@ -3,7 +3,7 @@
 # unless named) in a clean minimal Debian root, as a new user's fresh
 # machine would: only Debian's essential packages and apt, so that every
 # package the job needs must come from tools/packages.txt. See
-# docs/testing.md, "A clean Debian root".
+# docs/TESTING.md, "A clean Debian root".
 #
 #   1. The root: `mmdebstrap --variant=apt SUITE` from the host's apt
 #      sources (suite and mirrors as the host has them), kept as

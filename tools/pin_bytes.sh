@@ -22,7 +22,7 @@
 # A run that exits non-zero is recorded, not dropped: a real model failing
 # its truth is a finding the manifest keeps visible.
 #
-# The manifest (tests/pinned_bytes.manifest, or --manifest FILE) holds one
+# The manifest (tests/cli/pinned_bytes.manifest, or --manifest FILE) holds one
 # sorted line per item, "KEY VALUE"; the shared models' keys begin with
 # "shared/" so the bundled set is checked alone where that folder is
 # missing. --write replaces the lines of the chosen set and keeps the
@@ -41,7 +41,7 @@ set -u
 export LC_ALL=C
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
-action="" build="" set_name="all" models="$repo/../shared/models" manifest="$repo/tests/pinned_bytes.manifest" work=""
+action="" build="" set_name="all" models="$repo/../shared/models" manifest="$repo/tests/cli/pinned_bytes.manifest" work=""
 usage() {
   if [ "${1:-2}" = 0 ]; then
     sed -n '2,/^set -u/{/^set -u/d;s/^# \{0,1\}//;p}' "$0"

@@ -9,11 +9,11 @@
 #   tools/run.sh cross                             the core suite for Windows x64
 #                                                  under wine64 and for 32-bit x86
 #                                                  natively and under qemu-i386
-#                                                  (docs/platforms.md)
+#                                                  (docs/PLATFORMS.md)
 #   tools/run.sh fresh [JOB [ARGS]]                JOB (default: test) in a clean
 #                                                  minimal Debian root made with
 #                                                  mmdebstrap (tools/fresh_root.sh,
-#                                                  docs/testing.md); root only, long
+#                                                  docs/TESTING.md); root only, long
 #
 # BUILD_DIR (default: build) chooses the build directory; FUZZ_BUILD_DIR
 # (default: build-fuzz) the fuzz build's (clang, SV_FUZZ=ON, only the fuzz

@@ -1,7 +1,7 @@
 /*
  * One Google Benchmark case of shadowvol_gbench: a routine of one variant
  * under the moving or the fixed light, on the workload `shadowvol bench`
- * times (bench/workload.h), checked against c_ref before it is timed.
+ * times (bench/harness/workload.h), checked against c_ref before it is timed.
  *
  * How a case is timed, and how that differs from the cycle table:
  *   - Google Benchmark's loop: back-to-back calls, its own clock over the
@@ -29,7 +29,7 @@
  *
  * Check: the first time a case runs, every light of its rotation is
  * called once into a poisoned buffer with canaries behind it and compared
- * with the reference (bench/expected.h). A case that fails is reported by
+ * with the reference (bench/harness/expected.h). A case that fails is reported by
  * state.SkipWithError on every run, and failed_cases() counts it.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.

@@ -9,7 +9,7 @@
  * dispatch), under the moving light and the fixed one:
  *   create_shadow_volume/sse2_paper/moving
  * on the workload of the cycle table: the bundled 1344-triangle character
- * lit by 64 searched lights (bench/lights.h), or --model FILE. How a case
+ * lit by 64 searched lights (bench/harness/lights.h), or --model FILE. How a case
  * is timed, and checked against c_ref first: gbench_cases.h.
  *
  * Exit status: 0 done; 1 a case failed its check (its row says ERROR

@@ -1,4 +1,4 @@
-/* The example program of docs/api.md, and the C consumer of the installed package (examples/consumer). LGPL-2.1-or-later. */
+/* The example program of docs/API.md, and the C consumer of the installed package (examples/consumer). LGPL-2.1-or-later. */
 #include <stdio.h>
 #include "shadowvol.h"
 

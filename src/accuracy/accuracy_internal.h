@@ -1,6 +1,6 @@
 /*
  * Internal entry points of the accuracy library, for its own C++ files and
- * for the tests (tests/test_accuracy.cpp reaches the exact stage directly to
+ * for the tests (tests/unit/test_accuracy.cpp reaches the exact stage directly to
  * check the filter against it).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.

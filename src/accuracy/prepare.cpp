@@ -26,9 +26,9 @@ bool all_finite(const float p0[3], const float p1[3], const float p2[3]) {
     return true;
 }
 
-/* sv::triangle_plane (src/mesh_geometry.cpp) step for step, without the
+/* sv::triangle_plane (src/mesh/mesh_geometry.cpp) step for step, without the
  * final rounding to float: so (float) of each component is that function's
- * plane, bit for bit (tests/test_accuracy.cpp checks it). For float input
+ * plane, bit for bit (tests/unit/test_accuracy.cpp checks it). For float input
  * n . n neither overflows nor underflows (|n| lies in [2^-298, 2^260]), so
  * that function's rescaling branch never runs and is not repeated here. */
 __attribute__((noinline)) PlaneD plane_double_impl(const float p0[3], const float p1[3],

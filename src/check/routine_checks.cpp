@@ -22,7 +22,7 @@ const char *const kRoutineNames[kNumRoutines] = {
 
 // The library's own contract check decides whether bit 7 is in
 // CountFacingCull's contract for these kernels (check_cull_bits in
-// src/contracts.c), on one facing triangle whose vertex has bit 7: where
+// src/core/contracts.c), on one facing triangle whose vertex has bit 7: where
 // bit 7 is in the contract, the kernel then runs on that triangle, in
 // contract (a facing triangle is left as it is).
 bool honours_cull_bit7(const sv_variant &k) {

@@ -8,7 +8,7 @@
 // for byte and the guard zones past the documented write bound.
 //
 // The table is a parameter, so a test can hand it deliberately broken
-// variants (tests/test_routine_checks.cpp) and see each reported.
+// variants (tests/checkasm/test_routine_checks.cpp) and see each reported.
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #pragma once

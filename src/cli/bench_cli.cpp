@@ -521,7 +521,7 @@ void bench_usage(FILE *out) {
         "  --limits         after each model's table: this core's best loads, gather\n"
         "                   lanes and bytes per tick, and from them each routine's\n"
         "                   floor (its unavoidable memory traffic) beside the best\n"
-        "                   variant and the goals (bench/machine_limits.h)\n"
+        "                   variant and the goals (bench/machine/machine_limits.h)\n"
         "  -h, --help       this text\n"
         "\n"
         "Results read back: shadowvol bench --compare A.json B.json\n"
@@ -606,7 +606,7 @@ void bench_usage(FILE *out) {
 }
 
 int bench_main(int argc, char **argv) {
-    if (is_compare_or_report(argc, argv)) { /* bench/compare.h */
+    if (is_compare_or_report(argc, argv)) { /* bench/report/compare.h */
         return compare_main(argc, argv);
     }
     CliOptions c;

@@ -8,7 +8,7 @@
  * Why a model: the generated character stands in for "a mesh of this
  * size", but the ranking of the silhouette and cap kernels moves with the
  * share of SilEdges on the silhouette and of triangles facing away
- * (docs/benchmark.md): a terrain, a character and a CAD part of one size
+ * (docs/BENCHMARK.md): a terrain, a character and a CAD part of one size
  * can want different kernels.
  *
  * Exit status: 0 done; 1 a variant disagreed with c_ref (nothing saved);
@@ -39,7 +39,7 @@ void tune_usage(FILE *out) {
                  "  Times every variant of every routine this CPU runs on a mesh of each size\n"
                  "  class (0: under 4096 triangles, 1: under 65536, 2: under 524288, 3: larger),\n"
                  "  checks every call against c_ref, and saves the fastest per routine and class\n"
-                 "  as this CPU's plans (sv_plan_for reads them; see docs/benchmark.md).\n"
+                 "  as this CPU's plans (sv_plan_for reads them; see docs/BENCHMARK.md).\n"
                  "  Without MODEL a class is measured on the generated character at %d, %d,\n"
                  "  %d and %d triangles; with MODEL on the model's largest surface in each\n"
                  "  class it has (its own shape and silhouette share), and only those classes.\n"

@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "plan_internal.h"
-#include "../contracts_internal.h"
+#include "../core/contracts_internal.h"
 #include "model_gen.h"
 #include "shadowvol_mesh.h"
 
@@ -165,7 +165,7 @@ struct Mesh {
 /* The light box of LIGHT on M: a cube around the light, planes pointing
  * in, its half size bisected so that a quarter of the triangles lie
  * outside it (all three vertices culled), as the benchmark's light
- * volumes are chosen (bench/lights.cpp). The culling kernels' cost
+ * volumes are chosen (bench/harness/lights.cpp). The culling kernels' cost
  * depends on how many triangles they cull and in what pattern: a box
  * between the mesh and the light that held part of the mesh was used
  * first, and there c_ref's branchy CountFacingCull tied the avx2 one,

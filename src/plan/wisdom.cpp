@@ -170,7 +170,7 @@ int sv_wisdom_save(const char *path) {
 #ifdef _WIN32
     /* Windows' rename() refuses an existing target: every save after the
      * first would fail. MoveFileEx replaces it (found by the wine run of
-     * the suite, docs/platforms.md). */
+     * the suite, docs/PLATFORMS.md). */
     return MoveFileExA(tmp.c_str(), path, MOVEFILE_REPLACE_EXISTING) ? 0 : -1;
 #else
     return std::rename(tmp.c_str(), path) == 0 ? 0 : -1;

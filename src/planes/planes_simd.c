@@ -42,7 +42,7 @@
 #include <string.h>
 
 #include "planes_internal.h"
-#include "../mask_bytes.h"
+#include "../core/mask_bytes.h"
 
 /* The address of vertex I minus SHIFT floats (shift 1 for the odd rows),
  * through uintptr_t: for vertex 0 it points before the array, where the

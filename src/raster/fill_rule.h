@@ -14,7 +14,7 @@
  * mesh sum to zero in the stencil.
  *
  * Why bottom-left and not Direct3D's top-left: it is the rule of Mesa's
- * llvmpipe for OpenGL's default lower-left origin (src/gljudge/
+ * llvmpipe for OpenGL's default lower-left origin (src/judge/
  * mesa_stencil.cpp found it by experiment, and its tests pin it). With y
  * up, llvmpipe owns left edges and the horizontal edge with the interior
  * above it: the triangle's bottom edge, in GL's window and in the image

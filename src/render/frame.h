@@ -251,7 +251,7 @@ raster::ClipVertex to_clip(const Mat4d &view_proj, double x, double y, double z,
  * the paper's section 3 vertex program, in clip space: even 2v = (x, y, z,
  * 1); odd 2v + 1 = (x L.w - L.x, y L.w - L.y, z L.w - L.z, 0), the point
  * moved to infinity away from the light. The one place the extrusion is
- * computed (its GLSL twin is in src/gljudge). */
+ * computed (its GLSL twin is in src/judge). */
 raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p,
                                          int sv_index, const Vec4 &L);
 

@@ -55,7 +55,7 @@ unsigned misalignment(FuzzedDataProvider &d, size_t element) {
 }
 
 /* The contract, written again here from the header (not from
- * src/contracts.c): the harness's own oracle of what must be accepted. */
+ * src/core/contracts.c): the harness's own oracle of what must be accepted. */
 bool aligned_to(const void *p, unsigned a) { return ((uintptr_t)p & (uintptr_t)(a - 1)) == 0; }
 bool all_bool(const uint8_t *f, long n) {
     for (long i = 0; i < n; i++) {
