@@ -44,6 +44,18 @@ bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &a
     return true;
 }
 
+bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil) {
+    if (a.is("--stencil")) {
+        const std::string m = a.value();
+        if (!sv::render::stencil_method_by_name(m, stencil)) {
+            usage_error("--stencil needs " + sv::render::stencil_method_names() + ", not '" + quoted(m) + "'");
+        }
+    } else {
+        return false;
+    }
+    return true;
+}
+
 RenderArgs parse_render_args(int argc, char **argv, bool &help) {
     RenderArgs r;
     ArgReader a(argc, argv);
@@ -54,6 +66,8 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
         } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
                                               r.has_camera)) {
             /* --add, --ground, --light, --camera */
+        } else if (parse_render_pass_option(a, r.stencil)) {
+            /* --stencil */
         } else if (a.is("--size")) {
             parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--mode")) {

@@ -25,6 +25,7 @@ struct RenderArgs {
     sv::Camera camera;
     int width = 1280, height = 1024;
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
+    sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
     std::string out_dir = "shadowvol-render";
     std::string json_path;
     std::string kernels, variant;
@@ -46,6 +47,12 @@ class ArgReader;
 bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &adds, bool &ground,
                                 std::vector<sv::SceneLight> &lights, sv::Camera &camera,
                                 bool &has_camera);
+
+/* The options render and scene share for how the frame's passes run:
+ * --stencil METHOD (stencil_method.h). Consumes A's value and returns true
+ * when A is one of them; false (nothing consumed) otherwise. Throws
+ * UsageError for a value no method has. */
+bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil);
 
 /* "WxH" -> width, height, each 1..kMaxFrameSide and at most kMaxFramePixels
  * in all; UsageError otherwise. */

@@ -92,7 +92,7 @@ void render_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
-        "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
+        "                        [--stencil bf] [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
         "\n"
         "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
         "rasteriser, and checks every pixel against ray-cast truth and against Mesa's\n"
@@ -119,6 +119,8 @@ void render_usage(FILE *out) {
         "  --mode M          zpass (silhouettes only), zfail (with caps), or auto\n"
         "                    (default: z-fail for a volume only where the camera's near\n"
         "                    rectangle may lie inside it)\n"
+        "  --stencil S       how the stencil pass fills: bf (brute force: every volume\n"
+        "                    triangle walked per pixel; the reference, and the default)\n"
         "  --kernels K       the rasteriser's row kernels: c, avx2, avx512 (default: best)\n"
         "  --variant NAME    the library's volume kernels (default: best)\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -223,6 +225,7 @@ int render_main(int argc, char **argv) {
     opt.width = args.width;
     opt.height = args.height;
     opt.mode = args.mode;
+    opt.stencil = args.stencil;
     opt.kernels = kernels;
     opt.variant = variant;
     opt.threads = args.threads; /* 0: every core; the same bytes at any count */
@@ -293,9 +296,9 @@ int render_main(int argc, char **argv) {
                 scene.surfaces.size(), (long long)scene.triangles(), scene.lights.size(), scene.camera.eye.x,
                 scene.camera.eye.y, scene.camera.eye.z, scene.camera.target.x, scene.camera.target.y,
                 scene.camera.target.z, scene.camera.fov_y_degrees, scene.camera.near_distance);
-    std::printf("frame: %dx%d, mode %s, row kernels %s, volume kernels %s, TSC %.3f GHz\n", frame.width,
-                frame.height, sv::render::mode_name(args.mode), frame.kernels.c_str(), frame.variant.c_str(),
-                hz / 1e9);
+    std::printf("frame: %dx%d, mode %s, stencil %s, row kernels %s, volume kernels %s, TSC %.3f GHz\n",
+                frame.width, frame.height, sv::render::mode_name(args.mode), frame.stencil_method.c_str(),
+                frame.kernels.c_str(), frame.variant.c_str(), hz / 1e9);
     std::printf("depth pass: %llu triangles, %llu pixels tested, %llu written, %.2f ms (%llu ticks)\n",
                 (unsigned long long)frame.depth_counters.triangles,
                 (unsigned long long)frame.depth_counters.pixels_tested,
@@ -382,6 +385,7 @@ int render_main(int argc, char **argv) {
         j.key("width"), j.value(frame.width);
         j.key("height"), j.value(frame.height);
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
+        j.key("stencil"), j.value(frame.stencil_method);
         j.key("row_kernels"), j.value(frame.kernels);
         j.key("volume_kernels"), j.value(frame.variant);
         j.key("tsc_hz"), j.value(hz);

@@ -31,6 +31,8 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
         } else if (parse_scene_content_option(a, r.seq.adds, r.seq.ground, r.seq.lights,
                                               r.seq.camera, r.seq.has_camera)) {
             /* --add, --ground, --light, --camera */
+        } else if (parse_render_pass_option(a, r.stencil)) {
+            /* --stencil */
         } else if (a.is("--animation")) {
             r.seq.animation = a.value();
             if (r.seq.animation.empty()) usage_error("--animation needs a name or an index");

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sequence.h"
+#include "stencil_method.h"
 
 namespace svcli {
 
@@ -22,6 +23,7 @@ struct SceneArgs {
     double fps = 8;
     int threads = 0;         /* 0: every core */
     bool full = false;       /* render with no shortcuts */
+    sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
     bool check = true;       /* render the full frame beside and compare */
     bool truth = true;
     int width = 640, height = 512;

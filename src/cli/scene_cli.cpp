@@ -166,7 +166,7 @@ void scene_usage(FILE *out) {
         out,
         "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]]] [--add FILE[@...]] [--animation A]\n"
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
-        "                       [--size WxH] [--out DIR] [--json FILE]\n"
+        "                       [--size WxH] [--stencil bf] [--out DIR] [--json FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
         "KHR_lights_punctual lights and its camera, frame by frame. Each frame builds only\n"
@@ -195,6 +195,8 @@ void scene_usage(FILE *out) {
         "frame:\n"
         "  --size WxH        default 640x512\n"
         "  --threads T       worker threads (default: every core); the same bytes at any T\n"
+        "  --stencil S       how the stencil pass fills: bf (brute force, the reference;\n"
+        "                    the default)\n"
         "  --full            render with no shortcut at all (what the check compares with)\n"
         "  --no-check        skip the full frame beside each frame\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -293,6 +295,7 @@ int scene_main(int argc, char **argv) {
     fast.width = args.width;
     fast.height = args.height;
     fast.threads = threads;
+    fast.stencil = args.stencil;
     sv::render::VolumeCache cache;
     fast.cache = &cache;
     if (args.full) fast.shortcuts = sv::render::Shortcuts::none();
@@ -475,6 +478,7 @@ int scene_main(int argc, char **argv) {
         j.key("height"), j.value(args.height);
         j.key("threads"), j.value(threads);
         j.key("shortcuts"), j.value(!args.full);
+        j.key("stencil"), j.value(sv::render::stencil_method_name(args.stencil));
         j.key("tsc_hz"), j.value(hz);
         j.key("surfaces"), j.value((long long)scene.surfaces.size());
         j.key("triangles"), j.value((long long)scene.triangles());

@@ -18,7 +18,9 @@
 #include <vector>
 
 #include "rasterizer.h"
+#include "reach.h"
 #include "shadowvol_scene.h"
+#include "stencil_method.h"
 
 namespace sv::render {
 
@@ -105,6 +107,8 @@ struct VolumeDecision {
 class VolumeCache {
 public:
     void clear();
+    /* Sized for NUM_LIGHTS x NUM_SURFACES; cleared when that changes. */
+    void fit(int num_lights, int num_surfaces);
     struct Entry;
     ~VolumeCache();
     VolumeCache();
@@ -120,6 +124,7 @@ private:
 struct RenderOptions {
     int width = 1280, height = 1024;
     ModeChoice mode = ModeChoice::automatic;
+    StencilMethod stencil = StencilMethod::brute_force; /* how the stencil pass fills */
     Shortcuts shortcuts;
     ShortcutFaults faults;
     /* Worker threads (oneTBB): 0 = every core; 1 = none. The pictures and
@@ -172,6 +177,7 @@ struct Frame {
     Mat4d view_proj;
     std::string kernels;          /* row kernels used */
     std::string variant;          /* the library's kernels used */
+    std::string stencil_method;   /* the stencil pass's method (stencil_method.h) */
     raster::Target target;        /* depth and ids after the depth pass */
     raster::PassCounters depth_counters;
     uint64_t ticks_depth = 0;
@@ -189,39 +195,6 @@ struct Frame {
     std::vector<int32_t> surface_first_id;
     void decode_id(int32_t id, int &surface, int &triangle) const;
 };
-
-/* Would the lighting pass light SURFACE at all: its box meets the light's
- * range and (spot) its cone. Where it does not, the light adds nothing to
- * it (with or without shortcuts: the test is part of the lighting model,
- * as Doom 3's light-surface interactions are), and shortcut 1 builds no
- * volume for it: its shadow lies wholly beyond the range or the cone. */
-bool light_reaches_box(const SceneLight &light, const Vec3d &lo, const Vec3d &hi,
-                       double scale = 1);
-
-/* Can the shadow volume of a surface in box [lo, hi] have a fragment in
- * view (shortcut 2)? False when the box's eight corners and their eight
- * extrusions from L (the double-length buffer's odd vertices, w = 0) all
- * lie outside one of the five clip planes the rasteriser clips against:
- * every vertex of the volume is a non-negative combination of them, so
- * every triangle of it is then dropped whole. */
-bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d &hi,
-                           const Vec4 &L, bool with_extrusion = true);
-
-/* The light volume of appendix B as six planes pointing into it: a point
- * light's range as a cube, a spot light's cone as a square pyramid (its
- * apex plane and, with a range, a far plane). False for lights without
- * one (directional, or a point light without a range). SHRINK < 1 is for
- * the fault tests only. */
-bool light_volume_planes(const SceneLight &light, Plane planes[SV_NUM_LIGHT_PLANES],
-                         double shrink = 1);
-/* Where box [lo, hi] lies against those planes. */
-enum class BoxSide { inside, straddles, outside };
-BoxSide classify_box(const Plane planes[SV_NUM_LIGHT_PLANES], const Vec3d &lo, const Vec3d &hi);
-
-/* Is world point P inside LIGHT's range (when it has one) and cone (a
- * spot)? Where it is not, the lighting adds nothing (the KHR window and
- * the cone's smoothstep are 0 there). */
-bool point_in_light_reach(const SceneLight &light, const Vec3d &P);
 
 /* Is the visible point of pixel PIXEL in light LIGHT's reach at all (its
  * surface reached, and the point inside the range and the cone), shadows
@@ -258,13 +231,6 @@ raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedS
 /* The camera ray through window point (x, y) (pixels, y down; a pixel's
  * centre is at + 0.5): unit length along the view axis. */
 Vec3d camera_ray(const Frame &f, double x, double y);
-
-/* Would z-pass be wrong for this surface and light: can a point of the
- * camera's near-plane rectangle lie in the surface's shadow volume? A
- * conservative test: the surface's box against the convex hull of the
- * near rectangle and the light (swept towards a directional light). */
-bool near_plane_may_be_shadowed(const Camera &camera, double aspect, const SceneSurface &s,
-                                const SceneLight &light);
 
 /* The world point seen through the centre of pixel (px, py) on triangle
  * T of surface S (the camera ray meets the triangle's plane), in double. */

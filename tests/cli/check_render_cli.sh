@@ -29,6 +29,7 @@ fi
 grep -q '"schema": "shadowvol-render/1"' "$tmp/render.json" || err "JSON without its schema"
 grep -q '"passed": true' "$tmp/render.json" || err "JSON does not say passed"
 grep -q '"width": 1280' "$tmp/render.json" || err "the default size is not 1280x1024"
+grep -q '"stencil": "bf"' "$tmp/render.json" || err "JSON does not name the stencil method (bf by default)"
 # index_lists: one row per volume (the lights' "volumes" summed), each with
 # its count and a 16-hex-digit FNV-1a 64 of the list (tools/pin_bytes.sh).
 volumes=$(( $(sed -n 's/^ *"volumes": \([0-9]*\),$/\1/p' "$tmp/render.json" | paste -sd+) + 0 ))
@@ -57,6 +58,9 @@ expect 2 --size 8193x100
 expect 2 --size 640
 expect 2 --size 8192x8193
 expect 2 --mode sideways
+expect 2 --stencil sideways
+grep -q -- '--stencil needs bf' "$tmp/err" || err "--stencil sideways: the message does not list the methods: $(cat "$tmp/err")"
+expect 2 --stencil
 expect 2 --light point:nan,1,1
 expect 2 --light point:1,inf,1
 expect 2 --light point:1e39,5,0
@@ -80,6 +84,7 @@ echo '{"asset": {"version": "2.0"}, "meshes": []}' >"$tmp/empty.gltf"
 expect 3 --add "$tmp/empty.gltf"
 "$sv" render --help >"$tmp/out" 2>&1 || err "render --help failed"
 grep -q -- '--light spot:' "$tmp/out" || err "render --help does not describe --light"
+grep -q -- '--stencil S' "$tmp/out" || err "render --help does not describe --stencil"
 
 [ $fail -eq 0 ] && echo "PASSED: render CLI"
 exit $fail

@@ -38,6 +38,7 @@ cat "$tmp/out"
 grep -q '^PASSED' "$tmp/out" || err "the demo scene did not print PASSED"
 grep -q '"schema": "shadowvol-scene/1"' "$tmp/demo.json" || err "JSON without its schema"
 grep -q '"passed": true' "$tmp/demo.json" || err "JSON does not say passed"
+grep -q '"stencil": "bf"' "$tmp/demo.json" || err "JSON does not name the stencil method (bf by default)"
 for f in frame_000 frame_003 contact; do
   [ "$(head -c 8 "$tmp/demo/$f.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] \
     || err "demo/$f.png is not a PNG"
@@ -89,6 +90,7 @@ expect 2 --skinning avx1024
 expect 2 --animation ""
 expect 2 --light spot:0,3,0,0,-1,0,50,40
 expect 2 --sideways
+expect 2 --stencil sideways
 expect 3 "$tmp/missing.glb"
 expect 3 --animation no-such-walk
 expect 3 --add "$tmp/missing.glb"

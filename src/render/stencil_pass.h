@@ -1,0 +1,48 @@
+/*
+ * The stencil pass (issue 12): one light's shadow volumes drawn into a
+ * stencil of their own against the depth pass's depth, z-pass or z-fail
+ * per volume, by the method RenderOptions::stencil names
+ * (stencil_method.h). Each method is a file of its own
+ * (stencil_bf.cpp, ...); this is where the frame picks one.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_RENDER_STENCIL_PASS_H
+#define SV_RENDER_STENCIL_PASS_H
+
+#include <cstdint>
+#include <vector>
+
+#include "depth_pass.h"
+#include "frame.h"
+#include "rasterizer.h"
+#include "stencil_method.h"
+
+namespace sv::render {
+
+struct StencilPassInputs {
+    const Scene *scene = nullptr;
+    const ClipVertices *receivers = nullptr; /* the depth pass's clip vertices */
+    const std::vector<Volume> *volumes = nullptr;
+    Vec4 light{};                            /* the volumes' light (w = 0: directional) */
+    Mat4d view_proj;
+    const raster::Rasterizer *rast = nullptr;
+    const raster::Target *target = nullptr;  /* its depth, after the depth pass */
+};
+
+struct StencilPassResult {
+    std::vector<uint8_t> stencil; /* target-sized, row 0 = top */
+    raster::PassCounters counters;
+    uint64_t ticks = 0;           /* wall TSC ticks */
+    double seconds = 0;
+};
+
+/* Runs on the calling task arena's threads. */
+StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in);
+
+/* The methods (one file each). */
+StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in);
+
+} // namespace sv::render
+
+#endif
