@@ -39,7 +39,7 @@ namespace {
 
 using namespace svbench;
 
-/* The full program's defaults (bench/bench_cli.cpp). */
+/* The full program's defaults (src/cli/bench_cli.cpp). */
 constexpr int kDefaultRuns = 4000;
 constexpr int kQuickRuns = 256;
 constexpr int kMaxRuns = 1000000;

@@ -1020,7 +1020,7 @@ SV_TIERED_TEST(AnimSharedModels, LoadPoseAndPlay) {
     if (!missing.empty()) GTEST_SKIP() << "not found, not tested:" << missing;
 }
 
-// rdtsc with lfence on both sides (DESIGN.md section 5; bench/timer.h).
+// rdtsc with lfence on both sides (DESIGN.md section 5; src/measure/timer.h).
 inline uint64_t ticks() {
     uint32_t lo, hi;
     __asm__ __volatile__("lfence\n\trdtsc\n\tlfence" : "=a"(lo), "=d"(hi) : : "memory");
