@@ -40,7 +40,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/* load_gltf's T * R * S (src/gltf/gltf_loader.cpp, local_matrix). */
+/* load_gltf's T * R * S (src/gltf/gltf_nodes.cpp, local_matrix). */
 Mat4d trs_matrix(const double t[3], const double q_in[4], const double s[3]) {
     const double norm =
         std::sqrt(q_in[0] * q_in[0] + q_in[1] * q_in[1] + q_in[2] * q_in[2] + q_in[3] * q_in[3]);

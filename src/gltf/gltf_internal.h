@@ -1,10 +1,12 @@
 /*
  * Internal to shadowvol (not installed): what the animated-scene loader
- * (src/anim) shares with the static glTF loader (src/gltf/gltf_loader.cpp),
- * so that both read a file with the same checks and the same words: the
- * file and GLB checks, tinygltf, the node graph and its transforms, the
- * scene's mesh instances, the range-checked accessor decoder, and the
- * merged triangle primitives of a mesh with their skin attributes.
+ * (src/anim) shares with the static glTF loader (src/gltf/gltf_loader.cpp
+ * and the files src/gltf/gltf_detail.h lists; Reader is defined in
+ * gltf_reader.cpp), so that both read a file with the same checks and the
+ * same words: the file and GLB checks, tinygltf, the node graph and its
+ * transforms, the scene's mesh instances, the range-checked accessor
+ * decoder, and the merged triangle primitives of a mesh with their skin
+ * attributes.
  *
  * Every failure throws GltfError "<path>: <problem>" as load_gltf does.
  *
@@ -15,7 +17,9 @@
 
 #include "shadowvol_gltf.h"
 
-/* The configuration src/gltf/tinygltf_build.cpp compiles tinygltf with. */
+/* The configuration src/gltf/tinygltf_build.cpp compiles tinygltf with:
+ * the header's inline parts (TinyGLTF's default image callbacks) must agree
+ * between the translation units. */
 #ifndef TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE
 #endif

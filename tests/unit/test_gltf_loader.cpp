@@ -1,4 +1,4 @@
-// glTF loading (include/shadowvol_gltf.h, src/gltf/gltf_loader.cpp).
+// glTF loading (include/shadowvol_gltf.h, src/gltf/).
 //
 // The files are written here, at test time, by a small writer (JSON with a
 // base64 data: buffer, JSON with an external .bin, or GLB): every primitive
