@@ -165,9 +165,9 @@ public:
     enum class Status { ok, on_boundary, undecided };
     /* Signed crossings of random rays from P (+1 per crossing of a triangle
      * that faces along the ray, i.e. +1 inside a closed counter-clockwise
-     * outward volume). seed_state advances per ray drawn; *retries counts
-     * rays replaced. */
-    Status winding(const Point3 &p, uint64_t &seed_state, int *winding, int64_t *retries) const;
+     * outward volume) into *out. seed_state advances per ray drawn;
+     * *retries counts rays replaced. */
+    Status winding(const Point3 &p, uint64_t &seed_state, int *out, int64_t *retries) const;
     std::size_t triangles() const;
 
 private:

@@ -10,6 +10,11 @@
 #                                                  under wine64 and for 32-bit x86
 #                                                  natively and under qemu-i386
 #                                                  (docs/PLATFORMS.md)
+#   tools/run.sh lint                              the formatter and the analyser
+#                                                  (tools/lint.sh: clang-format
+#                                                  --dry-run --Werror, clang-tidy
+#                                                  over src/ and bench/); the
+#                                                  build is configured, not built
 #   tools/run.sh fresh [JOB [ARGS]]                JOB (default: test) in a clean
 #                                                  minimal Debian root made with
 #                                                  mmdebstrap (tools/fresh_root.sh,
@@ -26,14 +31,15 @@ cd "$(dirname "$0")/.."
 job="${1:-}"
 [ $# -gt 0 ] && shift
 case "$job" in
-  bench|test|fuzz|cross|fresh) ;;
-  *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS] | tools/run.sh cross | tools/run.sh fresh [JOB [ARGS]]" >&2; exit 2 ;;
+  bench|test|fuzz|cross|lint|fresh) ;;
+  *) echo "usage: tools/run.sh bench [options] | tools/run.sh test | tools/run.sh fuzz [SECONDS] | tools/run.sh cross | tools/run.sh lint | tools/run.sh fresh [JOB [ARGS]]" >&2; exit 2 ;;
 esac
 
 # The Debian packages this job needs: tools/packages.txt, the one list
-# (each line names the jobs it serves; every job builds, so every job
-# takes build's lines too, except fresh: it builds nothing on this machine,
-# the job it runs installs its own packages inside the clean root).
+# (each line names the jobs it serves; every job builds, or configures
+# (lint), so every job takes build's lines too, except fresh: it builds
+# nothing on this machine, the job it runs installs its own packages
+# inside the clean root).
 packages_for() {
   awk -v job="$1" '!/^#/ && NF >= 2 {
       n = split($2, jobs, ",")
@@ -145,7 +151,13 @@ if [ "$job" = cross ]; then
 fi
 
 build="${BUILD_DIR:-build}"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+# compile_commands.json: clang-tidy's (and an editor's) view of the build.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
+if [ "$job" = lint ]; then
+  # clang-tidy needs the compile commands only: no source includes a
+  # generated header, so the configure above is enough.
+  exec tools/lint.sh "$build"
+fi
 cmake --build "$build" >&2
 
 case "$job" in

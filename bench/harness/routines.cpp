@@ -36,6 +36,7 @@ std::vector<BenchVariant> make_bench_variants() {
     std::vector<BenchVariant> all;
     int n = 0;
     const sv_variant *v = sv_variants(&n);
+    all.reserve((size_t)n);
     for (int i = 0; i < n; i++) {
         all.push_back(BenchVariant{v[i].name, v[i].isa, &v[i], nullptr, nullptr});
     }

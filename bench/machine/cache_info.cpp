@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -120,7 +121,7 @@ std::string format_bytes(double bytes) {
     }
     char s[32];
     /* Whole numbers as such ("48 KiB"); else one decimal ("1.5 MiB"). */
-    const double rounded = (double)(long long)(bytes * 10 + 0.5) / 10;
+    const double rounded = (double)std::llround(bytes * 10) / 10;
     if (rounded == (double)(long long)rounded) {
         std::snprintf(s, sizeof s, "%lld %s", (long long)rounded, units[u]);
     } else {

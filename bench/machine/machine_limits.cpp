@@ -7,6 +7,7 @@
 #include "machine_limits.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -256,12 +257,12 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
     for (const RoutineFloor &f : floors) {
         const RowsOf rows = rows_of(t, f.routine);
         const Row *best = rows.best, *sse2 = rows.sse2Paper, *cref = rows.cref;
-        const std::string sse2Goal = sse2 ? std::to_string((long)(sse2->median / 2 + 0.5)) : "-";
+        const std::string sse2Goal = sse2 ? std::to_string(std::lround(sse2->median / 2)) : "-";
         const std::string crefGoal = cref && (f.routine == Routine::create_shadow_volume ||
                                               f.routine == Routine::create_shadow_volume_cull ||
                                               f.routine == Routine::pipeline ||
                                               f.routine == Routine::pipeline_cull)
-                                         ? std::to_string((long)(cref->median / 8 + 0.5))
+                                         ? std::to_string(std::lround(cref->median / 8))
                                          : "-";
         std::fprintf(out, "%-26s %9.0f %9.0f %9.0f %9.0f %9.0f | %-13s %9.0f %7.1fx | %9s %9s\n",
                      routine_name(f.routine), f.ticks, f.streaming, f.loadPorts, f.lookups,

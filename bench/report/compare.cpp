@@ -456,7 +456,7 @@ int compare_main(int argc, char **argv) {
             regime = argv[++i];
         } else if (a.rfind("--regime=", 0) == 0) {
             regime = a.substr(9);
-        } else if (a.rfind("-", 0) == 0) {
+        } else if (a.rfind('-', 0) == 0) {
             std::fprintf(stderr, "shadowvol bench: %s: unknown option '%s'\n", argv[1], a.c_str());
             return 2;
         } else {
@@ -479,6 +479,7 @@ int compare_main(int argc, char **argv) {
         if (is_compare) return compare(read_doc(files[0]), read_doc(files[1]));
         if (many) {
             std::vector<Doc> docs;
+            docs.reserve(files.size());
             for (const std::string &f : files) docs.push_back(read_doc(f));
             return report_many(docs, routine);
         }

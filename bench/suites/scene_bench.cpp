@@ -270,10 +270,10 @@ int run_scene_bench(const SeedCommand &cmd) {
             std::fprintf(out,
                          "%-26s %9d %10s | %-8s %10.1f %10.1f %10lld %10llu | %-8s %10.1f %10.1f %10lld %10llu | %s%s\n",
                          c.what, one.surfaces[0].prepared.num_triangles(), c.straddles ? "straddles" : "inside",
-                         c.by_test.culled ? "cull" : "no cull", c.by_test.job_ticks / 1e3,
-                         c.by_test.stencil_ticks / 1e3, (long long)c.by_test.indices,
+                         c.by_test.culled ? "cull" : "no cull", (double)c.by_test.job_ticks / 1e3,
+                         (double)c.by_test.stencil_ticks / 1e3, (long long)c.by_test.indices,
                          (unsigned long long)c.by_test.pixels, c.other.culled ? "cull" : "no cull",
-                         c.other.job_ticks / 1e3, c.other.stencil_ticks / 1e3, (long long)c.other.indices,
+                         (double)c.other.job_ticks / 1e3, (double)c.other.stencil_ticks / 1e3, (long long)c.other.indices,
                          (unsigned long long)c.other.pixels,
                          test_cheaper ? "the test's side" : "the other side",
                          same ? "" : "  (pictures differ: FAILED)");
@@ -321,8 +321,8 @@ int run_scene_bench(const SeedCommand &cmd) {
             j.key("case"), j.value(c.what);
             j.key("straddles"), j.value(c.straddles);
             j.key("test_culls"), j.value(c.by_test.culled);
-            j.key("test_ticks"), j.value((unsigned long long)(c.by_test.job_ticks + c.by_test.stencil_ticks));
-            j.key("other_ticks"), j.value((unsigned long long)(c.other.job_ticks + c.other.stencil_ticks));
+            j.key("test_ticks"), j.value((unsigned long long)c.by_test.job_ticks + c.by_test.stencil_ticks);
+            j.key("other_ticks"), j.value((unsigned long long)c.other.job_ticks + c.other.stencil_ticks);
             j.end_object();
         }
         j.end_array();

@@ -61,16 +61,16 @@ std::string first_difference(const T *got, const T *want, size_t n, const char *
     return "";
 }
 
-// The cases of one routine, over ROWS (every row runnable here); INPUT is
+// The cases of one routine, over ROWS (every row runnable here); RNG is
 // the routine's input stream, the same for every row.
-void run_calculate_facing(std::vector<Row> &rows, Rng &input);
-void run_calculate_cull_bits(std::vector<Row> &rows, Rng &input);
-void run_calculate_facing_count(std::vector<Row> &rows, Rng &input);
-void run_count_facing(std::vector<Row> &rows, Rng &input);
-void run_count_facing_cull(std::vector<Row> &rows, Rng &input);
-void run_create_sil_triangles(std::vector<Row> &rows, Rng &input);
-void run_create_cap_triangles(std::vector<Row> &rows, Rng &input);
-void run_shadow_volume(std::vector<Row> &rows, Rng &input, bool cull);
-void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &input);
+void run_calculate_facing(std::vector<Row> &rows, Rng &rng);
+void run_calculate_cull_bits(std::vector<Row> &rows, Rng &rng);
+void run_calculate_facing_count(std::vector<Row> &rows, Rng &rng);
+void run_count_facing(std::vector<Row> &rows, Rng &rng);
+void run_count_facing_cull(std::vector<Row> &rows, Rng &rng);
+void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng);
+void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng);
+void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull);
+void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng);
 
 } // namespace svcheck

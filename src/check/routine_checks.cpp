@@ -51,6 +51,7 @@ bool routine_by_name(const std::string &name, Routine *out) {
 
 std::vector<Routine> all_routines() {
     std::vector<Routine> r;
+    r.reserve(kNumRoutines);
     for (int i = 0; i < kNumRoutines; i++) r.push_back((Routine)i);
     return r;
 }
@@ -95,6 +96,7 @@ std::vector<Variant> library_variants() {
     int nk = 0, nf = 0;
     const sv_variant *kv = sv_variants(&nk);
     const sv_facing_variant *fv = sv_facing_variants(&nf);
+    out.reserve((size_t)nk + (size_t)nf);
     // The kernel table's order (reference first), each with the facing
     // routines of the same name; then facing variants with no kernels of
     // their name (sse2: the faithful kernels are sse2_paper).

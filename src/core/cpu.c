@@ -57,8 +57,8 @@ static unsigned detect(void) {
     }
     isa = SV_ISA_SSE2;
 #endif
-    const int osxsave = (c >> 27) & 1, avx = (c >> 28) & 1, fma = (c >> 12) & 1;
-    const int popcnt = (c >> 23) & 1;
+    const unsigned osxsave = (c >> 27) & 1, avx = (c >> 28) & 1, fma = (c >> 12) & 1;
+    const unsigned popcnt = (c >> 23) & 1;
     if (!osxsave || !avx || max_leaf < 7) {
         return isa;
     }
@@ -66,10 +66,10 @@ static unsigned detect(void) {
     const int os_ymm = (xcr0 & 0x6) == 0x6;    /* SSE + AVX state */
     const int os_zmm = (xcr0 & 0xE6) == 0xE6; /* + opmask, ZMM_Hi256, Hi16_ZMM */
     __cpuid_count(7, 0, a, b, c, d);
-    const int avx2 = (b >> 5) & 1, bmi1 = (b >> 3) & 1, bmi2 = (b >> 8) & 1;
-    const int avx512f = (b >> 16) & 1, avx512dq = (b >> 17) & 1, avx512cd = (b >> 28) & 1;
-    const int avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
-    const int vbmi = (c >> 1) & 1, vbmi2 = (c >> 6) & 1;
+    const unsigned avx2 = (b >> 5) & 1, bmi1 = (b >> 3) & 1, bmi2 = (b >> 8) & 1;
+    const unsigned avx512f = (b >> 16) & 1, avx512dq = (b >> 17) & 1, avx512cd = (b >> 28) & 1;
+    const unsigned avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
+    const unsigned vbmi = (c >> 1) & 1, vbmi2 = (c >> 6) & 1;
     /* The x86-64-v3 set: what compilers assume for -march=x86-64-v3. */
     if (os_ymm && avx2 && bmi1 && bmi2 && fma && popcnt) {
         isa |= SV_ISA_AVX2;

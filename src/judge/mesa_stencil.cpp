@@ -127,6 +127,7 @@ namespace {
     X(glDrawElements)
 
 struct GlApi {
+// NOLINTNEXTLINE(bugprone-macro-parentheses): NAME is a GL function's name, not an expression
 #define SV_GL_DECLARE(name) decltype(&::name) name = nullptr;
     SV_GL_FUNCTIONS(SV_GL_DECLARE)
 #undef SV_GL_DECLARE

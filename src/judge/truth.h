@@ -103,13 +103,13 @@ private:
     const Scene &scene_;
     std::unique_ptr<SceneRays> rays_;
     uint8_t light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                        const LightFrame &light, int surface, int triangle, const Vec3d &P,
+                        const LightFrame &lf, int si, int t, const Vec3d &P,
                         uint64_t *rays) const;
     std::vector<std::vector<uint8_t>> facing_bytes(const Vec4 &L) const;
     uint8_t classify_point(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                           const LightFrame &light, double x, double y) const;
+                           const LightFrame &lf, double x, double y) const;
     uint8_t classify_stored_depth(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                                  const LightFrame &light, int x, int y) const;
+                                  const LightFrame &lf, int x, int y) const;
 };
 
 /* Truth against a stencil (0 = lit), by the nine centres only; REFINE,

@@ -154,7 +154,7 @@ int style_of(const Series &s, size_t position) {
 /* The panel at vertical offset TOP; returns its height. */
 double render_panel(std::string &out, const Panel &p, double top, const Document &d) {
     /* Data ranges. */
-    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
     for (const Series &s : p.series) {
         for (const std::vector<Point> *pts : {&s.line, &s.loose}) {
             for (const Point &pt : *pts) {
@@ -372,10 +372,8 @@ std::string xml_escape(const std::string &t) {
             case '"': out += "&quot;"; break;
             case '\'': out += "&apos;"; break;
             default:
-                if (c < 0x20 && c != '\t' && c != '\n') {
-                    replacement(out); /* not allowed in XML 1.0 */
-                } else if (c == 0x7f) {
-                    replacement(out);
+                if ((c < 0x20 && c != '\t' && c != '\n') || c == 0x7f) {
+                    replacement(out); /* not allowed in XML 1.0; DEL, replaced too */
                 } else {
                     out += (char)c;
                 }

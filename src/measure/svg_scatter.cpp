@@ -159,7 +159,8 @@ std::string render_loglog_scatter(const std::vector<ScatterPoint> &points, const
             bool clash = false;
             for (const Box &o : placed) clash = clash || b.overlaps(o);
             if (!clash) break;
-            const double dy = (step % 2 ? 1 : -1) * ((step + 1) / 2) * kLabelH;
+            const int ring = (step + 1) / 2; /* 1, 1, 2, 2, ...: below, above, ... */
+            const double dy = (step % 2 ? 1 : -1) * ring * kLabelH;
             b = Box{x, py(p.y) + 4 + dy - kLabelH + 3, x + w, py(p.y) + 4 + dy + 3};
             y = py(p.y) + 4 + dy;
         }

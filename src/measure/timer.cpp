@@ -115,7 +115,8 @@ double estimate_tsc_hz(double seconds) {
         s1 = monotonic_seconds();
         b1 = TscLfence::stamp();
     } while (s1 - s0 < seconds);
-    double ticks = (double)(a1 + (b1 - a1) / 2) - (double)(a0 + (b0 - a0) / 2);
+    const uint64_t mid0 = a0 + (b0 - a0) / 2, mid1 = a1 + (b1 - a1) / 2;
+    double ticks = (double)mid1 - (double)mid0;
     return ticks / (s1 - s0);
 }
 

@@ -71,9 +71,9 @@ static inline __m128 load3_sse2(const float *p) {
         const __m128 t1_ = _mm_unpacklo_ps(r2, r3);                     \
         const __m128 t2_ = _mm_unpackhi_ps(r0, r1);                     \
         const __m128 t3_ = _mm_unpackhi_ps(r2, r3);                     \
-        X = _mm_movelh_ps(t0_, t1_);                                    \
-        Y = _mm_movehl_ps(t1_, t0_);                                    \
-        Z = _mm_movelh_ps(t2_, t3_);                                    \
+        (X) = _mm_movelh_ps(t0_, t1_);                                  \
+        (Y) = _mm_movehl_ps(t1_, t0_);                                  \
+        (Z) = _mm_movelh_ps(t2_, t3_);                                  \
     } while (0)
 
 /* The columns of p0, e1 and e2 of triangles T .. T+3. */
@@ -175,9 +175,9 @@ SV_TARGET_AVX2 static inline __m256 row2_avx2(const float *positions, int ia, in
         const __m256 xz23_ = _mm256_blend_ps(q2, q3, 0xAA);                        \
         const __m256 y01_ = _mm256_blend_ps(q0, q1, 0x44); /* x0 y0 y1 0 */        \
         const __m256 y23_ = _mm256_blend_ps(q2, q3, 0x44);                         \
-        X = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));              \
-        Z = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));              \
-        Y = _mm256_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));                \
+        (X) = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));            \
+        (Z) = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));            \
+        (Y) = _mm256_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));              \
     } while (0)
 
 /* Row r of the step holds triangles TA(r) (low lane) and TB(r) (high). */
@@ -205,7 +205,7 @@ SV_TARGET_AVX2 static inline __m256 row2_avx2(const float *positions, int ia, in
 /* The plane columns of the step (see the reference's order). */
 #define PLANES_AVX2(a, b, c, d, ok)                                                        \
     __m256 a, b, c, d;                                                                     \
-    unsigned ok;                                                                           \
+    unsigned ok; /* NOLINT(bugprone-macro-parentheses): a name this declares */            \
     do {                                                                                   \
         const __m256 nx_ = _mm256_sub_ps(_mm256_mul_ps(ay, bz), _mm256_mul_ps(az, by));    \
         const __m256 ny_ = _mm256_sub_ps(_mm256_mul_ps(az, bx), _mm256_mul_ps(ax, bz));    \
@@ -213,16 +213,16 @@ SV_TARGET_AVX2 static inline __m256 row2_avx2(const float *positions, int ia, in
         const __m256 len2_ = _mm256_add_ps(                                                \
             _mm256_add_ps(_mm256_mul_ps(nx_, nx_), _mm256_mul_ps(ny_, ny_)),               \
             _mm256_mul_ps(nz_, nz_));                                                      \
-        ok = (unsigned)_mm256_movemask_ps(                                                 \
+        (ok) = (unsigned)_mm256_movemask_ps(                                               \
             _mm256_and_ps(_mm256_cmp_ps(len2_, _mm256_setzero_ps(), _CMP_GT_OQ),           \
                           _mm256_cmp_ps(len2_, _mm256_set1_ps(INFINITY), _CMP_LT_OQ)));    \
         const __m256 inv_ = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(len2_));    \
-        a = _mm256_mul_ps(nx_, inv_);                                                      \
-        b = _mm256_mul_ps(ny_, inv_);                                                      \
-        c = _mm256_mul_ps(nz_, inv_);                                                      \
-        d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, px), _mm256_mul_ps(b, py)),       \
+        (a) = _mm256_mul_ps(nx_, inv_);                                                    \
+        (b) = _mm256_mul_ps(ny_, inv_);                                                    \
+        (c) = _mm256_mul_ps(nz_, inv_);                                                    \
+        (d) = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, px), _mm256_mul_ps(b, py)),     \
                           _mm256_mul_ps(c, pz));                                           \
-        d = _mm256_xor_ps(d, _mm256_set1_ps(-0.0f));                                       \
+        (d) = _mm256_xor_ps(d, _mm256_set1_ps(-0.0f));                                     \
     } while (0)
 
 /* Plane columns a..d in lane order (0 2 4 6 | 1 3 5 7) -> planes T..T+7. */
@@ -294,9 +294,9 @@ SV_TARGET_AVX2 static inline __m256 row2_shifted_avx2(const float *positions, in
         const __m256 t1_ = _mm256_unpacklo_ps(r2, r3);                     \
         const __m256 t2_ = _mm256_unpackhi_ps(r0, r1); /* y0 y1 z0 z1 */   \
         const __m256 t3_ = _mm256_unpackhi_ps(r2, r3);                     \
-        X = _mm256_shuffle_ps(t0_, t1_, _MM_SHUFFLE(3, 2, 3, 2));          \
-        Y = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(1, 0, 1, 0));          \
-        Z = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(3, 2, 3, 2));          \
+        (X) = _mm256_shuffle_ps(t0_, t1_, _MM_SHUFFLE(3, 2, 3, 2));        \
+        (Y) = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(1, 0, 1, 0));        \
+        (Z) = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(3, 2, 3, 2));        \
     } while (0)
 
 SV_TARGET_AVX2 static inline __m256 inv_len_avx2(__m256 len2) {
@@ -397,7 +397,7 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *ind
         const __m256 s_ = _mm256_add_ps(                                                      \
             _mm256_add_ps(_mm256_mul_ps(nx_, vx_), _mm256_mul_ps(ny_, vy_)),                  \
             _mm256_mul_ps(nz_, vz_));                                                         \
-        m = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s_, _mm256_setzero_ps(), _CMP_GT_OQ)); \
+        (m) = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s_, _mm256_setzero_ps(), _CMP_GT_OQ)); \
     } while (0)
 
 SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const int *indices,
@@ -446,14 +446,14 @@ SV_TARGET_AVX2 static inline void corners8(const int *ix, __m256i *c0, __m256i *
         c1_ = _mm256_add_epi32(c1_, _mm256_add_epi32(c1_, c1_));                      \
         c2_ = _mm256_add_epi32(c2_, _mm256_add_epi32(c2_, c2_));                      \
         px = _mm256_i32gather_ps(positions, c0_, 4);                                  \
-        py = _mm256_i32gather_ps(positions + 1, c0_, 4);                              \
-        pz = _mm256_i32gather_ps(positions + 2, c0_, 4);                              \
+        py = _mm256_i32gather_ps((positions) + 1, c0_, 4);                            \
+        pz = _mm256_i32gather_ps((positions) + 2, c0_, 4);                            \
         ax = _mm256_sub_ps(_mm256_i32gather_ps(positions, c1_, 4), px);               \
-        ay = _mm256_sub_ps(_mm256_i32gather_ps(positions + 1, c1_, 4), py);           \
-        az = _mm256_sub_ps(_mm256_i32gather_ps(positions + 2, c1_, 4), pz);           \
+        ay = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 1, c1_, 4), py);         \
+        az = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 2, c1_, 4), pz);         \
         bx = _mm256_sub_ps(_mm256_i32gather_ps(positions, c2_, 4), px);               \
-        by = _mm256_sub_ps(_mm256_i32gather_ps(positions + 1, c2_, 4), py);           \
-        bz = _mm256_sub_ps(_mm256_i32gather_ps(positions + 2, c2_, 4), pz);           \
+        by = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 1, c2_, 4), py);         \
+        bz = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 2, c2_, 4), pz);         \
     } while (0)
 
 /* The gathers index with 32-bit 3 * index: vertex numbers must be below
@@ -521,9 +521,9 @@ SV_TARGET_AVX512 static inline __m512 row4_512(const float *positions, const int
         const __m512 xz23_ = _mm512_mask_blend_ps(0xAAAA, q2, q3);              \
         const __m512 y01_ = _mm512_mask_blend_ps(0x4444, q0, q1);               \
         const __m512 y23_ = _mm512_mask_blend_ps(0x4444, q2, q3);               \
-        X = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));           \
-        Z = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));           \
-        Y = _mm512_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));             \
+        (X) = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));         \
+        (Z) = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));         \
+        (Y) = _mm512_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));           \
     } while (0)
 
 /* ORDER 0: row r, lane L = triangle 4r + L (rows of consecutive planes);

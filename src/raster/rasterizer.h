@@ -147,15 +147,15 @@ public:
     void setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
                std::vector<SetupTriangle> &out) const;
     /* The rows of T inside BAND: depth pass into T's depth and ids. */
-    void walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &n) const;
+    void walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &r) const;
     /* The rows of TRI inside BAND: stencil pass against DEPTH into
      * STENCIL (both WIDTH pixels per row, with kFrameSlack after them). */
     void walk_stencil(const SetupTriangle &tri, const float *depth, uint8_t *stencil, int width,
-                      int height, RowBand band, StencilMode mode, RowCounts &n) const;
-    /* Adds a pass's pixel counts to C (bytes as the draw_* functions count
-     * them). */
-    static void add_depth_counts(const RowCounts &n, PassCounters &c);
-    static void add_stencil_counts(const RowCounts &n, PassCounters &c);
+                      int height, RowBand band, StencilMode mode, RowCounts &r) const;
+    /* Adds a pass's pixel counts R to C (bytes as the draw_* functions
+     * count them). */
+    static void add_depth_counts(const RowCounts &r, PassCounters &c);
+    static void add_stencil_counts(const RowCounts &r, PassCounters &c);
 
     /* For tests and the GL comparison: the triangle's pieces after
      * clipping, as window-space triangles in pixels (x, y down, depth),

@@ -303,23 +303,23 @@ std::vector<Point3> volume_vertices(const PreparedSurface &s, const VerifyLight 
 
 /* ---- Closure ------------------------------------------------------------ */
 
-ClosureResult check_closure(const int *idx, int n, int num_vertices) {
+ClosureResult check_closure(const int *shadowIndices, int numIndices, int numVertices) {
     ClosureResult r;
     char buf[200];
-    if (n < 0 || n % 3 != 0) {
+    if (numIndices < 0 || numIndices % 3 != 0) {
         r.closed = false;
-        std::snprintf(buf, sizeof buf, "%d indices: not a whole number of triangles", n);
+        std::snprintf(buf, sizeof buf, "%d indices: not a whole number of triangles", numIndices);
         r.problem = buf;
         return r;
     }
-    const int64_t limit = 2 * (int64_t)num_vertices;
+    const int64_t limit = 2 * (int64_t)numVertices;
     /* Undirected key (lo, hi) -> (uses lo->hi) - (uses hi->lo); all zero
      * when the volume is closed and consistently wound. */
     std::unordered_map<uint64_t, int64_t> balance;
-    balance.reserve((size_t)n);
-    for (int i = 0; i < n; i += 3) {
+    balance.reserve((size_t)numIndices);
+    for (int i = 0; i < numIndices; i += 3) {
         for (int k = 0; k < 3; k++) {
-            const int a = idx[i + k], b = idx[i + (k + 1) % 3];
+            const int a = shadowIndices[i + k], b = shadowIndices[i + (k + 1) % 3];
             if (a < 0 || a >= limit) {
                 r.closed = false;
                 std::snprintf(buf, sizeof buf, "index %d at position %d is outside [0, %lld)", a,
@@ -366,11 +366,11 @@ WindingVolume::WindingVolume(const std::vector<Point3> &vertices, const int *ind
 
 std::size_t WindingVolume::triangles() const { return tris_->size(); }
 
-WindingVolume::Status WindingVolume::winding(const Point3 &p, uint64_t &rng, int *out,
+WindingVolume::Status WindingVolume::winding(const Point3 &p, uint64_t &seed_state, int *out,
                                              int64_t *retries) const {
     const RayTriangles &tr = *tris_;
     for (int attempt = 0; attempt < 8; attempt++) {
-        const Point3 r = random_direction(rng);
+        const Point3 r = random_direction(seed_state);
         int w = 0;
         bool clean = true, on_boundary = false;
         tr.for_each_candidate(p, r, HUGE_VAL, [&](uint32_t t) {

@@ -100,10 +100,10 @@ int sv_calculate_facing_count_c(const Plane *planes, int numTriangles, const Vec
     do {                                                                            \
         __m128 t0_ = _mm_unpacklo_ps(r0, r1), t1_ = _mm_unpacklo_ps(r2, r3);        \
         __m128 t2_ = _mm_unpackhi_ps(r0, r1), t3_ = _mm_unpackhi_ps(r2, r3);        \
-        c0 = _mm_movelh_ps(t0_, t1_);                                               \
-        c1 = _mm_movehl_ps(t1_, t0_);                                               \
-        c2 = _mm_movelh_ps(t2_, t3_);                                               \
-        c3 = _mm_movehl_ps(t3_, t2_);                                               \
+        (c0) = _mm_movelh_ps(t0_, t1_);                                             \
+        (c1) = _mm_movehl_ps(t1_, t0_);                                             \
+        (c2) = _mm_movelh_ps(t2_, t3_);                                             \
+        (c3) = _mm_movehl_ps(t3_, t2_);                                             \
     } while (0)
 
 /* Four facing tests of four planes at P: the compare mask, one dword of
@@ -244,13 +244,13 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
     do {                                                                            \
         __m256 t0_ = _mm256_unpacklo_ps(r0, r1), t1_ = _mm256_unpacklo_ps(r2, r3);  \
         __m256 t2_ = _mm256_unpackhi_ps(r0, r1), t3_ = _mm256_unpackhi_ps(r2, r3);  \
-        c0 = _mm256_castpd_ps(                                                      \
+        (c0) = _mm256_castpd_ps(                                                    \
             _mm256_unpacklo_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_)));      \
-        c1 = _mm256_castpd_ps(                                                      \
+        (c1) = _mm256_castpd_ps(                                                    \
             _mm256_unpackhi_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_)));      \
-        c2 = _mm256_castpd_ps(                                                      \
+        (c2) = _mm256_castpd_ps(                                                    \
             _mm256_unpacklo_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_)));      \
-        c3 = _mm256_castpd_ps(                                                      \
+        (c3) = _mm256_castpd_ps(                                                    \
             _mm256_unpackhi_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_)));      \
     } while (0)
 
