@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
+
+#include "fnv1a.h"
 
 namespace svcheck {
 
@@ -25,9 +28,8 @@ double Rng::unit() { return (double)(next() >> 11) * (1.0 / 9007199254740992.0);
 
 uint64_t stream_seed(uint64_t seed, const std::string &a, const std::string &b) {
     // FNV-1a over the names, then one splitmix step with the seed.
-    uint64_t h = 0xCBF29CE484222325ull;
-    for (unsigned char c : a + "/" + b) h = (h ^ c) * 0x100000001B3ull;
-    Rng r(seed ^ h);
+    const std::string names = a + "/" + b;
+    Rng r(seed ^ sv::fnv1a64(names.data(), names.size()));
     return r.next();
 }
 

@@ -224,7 +224,7 @@ int accuracy_main(int argc, char **argv) {
                     opt.placements.end()) {
                     opt.placements.push_back(pl);
                 }
-            } else if (a.arg().rfind("-", 0) == 0) {
+            } else if (a.arg().rfind('-', 0) == 0) {
                 usage_error("unknown option '" + quoted(a.arg()) + "'");
             } else {
                 usage_error("unexpected argument '" + quoted(a.arg()) + "' (models go after --model)");
@@ -259,6 +259,7 @@ int accuracy_main(int argc, char **argv) {
         }
     }
     std::vector<const sv::acc::StudyModel *> mptr;
+    mptr.reserve(models.size());
     for (const auto &m : models) mptr.push_back(m.get());
 
     const bool progress = isatty(2) != 0;

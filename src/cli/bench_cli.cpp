@@ -325,7 +325,7 @@ CliOptions parse(int argc, char **argv) {
                                  opt == "--silhouette" || opt == "--backface" ||
                                  opt == "--planes" || opt == "--scene")) {
             bad(opt + " takes no value");
-        } else if (arg.rfind("-", 0) == 0) {
+        } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
         } else {
             bad("unexpected argument '" + arg + "'");

@@ -36,6 +36,7 @@ std::string joined(const std::vector<std::string> &names) {
 
 std::vector<std::string> variant_names(const std::vector<svcheck::Variant> &table) {
     std::vector<std::string> n;
+    n.reserve(table.size());
     for (const svcheck::Variant &v : table) n.push_back(v.name);
     return n;
 }

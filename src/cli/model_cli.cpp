@@ -152,7 +152,7 @@ int parse_model_args(const char *command, int argc, char **argv, void (*usage)(F
                 out->max_triangles = a.integer(0, (long long)1 << 40);
             } else if (extra(a)) {
                 continue;
-            } else if (a.arg().rfind("-", 0) == 0 && a.arg() != "-") {
+            } else if (a.arg().rfind('-', 0) == 0 && a.arg() != "-") {
                 usage_error("unknown option '" + quoted(a.arg()) + "'");
             } else if (out->model.empty()) {
                 out->model = a.arg();

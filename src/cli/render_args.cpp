@@ -10,20 +10,20 @@
 
 namespace svcli {
 
-void parse_frame_size(const std::string &s, int &w, int &h) {
-    const std::size_t x = s.find('x');
+void parse_frame_size(const std::string &text, int &width, int &height) {
+    const std::size_t x = text.find('x');
     auto num = [&](const std::string &t) -> long long {
         if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
         return std::stoll(t);
     };
-    const long long a = x == std::string::npos ? -1 : num(s.substr(0, x));
-    const long long b = x == std::string::npos ? -1 : num(s.substr(x + 1));
+    const long long a = x == std::string::npos ? -1 : num(text.substr(0, x));
+    const long long b = x == std::string::npos ? -1 : num(text.substr(x + 1));
     if (a < 1 || b < 1 || a > sv::render::kMaxFrameSide || b > sv::render::kMaxFrameSide ||
         a * b > sv::render::kMaxFramePixels) {
         usage_error("--size needs WxH with 1 <= W, H <= " + std::to_string(sv::render::kMaxFrameSide) +
-                    " (not '" + quoted(s) + "')");
+                    " (not '" + quoted(text) + "')");
     }
-    w = (int)a, h = (int)b;
+    width = (int)a, height = (int)b;
 }
 
 bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &adds, bool &ground,
@@ -64,10 +64,9 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
             help = true;
             return r;
         } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
-                                              r.has_camera)) {
-            /* --add, --ground, --light, --camera */
-        } else if (parse_render_pass_option(a, r.stencil)) {
-            /* --stencil */
+                                              r.has_camera) ||
+                   parse_render_pass_option(a, r.stencil)) {
+            /* the options scene shares: --add, --ground, --light, --camera; --stencil */
         } else if (a.is("--size")) {
             parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--mode")) {

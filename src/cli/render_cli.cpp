@@ -25,6 +25,7 @@
 
 #include "cli_args.h"
 #include "frame.h"
+#include "fnv1a.h"
 #include "gl_compare.h"
 #include "images.h"
 #include "json_writer.h"
@@ -49,14 +50,8 @@ double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz 
  * tools/pin_bytes.sh can pin the volumes apart from the pictures (a volume
  * may change while the pixels stay the same, and the reverse). */
 std::string indices_fnv1a64(const int *indices, std::size_t n) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (std::size_t i = 0; i < n; i++) {
-        const uint32_t v = (uint32_t)indices[i];
-        for (int b = 0; b < 32; b += 8) {
-            h ^= (v >> b) & 0xffu;
-            h *= 0x100000001b3ull;
-        }
-    }
+    /* (x86 keeps an int32 as its little-endian bytes.) */
+    const uint64_t h = sv::fnv1a64(indices, n * sizeof *indices);
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
     return hex;
@@ -340,8 +335,8 @@ int render_main(int argc, char **argv) {
                     ms(lf.ticks_stencil, hz), ms(frame.ticks_shading, hz),
                     (unsigned long long)lf.stencil_counters.pixels_tested,
                     (unsigned long long)lf.stencil_counters.pixels_written,
-                    (unsigned long long)(lf.stencil_counters.stencil_bytes_read +
-                                         lf.stencil_counters.stencil_bytes_written),
+                    (unsigned long long)lf.stencil_counters.stencil_bytes_read +
+                        (unsigned long long)lf.stencil_counters.stencil_bytes_written,
                     truth_cols, gl_cols);
     }
     for (std::size_t li = 0; li < frame.lights.size(); li++) {

@@ -29,10 +29,9 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
             help = true;
             return r;
         } else if (parse_scene_content_option(a, r.seq.adds, r.seq.ground, r.seq.lights,
-                                              r.seq.camera, r.seq.has_camera)) {
-            /* --add, --ground, --light, --camera */
-        } else if (parse_render_pass_option(a, r.stencil)) {
-            /* --stencil */
+                                              r.seq.camera, r.seq.has_camera) ||
+                   parse_render_pass_option(a, r.stencil)) {
+            /* the options render shares: --add, --ground, --light, --camera; --stencil */
         } else if (a.is("--animation")) {
             r.seq.animation = a.value();
             if (r.seq.animation.empty()) usage_error("--animation needs a name or an index");
@@ -65,7 +64,7 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
             r.json_path = a.value();
         } else if (a.is("--skinning")) {
             r.skinning = a.value();
-        } else if (a.arg().rfind("-", 0) == 0) {
+        } else if (a.arg().rfind('-', 0) == 0) {
             usage_error("unknown option '" + quoted(a.arg()) + "'");
         } else if (r.seq.file.empty()) {
             const sv::ModelPlacement m = sv::parse_model_placement(a.arg());

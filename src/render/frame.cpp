@@ -50,16 +50,16 @@ void Frame::decode_id(int32_t id, int &surface, int &triangle) const {
     triangle = id - surface_first_id[surface];
 }
 
-raster::ClipVertex to_clip(const Mat4d &vp, double x, double y, double z, double w) {
-    const std::array<double, 4> c = vp.apply(x, y, z, w);
+raster::ClipVertex to_clip(const Mat4d &view_proj, double x, double y, double z, double w) {
+    const std::array<double, 4> c = view_proj.apply(x, y, z, w);
     return {c[0], c[1], c[2], c[3]};
 }
 
-raster::ClipVertex shadow_vertex_to_clip(const Mat4d &vp, const PreparedSurface &p, int sv_index,
+raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p, int sv_index,
                                          const Vec4 &L) {
     const Vec3d q = vertex(p, sv_index >> 1);
-    return (sv_index & 1) ? to_clip(vp, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0)
-                          : to_clip(vp, q.x, q.y, q.z, 1.0);
+    return (sv_index & 1) ? to_clip(view_proj, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0)
+                          : to_clip(view_proj, q.x, q.y, q.z, 1.0);
 }
 
 Vec3d camera_ray(const Frame &f, double x, double y) {

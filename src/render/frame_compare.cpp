@@ -11,16 +11,16 @@
 
 namespace sv::render {
 
-bool pixel_in_light_reach(const Frame &f, const Scene &scene, int li, std::size_t i) {
-    const int32_t id = f.target.ids[i];
+bool pixel_in_light_reach(const Frame &f, const Scene &scene, int light, std::size_t pixel) {
+    const int32_t id = f.target.ids[pixel];
     if (id < 0) return false;
     int si, t;
     f.decode_id(id, si, t);
     const SceneSurface &s = scene.surfaces[(std::size_t)si];
-    const SceneLight &l = scene.lights[(std::size_t)li];
+    const SceneLight &l = scene.lights[(std::size_t)light];
     if (!light_reaches_box(l, s.lo, s.hi)) return false;
-    return point_in_light_reach(
-        l, visible_point(f, scene, si, t, (int)(i % (std::size_t)f.width), (int)(i / (std::size_t)f.width)));
+    const auto row = (int)(pixel / (std::size_t)f.width), column = (int)(pixel % (std::size_t)f.width);
+    return point_in_light_reach(l, visible_point(f, scene, si, t, column, row));
 }
 
 FrameDifference compare_frames(const Scene &scene, const Frame &a, const Frame &b) {

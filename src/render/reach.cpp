@@ -44,14 +44,14 @@ bool light_reaches_box(const SceneLight &l, const Vec3d &lo, const Vec3d &hi, do
     return true;
 }
 
-bool shadow_may_reach_view(const Mat4d &vp, const Vec3d &lo, const Vec3d &hi, const Vec4 &L,
+bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d &hi, const Vec4 &L,
                            bool with_extrusion) {
     std::array<double, 4> pts[16];
     int n = 0;
     for (int i = 0; i < 8; i++) {
         const double x = (i & 1) ? hi.x : lo.x, y = (i & 2) ? hi.y : lo.y, z = (i & 4) ? hi.z : lo.z;
-        pts[n++] = vp.apply(x, y, z, 1.0);
-        if (with_extrusion) pts[n++] = vp.apply(x * L.w - L.x, y * L.w - L.y, z * L.w - L.z, 0.0);
+        pts[n++] = view_proj.apply(x, y, z, 1.0);
+        if (with_extrusion) pts[n++] = view_proj.apply(x * L.w - L.x, y * L.w - L.y, z * L.w - L.z, 0.0);
     }
     for (int p = 0; p < 5; p++) {
         bool all_out = true;

@@ -70,7 +70,10 @@ uint8_t to_display8(double linear) {
         return t;
     }();
     const double c = std::clamp(linear, 0.0, (double)kMax);
-    return table[(std::size_t)(c * kSteps + 0.5)];
+    /* c >= 0: truncating c * kSteps + 0.5 rounds to the nearest step (a
+     * tie of the last bit going up is as good as down here), without a
+     * libm call per channel. */
+    return table[(std::size_t)(c * kSteps + 0.5)]; // NOLINT(bugprone-incorrect-roundings)
 }
 
 } // namespace
@@ -84,6 +87,7 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
     const int num_bands = band_count(height);
     result.rgb.assign((std::size_t)width * height * 3, 0);
     std::vector<LightTerms> terms;
+    terms.reserve((std::size_t)num_lights);
     for (int li = 0; li < num_lights; li++) terms.emplace_back(f.lights[(std::size_t)li].light);
     parallel(num_bands, [&](int b) {
         const raster::RowBand band = band_rows(b, height);

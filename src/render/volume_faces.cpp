@@ -48,9 +48,10 @@ std::vector<raster::Rasterizer::WindowTriangle> drawn_volume_triangles(const Sce
 }
 
 FaceProximity face_proximity(const std::vector<raster::Rasterizer::WindowTriangle> &tris,
-                             const Frame &f, std::size_t i, float depth) {
-    const double px = (double)(i % (std::size_t)f.width) + 0.5;
-    const double py = (double)(i / (std::size_t)f.width) + 0.5;
+                             const Frame &f, std::size_t pixel, float depth) {
+    const std::size_t row = pixel / (std::size_t)f.width, column = pixel % (std::size_t)f.width;
+    const double px = (double)column + 0.5;
+    const double py = (double)row + 0.5;
     FaceProximity r{HUGE_VAL, HUGE_VAL};
     for (const auto &t : tris) {
         const double x0 = std::min({t.x[0], t.x[1], t.x[2]}), x1 = std::max({t.x[0], t.x[1], t.x[2]});

@@ -103,9 +103,13 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
                                fault.drop_dark_cap_always;
         const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
                                 (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u);
-        const bool same_light = e.valid && std::memcmp(&e.light, &L, sizeof L) == 0 &&
-                                e.has_planes == has_planes &&
-                                (!has_planes || std::memcmp(e.planes, planes, sizeof planes) == 0);
+        /* The key compares bits (memcmp), not values: any change of the
+         * light or its planes, -0 against +0 included, rebuilds; Vec4
+         * and Plane are four floats with no padding. */
+        const bool same_light =
+            e.valid && std::memcmp(&e.light, &L, sizeof L) == 0 && // NOLINT(bugprone-suspicious-memory-comparison)
+            e.has_planes == has_planes &&
+            (!has_planes || std::memcmp(e.planes, planes, sizeof planes) == 0); // NOLINT(bugprone-suspicious-memory-comparison)
         const bool reuse = sc.reuse_static && e.valid && same_light && e.variant == variant &&
                            e.facing_variant == facing_v && e.config == config &&
                            (e.revision == s.revision || fault.reuse_ignores_motion);
@@ -162,11 +166,9 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
         }
         /* 4: caps only for z-fail. */
         bool zfail;
-        if (in.mode == ModeChoice::zfail) {
-            zfail = true;
-        } else if (in.mode == ModeChoice::zpass) {
+        if (in.mode == ModeChoice::zpass) {
             zfail = false;
-        } else if (!sc.zpass_when_safe) {
+        } else if (in.mode == ModeChoice::zfail || !sc.zpass_when_safe) {
             zfail = true;
         } else {
             zfail = !fault.zpass_always && near_plane_may_be_shadowed(scene.camera, aspect, s, light);
@@ -187,7 +189,7 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
                  * dark cap (3): keep the near ones. */
                 int k = 0;
                 for (int i = 0; i < n; i += 6) {
-                    for (int j = 0; j < 3; j++) e.caps[(std::size_t)(k + j)] = e.caps[(std::size_t)(i + j)];
+                    for (int j = 0; j < 3; j++) e.caps[(std::size_t)k + j] = e.caps[(std::size_t)i + j];
                     k += 3;
                 }
                 n = k;
@@ -242,8 +244,11 @@ std::vector<const uint8_t *> lit_facing(const Scene &scene, const std::vector<Li
         for (int si = 0; si < num_surfaces; si++) {
             const SceneSurface &s = scene.surfaces[(std::size_t)si];
             const VolumeCache::Entry &e = cache.entries()[(std::size_t)li * num_surfaces + si];
+            /* (The cache key's bits, as in volume_pass.) */
             if (light_reaches_box(scene.lights[(std::size_t)li], s.lo, s.hi) && e.valid &&
-                e.revision == s.revision && std::memcmp(&e.light, &L, sizeof L) == 0 && !e.facing.empty()) {
+                e.revision == s.revision &&
+                std::memcmp(&e.light, &L, sizeof L) == 0 && // NOLINT(bugprone-suspicious-memory-comparison)
+                !e.facing.empty()) {
                 out[(std::size_t)li * num_surfaces + si] = e.facing.data();
             }
         }
