@@ -112,9 +112,9 @@ repo="$PWD"
 job="${1:-test}"
 [ $# -gt 0 ] && shift
 case "$job" in
-  bench|test|fuzz|cross) ;;
+  bench|test|fuzz|cross|lint) ;;
   fresh) die "JOB cannot be fresh itself" ;;
-  *) die "unknown JOB '$job' (one of: bench test fuzz cross)" ;;
+  *) die "unknown JOB '$job' (one of: bench test fuzz cross lint)" ;;
 esac
 [ "$(id -u)" -eq 0 ] || die "needs root (mmdebstrap's root mode, chroot, mounts): run it as root or with sudo"
 for c in mmdebstrap unshare chroot findmnt flock git tar apt-config; do
