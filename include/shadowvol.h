@@ -93,16 +93,14 @@ void sv_calculate_facing_c_ref(const Plane *planes, int numTriangles, const Vec4
  * sv_create_shadow_volume (no culling needed). Returns 0 otherwise, after
  * writing all numVerts bytes of cullBits.
  *   numVerts >= 0 (a negative count writes nothing and returns 0). */
-int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
-                                 const Bounds *surfaceBounds,
-                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
-                                 uint8_t *cullBits);
+int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
+                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
 
 /* ---- Appendices A and B in SIMD, and their table -------------------------
  * Each is BIT-IDENTICAL to the reference above (same operations in the same
  * order, no FMA; see src/core/x86/facing_simd.c), with the same contract. */
-typedef void (*sv_calculate_facing_fn)(const Plane *planes, int numTriangles,
-                                       const Vec4 *light, uint8_t *facing);
+typedef void (*sv_calculate_facing_fn)(const Plane *planes, int numTriangles, const Vec4 *light,
+                                       uint8_t *facing);
 typedef int (*sv_calculate_cull_bits_fn)(const Vec4 *positions, int numVerts,
                                          const Bounds *surfaceBounds,
                                          const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
@@ -133,10 +131,8 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
-int sv_calculate_cull_bits_avx512(const Vec4 *positions, int numVerts,
-                                  const Bounds *surfaceBounds,
-                                  const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
-                                  uint8_t *cullBits);
+int sv_calculate_cull_bits_avx512(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
+                                  const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits);
 
 /* The implementations of appendices A and B, by name, from the reference to
  * the fastest (c_ref, sse2, avx2, avx512). Not every SIMD level is needed:
@@ -177,8 +173,8 @@ typedef int (*sv_count_facing_fn)(const uint8_t *facing, int numTriangles);
  *                (six light planes use bits 0..5); the checked entry
  *                points refuse bit 7 for it (SV_E_CULL_BITS).
  *   numTriangles >= 0 (negative returns 0, touches nothing). */
-typedef int (*sv_count_facing_cull_fn)(uint8_t *facing, int numTriangles,
-                                       const int *indices, const uint8_t *cullBits);
+typedef int (*sv_count_facing_cull_fn)(uint8_t *facing, int numTriangles, const int *indices,
+                                       const uint8_t *cullBits);
 
 /* CreateSilTriangles (section 6, appendix E): two triangles (6 indices) per
  * edge whose two facing bytes differ; returns the number of indices written
@@ -218,11 +214,11 @@ typedef int (*sv_create_cap_triangles_fn)(int *shadowIndices, const uint8_t *fac
 /* ---- Variants ----------------------------------------------------------- */
 
 enum {
-    SV_ISA_NONE = 0,          /* portable C */
-    SV_ISA_SSE2 = 1u << 0,    /* baseline of every x86-64 CPU */
-    SV_ISA_AVX2 = 1u << 1,    /* x86-64-v3: AVX, AVX2, BMI1, BMI2, FMA, POPCNT,
+    SV_ISA_NONE = 0,               /* portable C */
+    SV_ISA_SSE2 = 1u << 0,         /* baseline of every x86-64 CPU */
+    SV_ISA_AVX2 = 1u << 1,         /* x86-64-v3: AVX, AVX2, BMI1, BMI2, FMA, POPCNT,
                                  and the OS saves the YMM state */
-    SV_ISA_AVX512 = 1u << 2,  /* x86-64-v4: AVX-512 F, BW, VL, DQ, CD, and the
+    SV_ISA_AVX512 = 1u << 2,       /* x86-64-v4: AVX-512 F, BW, VL, DQ, CD, and the
                                  OS saves the opmask and ZMM state */
     SV_ISA_AVX512_VBMI2 = 1u << 3, /* vpcompressb/w, vpexpandb/w (Ice Lake, Zen 4) */
     SV_ISA_AVX512_VBMI = 1u << 4   /* vpermb, vpermi2b/vpermt2b (Cannon Lake, Ice
@@ -240,8 +236,8 @@ typedef struct sv_variant {
     sv_create_sil_triangles_fn create_sil_triangles;
     sv_create_cap_triangles_fn create_cap_triangles;
     /* Alignment the variant needs, in bytes (1 = none). */
-    unsigned align_facing;        /* CountFacing's facing array */
-    unsigned align_indices;       /* CreateCapTriangles' indices */
+    unsigned align_facing;         /* CountFacing's facing array */
+    unsigned align_indices;        /* CreateCapTriangles' indices */
     unsigned align_shadow_indices; /* output of Sil/Cap triangles */
 } sv_variant;
 
@@ -284,9 +280,8 @@ const char *sv_isa_names(unsigned isa, char *buf, size_t size);
  *   indices        numIndices (multiple of 3) vertex numbers, aligned as
  *                  the variant needs; facing: numIndices / 3 + 1 bytes of
  *                  0 or 1, the last one 1, aligned as the variant needs. */
-int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices,
-                            const int *indices, int numIndices,
-                            const SilEdge *silEdges, int numSilEdges,
+int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices, const int *indices,
+                            int numIndices, const SilEdge *silEdges, int numSilEdges,
                             uint8_t *facing, const uint8_t *cullBits);
 
 /* Ints of output a shadow volume may need: 6 per SilEdge + 6 per triangle.
@@ -299,12 +294,12 @@ int sv_count_facing_c_ref(const uint8_t *facing, int numTriangles);
 int sv_count_facing_c_branchless(const uint8_t *facing, int numTriangles);
 int sv_count_facing_sse2_paper(const uint8_t *facing, int numTriangles);
 
-int sv_count_facing_cull_c_ref(uint8_t *facing, int numTriangles,
-                               const int *indices, const uint8_t *cullBits);
-int sv_count_facing_cull_c_branchless(uint8_t *facing, int numTriangles,
-                                      const int *indices, const uint8_t *cullBits);
-int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles,
-                                    const int *indices, const uint8_t *cullBits);
+int sv_count_facing_cull_c_ref(uint8_t *facing, int numTriangles, const int *indices,
+                               const uint8_t *cullBits);
+int sv_count_facing_cull_c_branchless(uint8_t *facing, int numTriangles, const int *indices,
+                                      const uint8_t *cullBits);
+int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles, const int *indices,
+                                    const uint8_t *cullBits);
 
 int sv_create_sil_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
                                   const SilEdge *silEdges, int numSilEdges);
@@ -313,8 +308,8 @@ int sv_create_sil_triangles_c_branchless(int *shadowIndices, const uint8_t *faci
 int sv_create_sil_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
                                        const SilEdge *silEdges, int numSilEdges);
 
-int sv_create_cap_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
-                                  const int *indices, int numIndices);
+int sv_create_cap_triangles_c_ref(int *shadowIndices, const uint8_t *facing, const int *indices,
+                                  int numIndices);
 int sv_create_cap_triangles_c_branchless(int *shadowIndices, const uint8_t *facing,
                                          const int *indices, int numIndices);
 int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
@@ -322,27 +317,27 @@ int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing
 
 /* AVX2 variant (x86-64-v3, asm/..._avx2.asm): no alignment needed; all 8 cull bits. */
 int sv_count_facing_avx2(const uint8_t *facing, int numTriangles);
-int sv_count_facing_cull_avx2(uint8_t *facing, int numTriangles,
-                              const int *indices, const uint8_t *cullBits);
-int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
-                                 const SilEdge *silEdges, int numSilEdges);
-int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
-                                 const int *indices, int numIndices);
+int sv_count_facing_cull_avx2(uint8_t *facing, int numTriangles, const int *indices,
+                              const uint8_t *cullBits);
+int sv_create_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing, const SilEdge *silEdges,
+                                 int numSilEdges);
+int sv_create_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing, const int *indices,
+                                 int numIndices);
 
 /* AVX-512 variant (asm/..._avx512.asm; x86-64-v4, no alignment needs). */
 int sv_count_facing_avx512(const uint8_t *facing, int numTriangles);
-int sv_count_facing_cull_avx512(uint8_t *facing, int numTriangles,
-                                const int *indices, const uint8_t *cullBits);
+int sv_count_facing_cull_avx512(uint8_t *facing, int numTriangles, const int *indices,
+                                const uint8_t *cullBits);
 int sv_create_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
                                    const SilEdge *silEdges, int numSilEdges);
-int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing,
-                                   const int *indices, int numIndices);
+int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing, const int *indices,
+                                   int numIndices);
 /* AVX-512 with VBMI (asm/count_facing_cull_avx512vbmi.asm): the cull bytes
  * of meshes of up to 1024 vertices in registers; more go to
  * sv_count_facing_cull_avx512. The avx512vbmi variant is the AVX-512 one
  * with this CountFacingCull. */
-int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles,
-                                    const int *indices, const uint8_t *cullBits);
+int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles, const int *indices,
+                                    const uint8_t *cullBits);
 
 /* ---- Contracts -----------------------------------------------------------
  * Each sv_check_* returns SV_OK or the first violated contract (SV_E_*), for
@@ -359,10 +354,11 @@ enum sv_status {
     SV_E_INDEX_RANGE = -5,     /* a triangle/vertex number outside its array */
     SV_E_ODD_VERTEX = -6,      /* a SilEdge vertex number is odd */
     SV_E_CAPACITY = -7,        /* output room below the documented bound */
-    SV_E_OVERFLOW = -8,        /* an index count (input 3 * numTriangles, or the output) does not fit in an int */
-    SV_E_CPU = -9,             /* the CPU lacks the variant's instruction set */
-    SV_E_FACING_SENTINEL = -10,/* facing[numTriangles] is 0 (it must be 1) */
-    SV_E_CULL_BITS = -11       /* sse2_paper: a cull byte with bit 7 set (its
+    SV_E_OVERFLOW =
+        -8, /* an index count (input 3 * numTriangles, or the output) does not fit in an int */
+    SV_E_CPU = -9,              /* the CPU lacks the variant's instruction set */
+    SV_E_FACING_SENTINEL = -10, /* facing[numTriangles] is 0 (it must be 1) */
+    SV_E_CULL_BITS = -11        /* sse2_paper: a cull byte with bit 7 set (its
                                   documented limit is bits 0..6, erratum D-5) */
 };
 const char *sv_status_string(int status);
@@ -384,8 +380,8 @@ int sv_create_cap_triangles_checked(const sv_variant *v, int *shadowIndices, siz
  * sv_count_facing_cull_checked). */
 int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
                                     const int *indices, int numIndices, int numVerts,
-                                    const SilEdge *silEdges, int numSilEdges,
-                                    uint8_t *facing, const uint8_t *cullBits);
+                                    const SilEdge *silEdges, int numSilEdges, uint8_t *facing,
+                                    const uint8_t *cullBits);
 
 #ifdef __cplusplus
 }

@@ -86,8 +86,8 @@ int sv_calculate_facing_exact(const float *positions, const int *indices, int nu
                               const Vec4 *light, uint8_t *facing);
 /* The same decisions with the filter evaluated four triangles at a time
  * (AVX2, FMA unused); the exact stage is the scalar one. */
-int sv_calculate_facing_exact_avx2(const float *positions, const int *indices,
-                                   int numTriangles, const Vec4 *light, uint8_t *facing);
+int sv_calculate_facing_exact_avx2(const float *positions, const int *indices, int numTriangles,
+                                   const Vec4 *light, uint8_t *facing);
 
 /* ---- fma: the reference's planes, fused dot product ----------------------
  *   s = fma(d, w, fma(c, z, fma(b, y, a * x)));  facing = s > 0
@@ -110,8 +110,8 @@ typedef struct PlaneD {
 } PlaneD;
 void sv_calculate_facing_double(const PlaneD *planes, int numTriangles, const Vec4 *light,
                                 uint8_t *facing);
-void sv_calculate_facing_double_avx2(const PlaneD *planes, int numTriangles,
-                                     const Vec4 *light, uint8_t *facing);
+void sv_calculate_facing_double_avx2(const PlaneD *planes, int numTriangles, const Vec4 *light,
+                                     uint8_t *facing);
 
 /* ---- fixed16: compact fixed-point normals (seed 001) ----------------------
  * Per triangle a normal q of three int16 components, scaled so that its
@@ -135,9 +135,8 @@ void sv_calculate_facing_fixed16(const sv_plane16_block *blocks, int numTriangle
                                  const Vec4 *light, uint8_t *facing);
 void sv_calculate_facing_fixed16_avx2(const sv_plane16_block *blocks, int numTriangles,
                                       const Vec4 *light, uint8_t *facing);
-void sv_calculate_facing_fixed16_avx2_prefetch(const sv_plane16_block *blocks,
-                                               int numTriangles, const Vec4 *light,
-                                               uint8_t *facing);
+void sv_calculate_facing_fixed16_avx2_prefetch(const sv_plane16_block *blocks, int numTriangles,
+                                               const Vec4 *light, uint8_t *facing);
 
 /* ---- eps_bias: a threshold, optionally with hysteresis --------------------
  * The reference's planes and dot product s (the same operations), compared
@@ -161,8 +160,7 @@ void sv_calculate_facing_eps_bias(const Plane *planes, int numTriangles, const V
  * Rounded up to float. center: the surface's center (sv::surface_bounds).
  * NaN for a non-finite light or a negative or NaN bias (the routine then
  * gives 0 for every triangle). */
-float sv_eps_bias_threshold(float distance, float angle, const float center[3],
-                            const Vec4 *light);
+float sv_eps_bias_threshold(float distance, float angle, const float center[3], const Vec4 *light);
 
 #ifdef __cplusplus
 }
@@ -193,27 +191,26 @@ AlignedVector<sv_plane16_block> fixed16_planes(const PreparedSurface &s);
 /* ---- Error bounds ----------------------------------------------------------
  * The families of inexact arithmetic, one bound each. */
 enum class FacingArithmetic {
-    float_planes,      /* sv_calculate_facing_c_ref and its SIMD twins, eps_bias's s */
-    float_planes_fma,  /* sv_calculate_facing_fma* */
-    double_planes,     /* sv_calculate_facing_double* */
-    fixed16            /* sv_calculate_facing_fixed16* */
+    float_planes,     /* sv_calculate_facing_c_ref and its SIMD twins, eps_bias's s */
+    float_planes_fma, /* sv_calculate_facing_fma* */
+    double_planes,    /* sv_calculate_facing_double* */
+    fixed16           /* sv_calculate_facing_fixed16* */
 };
 const char *facing_arithmetic_name(FacingArithmetic a);
 
 /* What the bounds need of a triangle, independent of the light. */
 struct TriangleErrorModel {
-    double p0[3] = {0, 0, 0};    /* where the float and double planes are anchored */
-    double c[3] = {0, 0, 0};     /* centroid as fixed16's preparation computes it */
+    double p0[3] = {0, 0, 0};      /* where the float and double planes are anchored */
+    double c[3] = {0, 0, 0};       /* centroid as fixed16's preparation computes it */
     double abs_sum[3] = {0, 0, 0}; /* |p0_i| + |p1_i| + |p2_i| */
-    double alpha = 0;            /* |n_double - n_exact/|n_exact||, or +inf */
-    Plane plane{};               /* sv::triangle_plane */
-    PlaneD plane_d{};            /* triangle_plane_double */
-    int16_t q[3] = {0, 0, 0};    /* triangle_plane16 */
+    double alpha = 0;              /* |n_double - n_exact/|n_exact||, or +inf */
+    Plane plane{};                 /* sv::triangle_plane */
+    PlaneD plane_d{};              /* triangle_plane_double */
+    int16_t q[3] = {0, 0, 0};      /* triangle_plane16 */
     float tn = 0;
-    bool finite = true;          /* every coordinate finite */
+    bool finite = true; /* every coordinate finite */
 };
-TriangleErrorModel triangle_error_model(const float p0[3], const float p1[3],
-                                        const float p2[3]);
+TriangleErrorModel triangle_error_model(const float p0[3], const float p1[3], const float p2[3]);
 
 /* B_V in units of D: facing_V == exact facing whenever |D| > B_V (+inf:
  * no promise). caller_ftz_daz: float_planes only, the reference runs in the

@@ -60,7 +60,7 @@ struct AnimChannel {
 };
 
 struct AnimSampler {
-    std::vector<float> input;  /* key times in seconds, strictly increasing */
+    std::vector<float> input; /* key times in seconds, strictly increasing */
     /* components per key value (3: translation, scale; 4: rotation x y z w);
      * CUBICSPLINE: 3 values per key (in-tangent, value, out-tangent). */
     std::vector<float> output;
@@ -196,9 +196,9 @@ void sample(const AnimSampler &sampler, double t, double *out);
  * in float, each operation rounded (no FMA): so every kernel gives the C
  * reference's bits. influences: 1..8 (the loader gives 4 or 8). out: 3
  * floats per vertex, nothing written past. No alignment required. */
-typedef void (*SkinningFn)(const float *joint_matrices, const float *rest,
-                           const uint16_t *joints, const float *weights, int influences,
-                           std::size_t num_vertices, float *out);
+typedef void (*SkinningFn)(const float *joint_matrices, const float *rest, const uint16_t *joints,
+                           const float *weights, int influences, std::size_t num_vertices,
+                           float *out);
 
 struct SkinningKernel {
     const char *name; /* "c_ref", "sse2", "avx2", "avx512" */

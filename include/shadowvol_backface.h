@@ -70,8 +70,8 @@ typedef struct sv_cull_triangle {
 } sv_cull_triangle;
 
 typedef struct sv_cull_triangle16 {
-    float tn;             /* sv::triangle_plane16's tn (NaN: a non-finite corner) */
-    int16_t nx, ny, nz;   /* and its q */
+    float tn;           /* sv::triangle_plane16's tn (NaN: a non-finite corner) */
+    int16_t nx, ny, nz; /* and its q */
     uint16_t v1, v2, v3;
 } sv_cull_triangle16;
 
@@ -105,9 +105,8 @@ int sv_backface_compact_sse2_prefetch(const sv_cull_block4 *blocks, int numTrian
  * x86-64-v4) triangles per step. Check sv_cpu_isa() first. */
 int sv_backface_compact_avx2(const sv_cull_block4 *blocks, int numTriangles, int numVertices,
                              const Vec4 *view, uint32_t *vertexBits, uint8_t *front);
-int sv_backface_compact_avx512(const sv_cull_block4 *blocks, int numTriangles,
-                               int numVertices, const Vec4 *view, uint32_t *vertexBits,
-                               uint8_t *front);
+int sv_backface_compact_avx512(const sv_cull_block4 *blocks, int numTriangles, int numVertices,
+                               const Vec4 *view, uint32_t *vertexBits, uint8_t *front);
 
 #ifdef __cplusplus
 }

@@ -63,7 +63,7 @@ std::string printable_text(const std::string &s, std::size_t max_bytes = kGltfMa
 /* One mesh instance (a node with a mesh, or a mesh loaded on its own):
  * all its triangle primitives merged into one surface. */
 struct GltfSurface {
-    std::string name;      /* "<mesh name or mesh#i> @ <node name or node#j>";
+    std::string name; /* "<mesh name or mesh#i> @ <node name or node#j>";
                               just the mesh part when loaded at identity */
     int mesh_index = -1;
     int node_index = -1;   /* -1: loaded at identity (no node) */
@@ -75,7 +75,7 @@ struct GltfSurface {
                               blended matrix of a triangle's first corner
                               decides, triangle by triangle. */
     std::size_t flipped_triangles = 0;
-    bool skinned = false;  /* placed by its skin's joints, in the pose the
+    bool skinned = false; /* placed by its skin's joints, in the pose the
                               file's joint NODES have (their stored
                               transforms): the bind pose only when the file
                               was saved in it; a character saved mid-

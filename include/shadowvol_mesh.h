@@ -42,15 +42,16 @@ template <class T> using AlignedVector = std::vector<T, AlignedAllocator<T>>;
 /* What preparation found. "Uses" of an edge are its directed occurrences
  * a->b in the kept triangles (three per triangle). */
 struct PrepareReport {
-    int64_t vertices_in = 0;          /* input vertices */
-    int64_t triangles_in = 0;         /* input triangles (num_indices / 3) */
-    int64_t degenerate_dropped = 0;   /* two or three welded indices equal */
-    int64_t triangles = 0;            /* kept: triangles_in - degenerate_dropped */
-    int64_t welded_vertices = 0;      /* distinct positions (all input vertices, used or not) */
-    int64_t zero_normal_triangles = 0;/* kept, but the cross product is exactly 0: plane (0,0,0,0) */
-    int64_t edges = 0;                /* distinct undirected edges of kept triangles */
-    int64_t boundary_edges = 0;       /* used by exactly one triangle */
-    int64_t manifold_edges = 0;       /* used twice, in opposite directions */
+    int64_t vertices_in = 0;        /* input vertices */
+    int64_t triangles_in = 0;       /* input triangles (num_indices / 3) */
+    int64_t degenerate_dropped = 0; /* two or three welded indices equal */
+    int64_t triangles = 0;          /* kept: triangles_in - degenerate_dropped */
+    int64_t welded_vertices = 0;    /* distinct positions (all input vertices, used or not) */
+    int64_t zero_normal_triangles =
+        0;                      /* kept, but the cross product is exactly 0: plane (0,0,0,0) */
+    int64_t edges = 0;          /* distinct undirected edges of kept triangles */
+    int64_t boundary_edges = 0; /* used by exactly one triangle */
+    int64_t manifold_edges = 0; /* used twice, in opposite directions */
     int64_t same_direction_edges = 0; /* used twice, both in the same direction */
     int64_t non_manifold_edges = 0;   /* used by more than two triangles */
     int64_t sil_edges = 0;            /* SilEdges built (regular + dangling) */

@@ -141,9 +141,9 @@ typedef struct sv_surface {
     int numIndices;          /* a multiple of 3, >= 0 */
     const SilEdge *silEdges; /* numSilEdges edges */
     int numSilEdges;
-    const Vec4 *positions;   /* numVerts vertices; read only with light planes */
+    const Vec4 *positions; /* numVerts vertices; read only with light planes */
     int numVerts;
-    Bounds bounds;           /* contains every position (appendix B's box test) */
+    Bounds bounds; /* contains every position (appendix B's box test) */
 } sv_surface;
 
 /* As sv_plan_measure, on the caller's own SURFACE rather than the

@@ -67,8 +67,8 @@ extern "C" {
  * Every variant is BIT-IDENTICAL to sv_derive_planes_c_ref, for every input
  * (subnormals, huge and tiny coordinates, zero-area triangles), under the
  * same MXCSR. */
-typedef void (*sv_derive_planes_fn)(const float *positions, const int *indices,
-                                    int numTriangles, Plane *planes);
+typedef void (*sv_derive_planes_fn)(const float *positions, const int *indices, int numTriangles,
+                                    Plane *planes);
 
 void sv_derive_planes_c_ref(const float *positions, const int *indices, int numTriangles,
                             Plane *planes);
@@ -106,8 +106,7 @@ void sv_derive_planes_avx512(const float *positions, const int *indices, int num
  *   numTriangles  >= 0; a negative count writes nothing.
  * Every variant is BIT-IDENTICAL (the same bytes) to the C reference. */
 typedef void (*sv_facing_from_positions_fn)(const float *positions, const int *indices,
-                                            int numTriangles, const Vec4 *light,
-                                            uint8_t *facing);
+                                            int numTriangles, const Vec4 *light, uint8_t *facing);
 
 void sv_facing_from_positions_c_ref(const float *positions, const int *indices, int numTriangles,
                                     const Vec4 *light, uint8_t *facing);
@@ -117,8 +116,8 @@ void sv_facing_from_positions_avx2_gather(const float *positions, const int *ind
                                           int numTriangles, const Vec4 *light, uint8_t *facing);
 void sv_facing_from_positions_avx2(const float *positions, const int *indices, int numTriangles,
                                    const Vec4 *light, uint8_t *facing);
-void sv_facing_from_positions_avx512(const float *positions, const int *indices,
-                                     int numTriangles, const Vec4 *light, uint8_t *facing);
+void sv_facing_from_positions_avx512(const float *positions, const int *indices, int numTriangles,
+                                     const Vec4 *light, uint8_t *facing);
 
 /* ---- The table -----------------------------------------------------------
  * c_ref, sse2, avx2_gather, avx2, avx512: the reference first, then from

@@ -48,9 +48,9 @@ struct Placement {
 /* One surface of the scene: a glTF mesh instance (or the ground), placed
  * in world space and prepared for the routines (welded, SilEdges, planes). */
 struct SceneSurface {
-    std::string name;           /* "FILE: <glTF surface name>", or "ground" */
+    std::string name; /* "FILE: <glTF surface name>", or "ground" */
     bool ground = false;
-    PreparedSurface prepared;   /* positions in world space */
+    PreparedSurface prepared; /* positions in world space */
     std::array<float, 3> albedo{0.8f, 0.8f, 0.8f};
     /* World-space box of the welded vertices. */
     Vec3d lo, hi;
@@ -64,12 +64,12 @@ enum class LightKind { point, spot, directional };
 
 struct SceneLight {
     LightKind kind = LightKind::point;
-    Vec3d position;             /* point and spot */
+    Vec3d position; /* point and spot */
     /* The direction the light travels (unit): a spot's axis, or the rays
      * of a directional light (glTF KHR_lights_punctual: a light shines
      * along its -z; "dir:0,-1,0" is a sun straight overhead). */
     Vec3d direction{0, -1, 0};
-    double range = 0;           /* point and spot: 0 means unlimited */
+    double range = 0;                             /* point and spot: 0 means unlimited */
     double inner_degrees = 0, outer_degrees = 45; /* spot: half-angles */
     std::array<float, 3> color{1, 1, 1};
     double intensity = 1;

@@ -187,8 +187,7 @@ ConnectivityTable connectivity_linear(const int *indices, int numTriangles, int 
 /* Emit a -> b (use u of triangle t) when t is lit and neighbour[u] is not;
  * emit b -> a for every dangling use of an unlit triangle. */
 using ConnectivityFn = std::size_t (*)(const ConnectivityTable &c, const int *indices,
-                                       int numTriangles, const uint8_t *facing,
-                                       DirectedEdge *out);
+                                       int numTriangles, const uint8_t *facing, DirectedEdge *out);
 /* The seed's loop: per triangle, skip it when unlit, else test its three
  * neighbours (branches). */
 std::size_t find_silhouette_connectivity(const ConnectivityTable &c, const int *indices,
@@ -197,9 +196,9 @@ std::size_t find_silhouette_connectivity(const ConnectivityTable &c, const int *
 /* Branch-free: every use writes its edge at the output position, which
  * advances by (lit & !neighbour lit), the paper's trick of section 6.
  * Writes one edge past the returned count (room: silhouette_capacity). */
-std::size_t find_silhouette_connectivity_branchless(const ConnectivityTable &c,
-                                                    const int *indices, int numTriangles,
-                                                    const uint8_t *facing, DirectedEdge *out);
+std::size_t find_silhouette_connectivity_branchless(const ConnectivityTable &c, const int *indices,
+                                                    int numTriangles, const uint8_t *facing,
+                                                    DirectedEdge *out);
 /* AVX2 (x86-64-v3): eight triangles per step, the neighbours' facing bytes
  * gathered (vpgatherdd, so facing needs numTriangles + 4 bytes), the
  * triangles' own bytes spread with vpermd; the silhouette uses found from

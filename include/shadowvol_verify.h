@@ -85,17 +85,17 @@ struct VerifyLight {
 std::vector<VerifyLight> make_verify_lights(const PreparedSurface &s, int count, uint64_t seed);
 
 struct InSpaceCounts {
-    int64_t points = 0;          /* points checked */
-    int64_t in_shadow = 0;       /* winding != 0 */
-    int64_t lit = 0;             /* winding == 0 */
-    int64_t inside_mesh = 0;     /* closed mesh: points inside the solid (its
+    int64_t points = 0;           /* points checked */
+    int64_t in_shadow = 0;        /* winding != 0 */
+    int64_t lit = 0;              /* winding == 0 */
+    int64_t inside_mesh = 0;      /* closed mesh: points inside the solid (its
                                     winding number != 0; checked by the
                                     identity only) */
-    int64_t crossing_checked = 0;/* closed mesh, unculled, P outside: the
+    int64_t crossing_checked = 0; /* closed mesh, unculled, P outside: the
                                     "in shadow iff the segment crosses" check */
-    int64_t skipped = 0;         /* too close to a boundary to decide */
-    int64_t ray_retries = 0;     /* rays replaced (passed near an edge) */
-    int64_t inverted_prisms = 0; /* crossings of casting triangles that have
+    int64_t skipped = 0;          /* too close to a boundary to decide */
+    int64_t ray_retries = 0;      /* rays replaced (passed near an edge) */
+    int64_t inverted_prisms = 0;  /* crossings of casting triangles that have
                                     the light (just) in front: s(t) = -1 */
     void add(const InSpaceCounts &o);
 };
@@ -118,7 +118,7 @@ constexpr double kVerifyMaxRadius = 1e36;
 
 struct LightResult {
     bool ok = true;
-    std::string failure;  /* names the variant, the light and the point */
+    std::string failure; /* names the variant, the light and the point */
     /* ok, but the check could not decide (see kVerifyMinRadius): why. */
     bool undecided = false;
     std::string undecided_reason;

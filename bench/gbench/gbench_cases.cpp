@@ -19,9 +19,7 @@ constexpr uint8_t kCanary = 0x5a;
 
 int g_failed = 0;
 
-size_t round_up(size_t n, size_t to) {
-    return (n + to - 1) / to * to;
-}
+size_t round_up(size_t n, size_t to) { return (n + to - 1) / to * to; }
 
 /* The routines that write their facing input (culled triangles made
  * facing): each call needs a fresh copy. */
@@ -59,14 +57,12 @@ template <class F> void with_call(Case &c, F &&f) {
         });
         break;
     case Routine::create_sil_triangles:
-        f([&w, fn = k->create_sil_triangles](const Light &, uint8_t *facing, uint8_t *,
-                                             int *out) {
+        f([&w, fn = k->create_sil_triangles](const Light &, uint8_t *facing, uint8_t *, int *out) {
             return fn(out, facing, w.silEdges.data(), w.numSilEdges);
         });
         break;
     case Routine::create_cap_triangles:
-        f([&w, fn = k->create_cap_triangles](const Light &, uint8_t *facing, uint8_t *,
-                                             int *out) {
+        f([&w, fn = k->create_cap_triangles](const Light &, uint8_t *facing, uint8_t *, int *out) {
             return fn(out, facing, w.indices.data(), w.numIndices);
         });
         break;
@@ -89,9 +85,7 @@ template <class F> void with_call(Case &c, F &&f) {
 }
 
 /* The lights of C's rotation: all moving lights, or the fixed one. */
-int rotation(const Case &c) {
-    return c.moving ? c.context->workload().numMoving : 1;
-}
+int rotation(const Case &c) { return c.moving ? c.context->workload().numMoving : 1; }
 Light &light_of(Case &c, int k) {
     Workload &w = c.context->workload();
     return w.lights[(size_t)(c.moving ? k : w.fixedLight)];
@@ -125,10 +119,10 @@ template <class Call> std::string check(Case &c, const Call &call) {
 
         std::string why = compare_with_reference(c.routine, w, l, expected[(size_t)li], got, out,
                                                  facing, cull);
-        if (why.empty() && !(canaries_intact(facing + nf, kCanaryBytes) &&
-                             canaries_intact(cull + w.numVerts, kCanaryBytes) &&
-                             canaries_intact((const uint8_t *)(out + x.out_capacity()),
-                                             kCanaryBytes))) {
+        if (why.empty() &&
+            !(canaries_intact(facing + nf, kCanaryBytes) &&
+              canaries_intact(cull + w.numVerts, kCanaryBytes) &&
+              canaries_intact((const uint8_t *)(out + x.out_capacity()), kCanaryBytes))) {
             why = "wrote past the end of a buffer";
         }
         if (!why.empty()) {
@@ -183,8 +177,8 @@ template <class Call> void time_loop(benchmark::State &state, Case &c, const Cal
     const double elements = std::max(1, elements_of(c.routine, x.workload()));
     state.counters["elements_per_second"] =
         benchmark::Counter(elements * (double)state.iterations(), benchmark::Counter::kIsRate);
-    state.counters["ticks_per_element"] =
-        benchmark::Counter((double)ticks / elements, benchmark::Counter::kAvgIterations);
+    state.counters["ticks_per_element"] = benchmark::Counter((double)ticks / elements,
+                                                             benchmark::Counter::kAvgIterations);
     state.SetLabel(std::to_string((long)elements) + " " + element_name(element_of(c.routine)) +
                    "s");
 }
@@ -237,8 +231,6 @@ void run_case(benchmark::State &state, Case &c) {
     });
 }
 
-int failed_cases() {
-    return g_failed;
-}
+int failed_cases() { return g_failed; }
 
 } // namespace svgbench

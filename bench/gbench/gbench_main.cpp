@@ -48,24 +48,23 @@ constexpr int kExitBadModel = 3;
 const char *const kBundledModel = SV_MODELS_DIR "/character_1344.glb";
 
 void usage() {
-    std::printf(
-        "usage: shadowvol_gbench [--model FILE] [--seed N] [Google Benchmark options]\n"
-        "\n"
-        "The routines of `shadowvol bench` (routine/variant/regime) as Google Benchmark\n"
-        "cases, on the same workload: the bundled 1344-triangle character lit by %d\n"
-        "searched lights (about 50%% of the triangles facing, 20%% of the SilEdges on\n"
-        "the silhouette). Every case is checked against c_ref before it is timed.\n"
-        "Counters: elements_per_second; ticks_per_element (TSC ticks, not core cycles).\n"
-        "\n"
-        "  --model FILE     time another glTF model (all its surfaces merged)\n"
-        "  --seed N         seed of the light search (default 1)\n"
-        "  SV_ISA=LEVEL     (environment) only the variants within c, sse2, avx2 or\n"
-        "                   avx512\n"
-        "\n"
-        "e.g. --benchmark_filter=/moving --benchmark_min_time=0.1 --benchmark_format=json\n"
-        "\n"
-        "Google Benchmark's options:\n",
-        kLights);
+    std::printf("usage: shadowvol_gbench [--model FILE] [--seed N] [Google Benchmark options]\n"
+                "\n"
+                "The routines of `shadowvol bench` (routine/variant/regime) as Google Benchmark\n"
+                "cases, on the same workload: the bundled 1344-triangle character lit by %d\n"
+                "searched lights (about 50%% of the triangles facing, 20%% of the SilEdges on\n"
+                "the silhouette). Every case is checked against c_ref before it is timed.\n"
+                "Counters: elements_per_second; ticks_per_element (TSC ticks, not core cycles).\n"
+                "\n"
+                "  --model FILE     time another glTF model (all its surfaces merged)\n"
+                "  --seed N         seed of the light search (default 1)\n"
+                "  SV_ISA=LEVEL     (environment) only the variants within c, sse2, avx2 or\n"
+                "                   avx512\n"
+                "\n"
+                "e.g. --benchmark_filter=/moving --benchmark_min_time=0.1 --benchmark_format=json\n"
+                "\n"
+                "Google Benchmark's options:\n",
+                kLights);
     benchmark::PrintDefaultHelp();
 }
 
@@ -144,14 +143,13 @@ int main(int argc, char **argv) {
 
     char ratios[128];
     std::snprintf(ratios, sizeof ratios, "%d moving lights: facing %.1f%%, silhouette %.1f%%",
-                  w.numMoving,
-                  100 * svbench::ratio_stats(w, svbench::Ratio::facing).mean,
+                  w.numMoving, 100 * svbench::ratio_stats(w, svbench::Ratio::facing).mean,
                   100 * svbench::ratio_stats(w, svbench::Ratio::silhouette).mean);
     benchmark::AddCustomContext("shadowvol_model", w.source);
-    benchmark::AddCustomContext(
-        "shadowvol_mesh", std::to_string(w.numTriangles) + " triangles, " +
-                              std::to_string(w.numSilEdges) + " SilEdges, " +
-                              std::to_string(w.numVerts) + " vertices");
+    benchmark::AddCustomContext("shadowvol_mesh", std::to_string(w.numTriangles) + " triangles, " +
+                                                      std::to_string(w.numSilEdges) +
+                                                      " SilEdges, " + std::to_string(w.numVerts) +
+                                                      " vertices");
     benchmark::AddCustomContext("shadowvol_lights", ratios);
     benchmark::AddCustomContext("shadowvol_cpu", svbench::cpu_model());
     benchmark::AddCustomContext("shadowvol_isa_level", sv_isa_level_name());
@@ -183,7 +181,9 @@ int main(int argc, char **argv) {
                 cases.push_back(c);
                 svgbench::Case *p = &cases.back();
                 benchmark::RegisterBenchmark(svgbench::case_name(*p).c_str(),
-                                             [p](benchmark::State &s) { svgbench::run_case(s, *p); });
+                                             [p](benchmark::State &s) {
+                                                 svgbench::run_case(s, *p);
+                                             });
             }
         }
     }
@@ -191,8 +191,8 @@ int main(int argc, char **argv) {
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     if (const int failed = svgbench::failed_cases()) {
-        std::fprintf(stderr, "shadowvol_gbench: %d case%s FAILED the check against c_ref\n",
-                     failed, failed == 1 ? "" : "s");
+        std::fprintf(stderr, "shadowvol_gbench: %d case%s FAILED the check against c_ref\n", failed,
+                     failed == 1 ? "" : "s");
         return kExitFailed;
     }
     return 0;

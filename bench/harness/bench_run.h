@@ -31,10 +31,10 @@ struct SkippedVariant {
 
 struct BenchRun {
     MachineTiming machine;
-    TableOptions options;   /* runs as asked (models above 1344 triangles get
+    TableOptions options; /* runs as asked (models above 1344 triangles get
                                fewer: their ModelTable says how many) */
     uint64_t seed = 1;
-    std::string isaLimit;   /* "c (--isa)", "sse2 (SV_ISA)"; "" when none */
+    std::string isaLimit;        /* "c (--isa)", "sse2 (SV_ISA)"; "" when none */
     bool variantsChosen = false; /* --variant narrowed them */
     std::vector<SkippedVariant> skipped;
     std::string realModels; /* where the real characters are, and whether they run */

@@ -137,9 +137,9 @@ template <bool kCull> struct PipelineCall {
     const Workload *w;
     int operator()(const CallArgs &a) const {
         if (bv->plan && !bv->unfused) { /* the planned row: the public one-call entry point */
-            const sv_surface s{w->planes.data(), w->indices.data(), w->numIndices,
-                               w->silEdges.data(), w->numSilEdges, w->positions.data(),
-                               w->numVerts, w->bounds};
+            const sv_surface s{w->planes.data(),   w->indices.data(), w->numIndices,
+                               w->silEdges.data(), w->numSilEdges,    w->positions.data(),
+                               w->numVerts,        w->bounds};
             return sv_shadow_volume_for_light(
                 bv->plan, &s, a.light, kCull ? a.lightPlanes : nullptr, a.out,
                 sv_shadow_volume_capacity(w->numIndices, w->numSilEdges), a.facing, a.cull);
@@ -188,9 +188,7 @@ template <class Timer> inline uint64_t empty_region() {
     return t1 - t0;
 }
 
-uint64_t saturating_sub(uint64_t a, uint64_t b) {
-    return a > b ? a - b : 0;
-}
+uint64_t saturating_sub(uint64_t a, uint64_t b) { return a > b ? a - b : 0; }
 
 /* Batching, as checkasm does for functions shorter than its timer can
  * resolve. Where one call lasts only a few TSC steps (sse2_paper
@@ -249,18 +247,14 @@ uint64_t saturating_sub(uint64_t a, uint64_t b) {
  * steps a call here, which a single call resolves. */
 constexpr size_t kDefaultL1Bytes = 32 * 1024; /* when neither sysconf nor sysfs knows */
 
-size_t cache_lines(size_t bytes) {
-    return (bytes + 63) / 64 * 64;
-}
+size_t cache_lines(size_t bytes) { return (bytes + 63) / 64 * 64; }
 
 size_t l1d_bytes() {
     const size_t l1 = cache_sizes().l1d.bytes;
     return l1 ? l1 : kDefaultL1Bytes;
 }
 
-bool may_batch(Routine r) {
-    return !writes_indices(r);
-}
+bool may_batch(Routine r) { return !writes_indices(r); }
 
 /* The batch of R's batched rows (see above): at least 2, at most
  * kMaxBatch. */
@@ -346,8 +340,8 @@ CallArgs prepare_slot(const Context &c, Routine r, size_t s, int li) {
     if (writes_indices(r)) {
         std::fill_n(sl.out.data(), (*c.expected)[(size_t)li].count, kPoisonIndex);
     }
-    return CallArgs{sl.facing.data(), sl.cull.data(),  sl.out.data(),
-                    l.cullBits.data(), &l.position,     l.planes};
+    return CallArgs{sl.facing.data(),  sl.cull.data(), sl.out.data(),
+                    l.cullBits.data(), &l.position,    l.planes};
 }
 
 /* Empty when the canaries past slot SL's buffers are intact. */
@@ -388,8 +382,7 @@ bool check_slot(const Context &c, Row &row, int got, size_t s, int li, const cha
         std::snprintf(where, sizeof where, "light %d, round %d, %s %d, call %d of %d: ", li,
                       c.round + 1, what, n, i + 1, b);
     } else {
-        std::snprintf(where, sizeof where, "light %d, round %d, %s %d: ", li, c.round + 1, what,
-                      n);
+        std::snprintf(where, sizeof where, "light %d, round %d, %s %d: ", li, c.round + 1, what, n);
     }
     row.failure = where + why;
     row.ok = false;
@@ -560,8 +553,7 @@ public:
         }
         std::fprintf(stderr, "\rshadowvol bench: %.24s round %d/%d, row %2d/%d  %-6s %-26s %-13s",
                      model_.c_str(), round + 1, rounds_, i + 1, rows_,
-                     row.moving ? "moving" : "fixed", routine_name(row.routine),
-                     row.variant->name);
+                     row.moving ? "moving" : "fixed", routine_name(row.routine), row.variant->name);
         std::fflush(stderr);
         shown_ = true;
     }
@@ -629,7 +621,8 @@ ModelTable run_cycle_table(const TableOptions &o, const MachineTiming &m, const 
     /* Every buffer is allocated more aligned than any variant asks. */
     /* The planned variant becomes the plan for this workload's size. */
     std::vector<const BenchVariant *> variants;
-    for (const BenchVariant *bv : o.variants) variants.push_back(resolve_planned(bv, w.numTriangles));
+    for (const BenchVariant *bv : o.variants)
+        variants.push_back(resolve_planned(bv, w.numTriangles));
     for (const BenchVariant *bv : variants) {
         const sv_variant *v = bv->kernels;
         if (v && (kBufferAlignment % v->align_facing || kBufferAlignment % v->align_indices ||

@@ -43,31 +43,31 @@ constexpr uint64_t kNoiseFactor = 5;
 /* The timer and what it costs on this machine, measured once per run. */
 struct MachineTiming {
     TimerKind timer = TimerKind::cpuid;
-    bool timerAuto = true;   /* auto chose it (the header says why) */
-    double tscHz = 0;        /* rdtsc against CLOCK_MONOTONIC */
-    double tscSeconds = 0;   /* over how long */
-    Overhead overhead{};     /* of an empty timed region */
-    uint64_t step = 0;       /* the smallest TSC increment seen */
-    uint64_t emptyIqr = 0;   /* IQR of the empty regions */
+    bool timerAuto = true;       /* auto chose it (the header says why) */
+    double tscHz = 0;            /* rdtsc against CLOCK_MONOTONIC */
+    double tscSeconds = 0;       /* over how long */
+    Overhead overhead{};         /* of an empty timed region */
+    uint64_t step = 0;           /* the smallest TSC increment seen */
+    uint64_t emptyIqr = 0;       /* IQR of the empty regions */
     uint64_t batchThreshold = 0; /* ticks: a shorter call is batched */
     size_t l1dBytes = 0;
-    int cpu = -1;            /* the CPU the thread is pinned to; -1 not pinned */
+    int cpu = -1; /* the CPU the thread is pinned to; -1 not pinned */
 };
 MachineTiming measure_machine(TimerKind timer, bool timerAuto, int overheadTries,
                               double tscSeconds);
 
 struct TableOptions {
-    int runs = 0;      /* timed regions per row (a call or a batch of calls) */
-    int rounds = 4;    /* the runs of a row are split over this many passes
+    int runs = 0;       /* timed regions per row (a call or a batch of calls) */
+    int rounds = 4;     /* the runs of a row are split over this many passes
                           over all rows */
-    int warmup = 0;    /* untimed (but checked) calls before each round */
-    int batch = 0;     /* calls per timed region: 0 chooses per row, 1 never
+    int warmup = 0;     /* untimed (but checked) calls before each round */
+    int batch = 0;      /* calls per timed region: 0 chooses per row, 1 never
                           batches, N > 1 forces N on every row */
     bool moving = true; /* regimes to run */
     bool fixed = true;
-    std::vector<Routine> routines;             /* in table order */
+    std::vector<Routine> routines;              /* in table order */
     std::vector<const BenchVariant *> variants; /* in table order */
-    bool progress = true; /* a \r-updated line on stderr when it is a TTY */
+    bool progress = true;                       /* a \r-updated line on stderr when it is a TTY */
 };
 
 /* One row of the table. */
@@ -94,7 +94,7 @@ bool below_noise(const Row &r, uint64_t step);
 const Row *reference_row(const std::vector<Row> &rows, const Row &r);
 
 struct ModelTable {
-    std::vector<Row> rows;  /* moving regime first, then routines, then variants */
+    std::vector<Row> rows; /* moving regime first, then routines, then variants */
     int runs = 0, warmup = 0, rounds = 0;
     std::vector<Routine> skippedRoutines; /* need a light; the workload has none */
 };

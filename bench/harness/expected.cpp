@@ -89,9 +89,11 @@ SlotImage reference_image(Routine r, const Workload &w, const Light &l) {
         break;
     case Routine::create_shadow_volume:
     case Routine::create_shadow_volume_cull:
-        s.count = sv_create_shadow_volume(
-            ref, out.data(), w.indices.data(), w.numIndices, w.silEdges.data(), w.numSilEdges, f,
-            r == Routine::create_shadow_volume_cull ? l.cullBits.data() : nullptr);
+        s.count = sv_create_shadow_volume(ref, out.data(), w.indices.data(), w.numIndices,
+                                          w.silEdges.data(), w.numSilEdges, f,
+                                          r == Routine::create_shadow_volume_cull
+                                              ? l.cullBits.data()
+                                              : nullptr);
         break;
     case Routine::pipeline:
     case Routine::pipeline_cull: {
@@ -153,9 +155,9 @@ std::vector<Expected> expected_results(Routine r, const Workload &w) {
     return all;
 }
 
-std::string compare_with_reference(Routine r, const Workload &w, const Light &l,
-                                   const Expected &e, int got, const int *indices,
-                                   const uint8_t *facing, const uint8_t *cull) {
+std::string compare_with_reference(Routine r, const Workload &w, const Light &l, const Expected &e,
+                                   int got, const int *indices, const uint8_t *facing,
+                                   const uint8_t *cull) {
     const char *what = needs_light(r) ? "the second computation" : "c_ref";
     char msg[200];
     if (got != e.count) {
@@ -163,8 +165,8 @@ std::string compare_with_reference(Routine r, const Workload &w, const Light &l,
         return msg;
     }
     const size_t nf = (size_t)w.numTriangles + 1;
-    const bool indicesOk =
-        !writes_indices(r) || digest(indices, (size_t)got * sizeof(int)) == e.indices;
+    const bool indicesOk = !writes_indices(r) ||
+                           digest(indices, (size_t)got * sizeof(int)) == e.indices;
     const bool facingOk = digest(facing, nf) == e.facing;
     const bool cullOk = (r != Routine::calculate_cull_bits && r != Routine::pipeline_cull) ||
                         digest(cull, (size_t)w.numVerts) == e.cull;

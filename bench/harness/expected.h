@@ -45,10 +45,10 @@ void initial_facing(Routine r, const Workload &w, const Light &l, uint8_t *facin
 
 /* The slot after a correct call. */
 struct SlotImage {
-    int count = 0;                /* the return value (0 for CalculateFacing) */
-    std::vector<int> indices;     /* [0, count) for the index routines */
-    std::vector<uint8_t> facing;  /* numTriangles + 1 */
-    std::vector<uint8_t> cull;    /* numVerts, for CalculateCullBits */
+    int count = 0;               /* the return value (0 for CalculateFacing) */
+    std::vector<int> indices;    /* [0, count) for the index routines */
+    std::vector<uint8_t> facing; /* numTriangles + 1 */
+    std::vector<uint8_t> cull;   /* numVerts, for CalculateCullBits */
 };
 SlotImage reference_image(Routine r, const Workload &w, const Light &l);
 
@@ -62,9 +62,9 @@ std::vector<Expected> expected_results(Routine r, const Workload &w);
 
 /* Empty when the slot matches E; else what differs first (the reference
  * image is recomputed to say where). */
-std::string compare_with_reference(Routine r, const Workload &w, const Light &l,
-                                   const Expected &e, int got, const int *indices,
-                                   const uint8_t *facing, const uint8_t *cull);
+std::string compare_with_reference(Routine r, const Workload &w, const Light &l, const Expected &e,
+                                   int got, const int *indices, const uint8_t *facing,
+                                   const uint8_t *cull);
 
 } // namespace svbench
 

@@ -13,11 +13,11 @@ namespace svbench {
 
 namespace {
 
-constexpr double kNearest = 1.0;   /* light distances, in bounding-sphere radii */
+constexpr double kNearest = 1.0; /* light distances, in bounding-sphere radii */
 constexpr double kFarthest = 16.0;
 constexpr double kDirectionalBoxDistance = 4.0; /* radii, see lights.h */
-constexpr int kBisections = 32;    /* of the box's half size: 2^-32 of the range */
-constexpr long kSearchWork = 1L << 25; /* candidates x (triangles + edges) */
+constexpr int kBisections = 32;                 /* of the box's half size: 2^-32 of the range */
+constexpr long kSearchWork = 1L << 25;          /* candidates x (triangles + edges) */
 constexpr int kMinCandidates = 256;
 constexpr int kMaxCandidates = 4096;
 
@@ -73,8 +73,8 @@ int cull_with_box(const Workload &w, const double c[3], double h, Light &l) {
     l.box = LightBox{(float)(c[0] - h), (float)(c[0] + h), (float)(c[1] - h),
                      (float)(c[1] + h), (float)(c[2] - h), (float)(c[2] + h)};
     light_box_planes(l.box, l.planes);
-    l.cullInside = sv_calculate_cull_bits_c_ref(w.positions.data(), w.numVerts, &w.bounds,
-                                                l.planes, l.cullBits.data()) != 0;
+    l.cullInside = sv_calculate_cull_bits_c_ref(w.positions.data(), w.numVerts, &w.bounds, l.planes,
+                                                l.cullBits.data()) != 0;
     if (l.cullInside) { /* not written: nothing is outside */
         std::fill_n(l.cullBits.data(), w.numVerts, (uint8_t)0);
         return 0;
@@ -167,12 +167,12 @@ void place_lights(Workload &w, const LightTargets &targets, int count, uint64_t 
         const Vec4 p{(float)(centre[0] + d[0] * dist), (float)(centre[1] + d[1] * dist),
                      (float)(centre[2] + d[2] * dist), 1.0f};
         sv_calculate_facing_c_ref(w.planes.data(), w.numTriangles, &p, facing.data());
-        const double f =
-            w.numTriangles ? (double)count_facing_bytes(facing.data(), w.numTriangles) /
-                                 w.numTriangles
-                           : 0.0;
-        const double s =
-            w.numSilEdges ? (double)count_silhouette(w, facing.data()) / w.numSilEdges : 0.0;
+        const double f = w.numTriangles
+                             ? (double)count_facing_bytes(facing.data(), w.numTriangles) /
+                                   w.numTriangles
+                             : 0.0;
+        const double s = w.numSilEdges ? (double)count_silhouette(w, facing.data()) / w.numSilEdges
+                                       : 0.0;
         all.push_back(Candidate{p, score(targets, f, s), k});
     }
     std::partial_sort(all.begin(), all.begin() + count, all.end(),

@@ -41,7 +41,7 @@
 namespace svbench {
 
 struct LightTargets {
-    double facing = 0.5;     /* the paper's ratios */
+    double facing = 0.5; /* the paper's ratios */
     double silhouette = 0.2;
     double culled = 0.25;
 };

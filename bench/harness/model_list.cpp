@@ -104,8 +104,8 @@ ModelList resolve_models(const std::vector<std::string> &args, const std::string
     }
     std::string names, line;
     for (const ModelSpec &m : list.models) {
-        const std::string name =
-            m.synthetic ? std::string("synthetic") : fs::path(m.path).filename().string();
+        const std::string name = m.synthetic ? std::string("synthetic")
+                                             : fs::path(m.path).filename().string();
         if (!line.empty() && line.size() + name.size() > 80) {
             names += line + ",\n          ";
             line.clear();

@@ -62,8 +62,8 @@ Workload load_model_surface(const std::string &path) {
     return w;
 }
 
-Workload make_model_workload(const std::string &path, const LightTargets &targets,
-                             int numLights, uint64_t seed, const Vec4 *fixed) {
+Workload make_model_workload(const std::string &path, const LightTargets &targets, int numLights,
+                             uint64_t seed, const Vec4 *fixed) {
     Workload w = load_model_surface(path);
     place_lights(w, targets, numLights, seed, fixed);
     return w;

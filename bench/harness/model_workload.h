@@ -31,8 +31,8 @@ Workload load_model_surface(const std::string &path);
 
 /* load_model_surface, then place_lights with NUM_LIGHTS lights (lights.h;
  * FIXED, when not null, is the fixed light). Throws WorkloadError. */
-Workload make_model_workload(const std::string &path, const LightTargets &targets,
-                             int numLights, uint64_t seed, const Vec4 *fixed);
+Workload make_model_workload(const std::string &path, const LightTargets &targets, int numLights,
+                             uint64_t seed, const Vec4 *fixed);
 
 } // namespace svbench
 

@@ -37,8 +37,8 @@ int oracle_cull_bits(const Vec4 *positions, int numVerts, const Bounds &bounds,
         reach += std::fabs(p.b * bounds.extents.y);
         reach += std::fabs(p.c * bounds.extents.z);
         /* d * 1.0f is d: the centre's distance, as the contract writes it. */
-        const float centre =
-            plane_distance(p, bounds.center.x, bounds.center.y, bounds.center.z, 1.0f);
+        const float centre = plane_distance(p, bounds.center.x, bounds.center.y, bounds.center.z,
+                                            1.0f);
         if (!(centre - reach >= 0.0f)) {
             tested |= 1u << i;
         }

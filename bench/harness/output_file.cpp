@@ -35,8 +35,8 @@ OutputFile::~OutputFile() {
 }
 
 bool OutputFile::write(const std::string &doc) {
-    const bool ok =
-        std::fwrite(doc.data(), 1, doc.size(), f_) == doc.size() && std::fflush(f_) == 0;
+    const bool ok = std::fwrite(doc.data(), 1, doc.size(), f_) == doc.size() &&
+                    std::fflush(f_) == 0;
     if (f_ != stdout) {
         const bool closed = std::fclose(f_) == 0;
         f_ = nullptr;

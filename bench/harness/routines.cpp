@@ -13,20 +13,25 @@
 namespace svbench {
 
 const Routine kAllRoutines[kNumRoutines] = {
-    Routine::calculate_facing,     Routine::calculate_cull_bits,
-    Routine::count_facing,         Routine::count_facing_cull,
-    Routine::create_sil_triangles, Routine::create_cap_triangles,
-    Routine::create_shadow_volume, Routine::create_shadow_volume_cull,
-    Routine::pipeline,             Routine::pipeline_cull,
+    Routine::calculate_facing,
+    Routine::calculate_cull_bits,
+    Routine::count_facing,
+    Routine::count_facing_cull,
+    Routine::create_sil_triangles,
+    Routine::create_cap_triangles,
+    Routine::create_shadow_volume,
+    Routine::create_shadow_volume_cull,
+    Routine::pipeline,
+    Routine::pipeline_cull,
 };
 
 namespace {
 
 const char *const kRoutineNames[kNumRoutines] = {
-    "calculate_facing",     "calculate_cull_bits",  "count_facing",
-    "count_facing_cull",    "create_sil_triangles", "create_cap_triangles",
-    "create_shadow_volume", "create_shadow_volume_cull",
-    "pipeline",             "pipeline_cull",
+    "calculate_facing",     "calculate_cull_bits",       "count_facing",
+    "count_facing_cull",    "create_sil_triangles",      "create_cap_triangles",
+    "create_shadow_volume", "create_shadow_volume_cull", "pipeline",
+    "pipeline_cull",
 };
 
 /* Implementations of appendices A and B come from the library's own table
@@ -89,9 +94,7 @@ std::vector<BenchVariant> make_bench_variants() {
 
 } // namespace
 
-const char *routine_name(Routine r) {
-    return kRoutineNames[(int)r];
-}
+const char *routine_name(Routine r) { return kRoutineNames[(int)r]; }
 
 bool routine_by_name(const std::string &name, Routine *r) {
     for (int i = 0; i < kNumRoutines; i++) {

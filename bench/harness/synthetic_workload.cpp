@@ -108,8 +108,8 @@ void cull_bits(const Workload &w, Light &l) {
     l.box = kLightBox;
     light_box_planes(l.box, l.planes);
     l.cullBits = AlignedArray<uint8_t>((size_t)w.numVerts);
-    l.cullInside = sv_calculate_cull_bits_c_ref(w.positions.data(), w.numVerts, &w.bounds,
-                                                l.planes, l.cullBits.data()) != 0;
+    l.cullInside = sv_calculate_cull_bits_c_ref(w.positions.data(), w.numVerts, &w.bounds, l.planes,
+                                                l.cullBits.data()) != 0;
     require(!l.cullInside, "the light box holds the whole torus");
 }
 
@@ -119,8 +119,8 @@ void check_box_margin(const Workload &w) {
     float nearest = 1e30f;
     for (int v = 0; v < w.numVerts; v++) {
         const Vec4 &p = w.positions[(size_t)v];
-        for (float d : {p.x - b.xmin, p.x - b.xmax, p.y - b.ymin, p.y - b.ymax, p.z - b.zmin,
-                        p.z - b.zmax}) {
+        for (float d :
+             {p.x - b.xmin, p.x - b.xmax, p.y - b.ymin, p.y - b.ymax, p.z - b.zmin, p.z - b.zmax}) {
             nearest = std::min(nearest, std::fabs(d));
         }
     }

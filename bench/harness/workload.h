@@ -44,8 +44,8 @@ template <class T> class AlignedArray {
 public:
     AlignedArray() = default;
     explicit AlignedArray(size_t n) : n_(n) {
-        size_t bytes =
-            (n * sizeof(T) + 2 * kBufferAlignment - 1) / kBufferAlignment * kBufferAlignment;
+        size_t bytes = (n * sizeof(T) + 2 * kBufferAlignment - 1) / kBufferAlignment *
+                       kBufferAlignment;
         void *p = std::aligned_alloc(kBufferAlignment, bytes);
         if (!p) {
             throw std::bad_alloc();
@@ -79,29 +79,29 @@ void light_box_planes(const LightBox &box, Plane planes[SV_NUM_LIGHT_PLANES]);
 
 /* One light: the input of one call. */
 struct Light {
-    Vec4 position{};                      /* (x,y,z,1) point, (x,y,z,0) directional */
-    LightBox box{};                       /* its light volume */
-    Plane planes[SV_NUM_LIGHT_PLANES]{};  /* the box's planes, for App. B */
-    AlignedArray<uint8_t> facing;         /* numTriangles + 1 bytes, the last 1 */
-    AlignedArray<uint8_t> cullBits;       /* one byte per vertex */
-    bool cullInside = false; /* App. B returned 1: the surface is inside the box
+    Vec4 position{};                     /* (x,y,z,1) point, (x,y,z,0) directional */
+    LightBox box{};                      /* its light volume */
+    Plane planes[SV_NUM_LIGHT_PLANES]{}; /* the box's planes, for App. B */
+    AlignedArray<uint8_t> facing;        /* numTriangles + 1 bytes, the last 1 */
+    AlignedArray<uint8_t> cullBits;      /* one byte per vertex */
+    bool cullInside = false;             /* App. B returned 1: the surface is inside the box
                                 and cullBits (all 0 here) were not written */
-    int numFacing = 0;       /* facing bytes set, the last one not counted */
-    int numSilhouette = 0;   /* SilEdges whose two facing bytes differ */
-    int numCulled = 0;       /* triangles whose 3 cull bytes share a bit */
-    int numTurned = 0;       /* culled triangles that were not facing */
-    double score = 0;        /* how far from the targets (lights.h) */
+    int numFacing = 0;                   /* facing bytes set, the last one not counted */
+    int numSilhouette = 0;               /* SilEdges whose two facing bytes differ */
+    int numCulled = 0;                   /* triangles whose 3 cull bytes share a bit */
+    int numTurned = 0;                   /* culled triangles that were not facing */
+    double score = 0;                    /* how far from the targets (lights.h) */
 };
 
 /* How the lights were made, for the header. */
 struct LightOrigin {
-    bool lit = false;         /* positions and planes: App. A and B rows run */
-    double targetFacing = 0;  /* the ratios aimed at */
+    bool lit = false;        /* positions and planes: App. A and B rows run */
+    double targetFacing = 0; /* the ratios aimed at */
     double targetSilhouette = 0;
     double targetCulled = 0;
     uint64_t seed = 0;
-    int candidates = 0;       /* light positions tried (glTF) */
-    bool fixedGiven = false;  /* --light chose the fixed light */
+    int candidates = 0;      /* light positions tried (glTF) */
+    bool fixedGiven = false; /* --light chose the fixed light */
 };
 
 struct Workload {
@@ -109,9 +109,9 @@ struct Workload {
     std::string source; /* the file, or how the mesh was made */
     int surfaces = 0;   /* glTF mesh instances merged into the one surface */
     int numVerts = 0, numTriangles = 0, numIndices = 0, numSilEdges = 0;
-    int numDangling = 0;      /* SilEdges with p2 = numTriangles */
-    int degenerateDropped = 0;/* triangles preparation dropped */
-    bool closed = false;      /* every edge used twice, in opposite directions */
+    int numDangling = 0;          /* SilEdges with p2 = numTriangles */
+    int degenerateDropped = 0;    /* triangles preparation dropped */
+    bool closed = false;          /* every edge used twice, in opposite directions */
     AlignedArray<Vec4> positions; /* welded vertices, w = 1 (App. B's input) */
     AlignedArray<Plane> planes;   /* one per triangle (App. A's input) */
     Bounds bounds{};              /* sv::surface_bounds */

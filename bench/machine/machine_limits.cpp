@@ -119,10 +119,10 @@ MachineLimits measure_machine_limits() {
         void (*loads)(const uint8_t *, int64_t, int64_t);
         void (*stores)(uint8_t *, int64_t);
     };
-    static const VectorForms zmm{"zmm", 64, 16, svb_gather_lanes_zmm, svb_vector_loads_zmm,
-                                 svb_vector_stores_zmm};
-    static const VectorForms ymm{"ymm", 32, 8, svb_gather_lanes_ymm, svb_vector_loads_ymm,
-                                 svb_vector_stores_ymm};
+    static const VectorForms zmm{
+        "zmm", 64, 16, svb_gather_lanes_zmm, svb_vector_loads_zmm, svb_vector_stores_zmm};
+    static const VectorForms ymm{
+        "ymm", 32, 8, svb_gather_lanes_ymm, svb_vector_loads_ymm, svb_vector_stores_ymm};
     const VectorForms *v = (isa & SV_ISA_AVX512) ? &zmm : (isa & SV_ISA_AVX2) ? &ymm : nullptr;
 
     l.scalarLoads = rate(m, (double)kOps, [&] { svb_scalar_loads(small.p, kOps / 32); });
@@ -133,9 +133,10 @@ MachineLimits measure_machine_limits() {
         const int64_t iters = kOps / 8;
         l.gatherLanes = rate(m, (double)(iters * 8 * v->gatherLanes),
                              [&] { v->gather(small.p, iters); });
-        l.l1LoadBytes = rate(m, v->bytes * kOps, [&] { v->loads(small.p, iters, (long)kL1Buffer); });
-        l.l2LoadBytes =
-            rate(m, v->bytes * kOps, [&] { v->loads(large.p, iters, (long)l.l2Buffer); });
+        l.l1LoadBytes = rate(m, v->bytes * kOps,
+                             [&] { v->loads(small.p, iters, (long)kL1Buffer); });
+        l.l2LoadBytes = rate(m, v->bytes * kOps,
+                             [&] { v->loads(large.p, iters, (long)l.l2Buffer); });
         l.storeBytes = rate(m, v->bytes * kOps, [&] { v->stores(small.p, iters); });
     }
     return l;
@@ -226,9 +227,11 @@ RowsOf rows_of(const ModelTable &t, Routine routine) {
 } // namespace
 
 void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const ModelTable &t) {
-    std::fprintf(out, "\nlimits: what this core moves per TSC tick at best (bench/machine/machine_limits.asm;"
-                      " the fastest of %d calls, each of 2^20 loads, stores or gathers)\n",
-                 kTries);
+    std::fprintf(
+        out,
+        "\nlimits: what this core moves per TSC tick at best (bench/machine/machine_limits.asm;"
+        " the fastest of %d calls, each of 2^20 loads, stores or gathers)\n",
+        kTries);
     std::fprintf(out, "  scalar byte loads (independent, L1)      %6.2f per tick\n", l.scalarLoads);
     std::fprintf(out, "  core clock (a dependent add chain)       %6.2f cycles per tick\n",
                  l.coreCyclesPerTick);
@@ -288,10 +291,12 @@ void print_limits(FILE *out, const MachineLimits &l, const Workload &w, const Mo
         const double vsStream = f.streaming > 0 ? best->median / f.streaming : 0;
         const bool pipeline = f.routine == Routine::pipeline || f.routine == Routine::pipeline_cull;
         const double want = pipeline ? 3.0 : 2.0;
-        const char *verdict = vsSse2 >= want                       ? "met (speed-up)"
-                              : !pipeline && vsStream > 0 && vsStream <= 1.5 ? "met (near the floor)"
-                                                                           : "MISSED";
-        std::fprintf(out, "  %-26s %-12s %5.2fx %-10s (goal %.0fx), %5.1fx the streaming floor: %s\n",
+        const char *verdict = vsSse2 >= want ? "met (speed-up)"
+                              : !pipeline && vsStream > 0 && vsStream <= 1.5
+                                  ? "met (near the floor)"
+                                  : "MISSED";
+        std::fprintf(out,
+                     "  %-26s %-12s %5.2fx %-10s (goal %.0fx), %5.1fx the streaming floor: %s\n",
                      routine_name(f.routine), best->variant->name, vsSse2, sse2->variant->name,
                      want, vsStream, verdict);
     }

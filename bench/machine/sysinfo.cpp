@@ -32,9 +32,7 @@ unsigned long long xgetbv0() {
     return (unsigned long long)hi << 32 | lo;
 }
 
-bool bit(unsigned reg, int n) {
-    return (reg >> n) & 1u;
-}
+bool bit(unsigned reg, int n) { return (reg >> n) & 1u; }
 
 std::vector<std::string> detect_isa() {
     std::vector<std::string> isa;
@@ -148,12 +146,8 @@ std::string build_flags() {
     return std::string(SV_BUILD_TYPE) + (f.empty() ? "" : ", C flags: " + f);
 }
 
-std::string git_commit() {
-    return SV_GIT_COMMIT;
-}
+std::string git_commit() { return SV_GIT_COMMIT; }
 
-std::string project_version() {
-    return SV_PROJECT_VERSION;
-}
+std::string project_version() { return SV_PROJECT_VERSION; }
 
 } // namespace svbench

@@ -23,9 +23,7 @@ static_assert(sizeof(Plane) == 16 && sizeof(Vec4) == 16 && sizeof(SilEdge) == 16
 
 } // namespace
 
-MeshShape paper_shape() {
-    return MeshShape{};
-}
+MeshShape paper_shape() { return MeshShape{}; }
 
 MeshShape shape_of(const Workload &w) {
     MeshShape s;
@@ -68,9 +66,7 @@ WorkingSet working_set(Routine r, const MeshShape &s) {
                     {"silhouette", silQuads}};
         break;
     case Routine::create_cap_triangles:
-        ws.terms = {{"facing", kFacingByte},
-                    {"indices", kTriangleIndexBytes},
-                    {"caps", caps(0)}};
+        ws.terms = {{"facing", kFacingByte}, {"indices", kTriangleIndexBytes}, {"caps", caps(0)}};
         break;
     case Routine::create_shadow_volume:
         ws.terms = {{"facing", kFacingByte},

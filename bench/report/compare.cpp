@@ -79,7 +79,8 @@ Doc read_doc(const std::string &path) {
         d.commit = j.value("commit", std::string("?"));
         d.timer = j.value("timer", std::string("?"));
         d.compiler = j.value("compiler", std::string("?"));
-        if (j.at("cpu").contains("isa")) d.isa = j.at("cpu").at("isa").get<std::vector<std::string>>();
+        if (j.at("cpu").contains("isa"))
+            d.isa = j.at("cpu").at("isa").get<std::vector<std::string>>();
         /* "AuthenticAMD 25/1/1 avx2 AMD EPYC": vendor, family/model/stepping, ... */
         unsigned fam = 0, mod = 0, step = 0;
         const std::string key = j.at("cpu").value("model_key", std::string());
@@ -102,11 +103,14 @@ Doc read_doc(const std::string &path) {
                 const json &vs = p.at("variants");
                 for (int r = 0; r < SV_NUM_ROUTINES; r++) {
                     const char *name = sv_routine_name((sv_routine)r);
-                    if (vs.contains(name)) c.variants.emplace_back(name, vs.at(name).get<std::string>());
+                    if (vs.contains(name))
+                        c.variants.emplace_back(name, vs.at(name).get<std::string>());
                 }
                 for (const auto &kv : vs.items()) {
                     const bool known = std::any_of(c.variants.begin(), c.variants.end(),
-                                                   [&](const auto &rv) { return rv.first == kv.key(); });
+                                                   [&](const auto &rv) {
+                                                       return rv.first == kv.key();
+                                                   });
                     if (!known) c.variants.emplace_back(kv.key(), kv.value().get<std::string>());
                 }
                 d.plans.push_back(c);
@@ -137,8 +141,8 @@ Doc read_doc(const std::string &path) {
 /* The table's order of variants: the reference, the paper's, then the
  * newer ISAs; any other after them, as first seen. */
 void order_variants(std::vector<std::string> &v) {
-    static const char *const kOrder[] = {"c_ref", "c_branchless", "sse2_paper", "sse2",
-                                         "avx2", "avx512", "avx512vbmi", "planned_kernels",
+    static const char *const kOrder[] = {"c_ref",  "c_branchless", "sse2_paper", "sse2",
+                                         "avx2",   "avx512",       "avx512vbmi", "planned_kernels",
                                          "planned"};
     constexpr int kKnown = (int)(sizeof kOrder / sizeof kOrder[0]);
     auto rank = [](const std::string &name) {
@@ -169,8 +173,8 @@ int compare(const Doc &a, const Doc &b) {
     if (!(a.tsc_hz > 0) || !(b.tsc_hz > 0)) {
         throw DocError("a document without cpu.tsc_hz: ticks cannot be turned into time");
     }
-    std::printf("A: %s\n   %s\nB: %s\n   %s\n\n", a.path.c_str(), header(a).c_str(),
-                b.path.c_str(), header(b).c_str());
+    std::printf("A: %s\n   %s\nB: %s\n   %s\n\n", a.path.c_str(), header(a).c_str(), b.path.c_str(),
+                header(b).c_str());
     std::printf("median per element: ticks, and ns (ticks / TSC rate); B/A is the ratio of the "
                 "times (below 1: B is faster)\n\n");
     std::map<std::string, const Row *> in_b;
@@ -193,10 +197,9 @@ int compare(const Doc &a, const Doc &b) {
         const Row &s = *it->second;
         const double ns_a = r.median / a.tsc_hz * 1e9, ns_b = s.median / b.tsc_hz * 1e9;
         const double ratio = ns_b / ns_a;
-        std::printf("%-26s %-12s %-7s %-22s %10.3f %10.3f %9.4f %9.4f %7.2f%s\n",
-                    r.routine.c_str(), r.variant.c_str(), r.regime.c_str(),
-                    r.model.substr(0, 22).c_str(), r.median, s.median, ns_a, ns_b, ratio,
-                    r.checked && s.checked ? "" : "  (unchecked)");
+        std::printf("%-26s %-12s %-7s %-22s %10.3f %10.3f %9.4f %9.4f %7.2f%s\n", r.routine.c_str(),
+                    r.variant.c_str(), r.regime.c_str(), r.model.substr(0, 22).c_str(), r.median,
+                    s.median, ns_a, ns_b, ratio, r.checked && s.checked ? "" : "  (unchecked)");
         if (std::isfinite(ratio) && ratio > 0) {
             per_variant[r.variant].first += std::log(ratio);
             per_variant[r.variant].second++;
@@ -256,8 +259,8 @@ void pivot(const Doc &d, const std::vector<const Row *> &rows, bool by_model,
     }
     /* A scaling table: how far the planner's choice is from the fastest
      * fixed variant on each mesh (issue 15's goal: within 5%). */
-    const bool planned_column =
-        by_model && std::find(variants.begin(), variants.end(), "planned") != variants.end();
+    const bool planned_column = by_model && std::find(variants.begin(), variants.end(),
+                                                      "planned") != variants.end();
     if (planned_column) {
         line += " | fastest | planned vs fastest";
         rule += "|---|---:";
@@ -404,7 +407,8 @@ int report_many(const std::vector<Doc> &docs, const std::string &routine) {
         std::map<std::string, const Row *> cell;
         const std::string model = d.rows.empty() ? "" : d.rows.front().model;
         for (const Row &r : d.rows) {
-            if (r.routine == routine && r.regime == "moving" && r.model == model) cell[r.variant] = &r;
+            if (r.routine == routine && r.regime == "moving" && r.model == model)
+                cell[r.variant] = &r;
         }
         if (cell.empty()) {
             without += (without.empty() ? "" : ", ") + ("`" + d.path + "`");
@@ -412,9 +416,12 @@ int report_many(const std::vector<Doc> &docs, const std::string &routine) {
         }
         const bool has512 = std::find(d.isa.begin(), d.isa.end(), "avx512f") != d.isa.end();
         const bool vbmi = std::find(d.isa.begin(), d.isa.end(), "avx512vbmi") != d.isa.end();
-        std::string out = "| " + d.cpu + (d.family.empty() ? "" : " (" + d.family + ")") + ", TSC " +
-                          fixed(d.tsc_hz / 1e9, 2) + " GHz | " +
-                          (vbmi ? "AVX-512 VBMI" : has512 ? "AVX-512" : "AVX2") + " | " + d.commit;
+        std::string out = "| " + d.cpu + (d.family.empty() ? "" : " (" + d.family + ")") +
+                          ", TSC " + fixed(d.tsc_hz / 1e9, 2) + " GHz | " +
+                          (vbmi     ? "AVX-512 VBMI"
+                           : has512 ? "AVX-512"
+                                    : "AVX2") +
+                          " | " + d.commit;
         double best = HUGE_VAL, paper = 0;
         for (const std::string &v : variants) {
             const auto it = cell.find(v);
@@ -469,10 +476,12 @@ int compare_main(int argc, char **argv) {
         return 2;
     }
     const bool many = !is_compare && files.size() > 1;
-    if (is_compare ? files.size() != 2 : files.empty() || (many && (routine.empty() || regime != "moving"))) {
-        std::fprintf(stderr, "usage: shadowvol bench --compare A.json B.json\n"
-                             "       shadowvol bench --report FILE.json [--regime fixed] [--routine R]\n"
-                             "       shadowvol bench --report A.json B.json... --routine R\n");
+    if (is_compare ? files.size() != 2
+                   : files.empty() || (many && (routine.empty() || regime != "moving"))) {
+        std::fprintf(stderr,
+                     "usage: shadowvol bench --compare A.json B.json\n"
+                     "       shadowvol bench --report FILE.json [--regime fixed] [--routine R]\n"
+                     "       shadowvol bench --report A.json B.json... --routine R\n");
         return 2;
     }
     try {

@@ -21,9 +21,8 @@ void print_cpu_lines(FILE *out, int pinnedCpu) {
     std::fprintf(out, "isa       %s (cpuid + xgetbv)\n", cpu_isa_flags().c_str());
 }
 
-void print_variant_lines(FILE *out, const std::vector<const BenchVariant *> &variants,
-                         bool chosen, const std::string &limit,
-                         const std::vector<SkippedVariant> &skipped) {
+void print_variant_lines(FILE *out, const std::vector<const BenchVariant *> &variants, bool chosen,
+                         const std::string &limit, const std::vector<SkippedVariant> &skipped) {
     std::fprintf(out, "variants ");
     for (const BenchVariant *v : variants) {
         std::fprintf(out, " %s", v->name);

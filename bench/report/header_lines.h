@@ -21,9 +21,8 @@ void print_cpu_lines(FILE *out, int pinnedCpu);
 
 /* "variants" (with the ISA level, "--variant" when CHOSEN narrowed them,
  * and the ISA LIMIT when set) and a "skipped" line per SKIPPED variant. */
-void print_variant_lines(FILE *out, const std::vector<const BenchVariant *> &variants,
-                         bool chosen, const std::string &limit,
-                         const std::vector<SkippedVariant> &skipped);
+void print_variant_lines(FILE *out, const std::vector<const BenchVariant *> &variants, bool chosen,
+                         const std::string &limit, const std::vector<SkippedVariant> &skipped);
 
 } // namespace svbench
 

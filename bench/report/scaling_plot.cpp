@@ -91,9 +91,8 @@ std::string scaling_svg(const ScalingRun &run) {
                   "against c_ref outside the timed region.",
                   run.machine.tscHz * 1e-9, timer_name(run.machine.timer));
     d.notes.push_back(tsc);
-    d.notes.push_back("Caches: " + cache_summary(cache_sizes()) + ". Build: " +
-                      compiler_version() + ", " + build_flags() + ", commit " + git_commit() +
-                      ".");
+    d.notes.push_back("Caches: " + cache_summary(cache_sizes()) + ". Build: " + compiler_version() +
+                      ", " + build_flags() + ", commit " + git_commit() + ".");
     d.notes.push_back("Lines: the generated character subdivided n x n (1344 n^2 triangles); "
                       "hollow markers: the real characters. y: the median call (the lowest of " +
                       std::to_string(run.options.rounds) + " rounds' medians).");

@@ -123,7 +123,8 @@ std::string plan_difference(const BenchVariant *planned, const BenchVariant *fas
     case Routine::create_sil_triangles: uses = {SV_ROUTINE_CREATE_SIL_TRIANGLES}; break;
     case Routine::create_cap_triangles: uses = {SV_ROUTINE_CREATE_CAP_TRIANGLES}; break;
     case Routine::create_shadow_volume:
-        uses = {SV_ROUTINE_COUNT_FACING, SV_ROUTINE_CREATE_SIL_TRIANGLES, SV_ROUTINE_CREATE_CAP_TRIANGLES};
+        uses = {SV_ROUTINE_COUNT_FACING, SV_ROUTINE_CREATE_SIL_TRIANGLES,
+                SV_ROUTINE_CREATE_CAP_TRIANGLES};
         break;
     case Routine::create_shadow_volume_cull:
         uses = {SV_ROUTINE_COUNT_FACING_CULL, SV_ROUTINE_CREATE_SIL_TRIANGLES,
@@ -144,8 +145,9 @@ std::string plan_difference(const BenchVariant *planned, const BenchVariant *fas
     const bool pipe = routine == Routine::pipeline || routine == Routine::pipeline_cull;
     std::string diff;
     for (const sv_routine u : uses) {
-        const char *theirs = u <= SV_ROUTINE_CALCULATE_CULL_BITS && pipe ? fastest->pipeline_facing_name
-                                                                          : fastest->name;
+        const char *theirs = u <= SV_ROUTINE_CALCULATE_CULL_BITS && pipe
+                                 ? fastest->pipeline_facing_name
+                                 : fastest->name;
         const char *chosen = planned->plan->variant[u];
         if (theirs && chosen && std::strcmp(chosen, theirs) == 0) continue;
         diff += (diff.empty() ? "" : "; ") + std::string(sv_routine_name(u)) + " " +
@@ -178,7 +180,8 @@ void print_goal_checks(FILE *out, const ScalingRun &run, Routine routine,
             const double ratio = planned->median / fastest->median;
             if (ratio > worst) worst = ratio, worstAt = m.spec.name;
             if (ratio > 1.05) {
-                const std::string diff = plan_difference(planned->variant, fastest->variant, routine);
+                const std::string diff = plan_difference(planned->variant, fastest->variant,
+                                                         routine);
                 char s[480];
                 std::snprintf(s, sizeof s, "%s%s (%.0f%% slower than %s%s%s)",
                               (diff.empty() ? noise : chose).empty() ? "" : ", ",
@@ -192,12 +195,14 @@ void print_goal_checks(FILE *out, const ScalingRun &run, Routine routine,
             std::fprintf(out, "  %s vs the fastest variant (medians): %s; worst %+.1f%% on %s\n",
                          pv->name,
                          chose.empty() && noise.empty() ? "within 5% on every mesh"
-                         : chose.empty() ? "within 5% on every mesh where its kernels differ"
-                                         : ("MORE than 5% slower with other kernels on " + chose).c_str(),
+                         : chose.empty()
+                             ? "within 5% on every mesh where its kernels differ"
+                             : ("MORE than 5% slower with other kernels on " + chose).c_str(),
                          100.0 * (worst - 1), worstAt.c_str());
             if (!noise.empty()) {
-                std::fprintf(out, "    over 5%% with the fastest's own kernels (noise: the same code "
-                                  "in two rows) on %d mesh%s: %s\n",
+                std::fprintf(out,
+                             "    over 5%% with the fastest's own kernels (noise: the same code "
+                             "in two rows) on %d mesh%s: %s\n",
                              sameOver, sameOver == 1 ? "" : "es", noise.c_str());
             }
         }
@@ -300,16 +305,14 @@ void print_scaling_header(FILE *out, const ScalingRun &run) {
         std::fprintf(out, " %s", routine_name(r));
     }
     std::fprintf(out, "\n");
-    std::fprintf(out,
-                 "tsc       %.3f GHz, steps of %llu ticks; unit: ticks, not core cycles\n",
+    std::fprintf(out, "tsc       %.3f GHz, steps of %llu ticks; unit: ticks, not core cycles\n",
                  m.tscHz * 1e-9, (unsigned long long)m.step);
-    std::fprintf(out, "timer     %s: %s, the empty region's cost subtracted\n",
-                 timer_name(m.timer), timer_sequence(m.timer));
+    std::fprintf(out, "timer     %s: %s, the empty region's cost subtracted\n", timer_name(m.timer),
+                 timer_sequence(m.timer));
     std::fprintf(out, "build     %s, %s, commit %s\n", compiler_version().c_str(),
                  build_flags().c_str(), git_commit().c_str());
-    std::fprintf(out,
-                 "meshes    the generated character, each quad subdivided n x n (1344 n^2 "
-                 "triangles, n =");
+    std::fprintf(out, "meshes    the generated character, each quad subdivided n x n (1344 n^2 "
+                      "triangles, n =");
     for (const ScalingMesh &sm : run.meshes) {
         if (sm.spec.generated) {
             std::fprintf(out, " %d", sm.spec.subdivision);
@@ -344,8 +347,8 @@ void print_scaling_mesh(FILE *out, const ScalingMesh &m, bool first) {
                      "ws volume", "fits", "runs", "seconds");
     }
     const double ws = working_set_bytes(Routine::create_shadow_volume, w);
-    std::fprintf(out, "%-22.22s %9d %9d %9d %6d %7s %10s %11s %4s %5d %7.1f\n",
-                 m.spec.name.c_str(), w.numTriangles, w.numSilEdges, w.numVerts, w.numMoving,
+    std::fprintf(out, "%-22.22s %9d %9d %9d %6d %7s %10s %11s %4s %5d %7.1f\n", m.spec.name.c_str(),
+                 w.numTriangles, w.numSilEdges, w.numVerts, w.numMoving,
                  pct(ratio_stats(w, Ratio::facing).mean).c_str(),
                  pct(ratio_stats(w, Ratio::silhouette).mean).c_str(), format_bytes(ws).c_str(),
                  smallest_cache_holding(cache_sizes(), ws), m.runs, m.seconds);
@@ -359,7 +362,8 @@ void print_scaling_tables(FILE *out, const ScalingRun &run) {
     std::fprintf(
         out,
         "\nfacing, silhouette: the mean over the mesh's lights. ws volume, working set: the "
-        "bytes one call\n  touches (bench/machine/working_set.h), from the mesh's own counts; fits: "
+        "bytes one call\n  touches (bench/machine/working_set.h), from the mesh's own counts; "
+        "fits: "
         "the smallest cache that holds\n  them (an L3 shared by several cores, or split in "
         "slices, may be reported whole). Per element:\n  per triangle; create_sil_triangles per "
         "SilEdge; calculate_cull_bits per vertex. min: the fastest call;\n  median: the lowest "

@@ -43,8 +43,9 @@ bool paper_sized(const Workload &w) {
 
 void print_mesh(FILE *out, const Workload &w) {
     std::fprintf(out, "\nmodel     %s: %s\n", w.name.c_str(), w.source.c_str());
-    std::fprintf(out, "mesh      %d surface%s, welded: %d vertices, %d triangles, %d SilEdges (%d "
-                      "dangling), %s",
+    std::fprintf(out,
+                 "mesh      %d surface%s, welded: %d vertices, %d triangles, %d SilEdges (%d "
+                 "dangling), %s",
                  w.surfaces, w.surfaces == 1 ? "" : "s merged", w.numVerts, w.numTriangles,
                  w.numSilEdges, w.numDangling, w.closed ? "closed" : "not closed");
     if (w.degenerateDropped) {
@@ -69,9 +70,8 @@ void print_lights(FILE *out, const Workload &w) {
         std::fprintf(out,
                      "fixed     %s at (%.6g, %.6g, %.6g, %g):\n          facing %s, silhouette "
                      "%s, culled %s\n",
-                     o.fixedGiven ? "--light" : "the nearest of them,", f.position.x,
-                     f.position.y, f.position.z, f.position.w,
-                     pct(light_ratio(w, f, Ratio::facing)).c_str(),
+                     o.fixedGiven ? "--light" : "the nearest of them,", f.position.x, f.position.y,
+                     f.position.z, f.position.w, pct(light_ratio(w, f, Ratio::facing)).c_str(),
                      pct(light_ratio(w, f, Ratio::silhouette)).c_str(),
                      pct(light_ratio(w, f, Ratio::culled)).c_str());
         std::fprintf(out,
@@ -104,7 +104,8 @@ void print_runs(FILE *out, const BenchRun &run, const ModelRun &m) {
                  "warm-up calls; a row\n          keeps its lowest min and its lowest round median",
                  t.runs, t.rounds, t.rounds == 1 ? "" : "s", t.warmup);
     if (t.runs != run.options.runs) {
-        std::fprintf(out, "\n          (--runs %d scaled down to this mesh's size)", run.options.runs);
+        std::fprintf(out, "\n          (--runs %d scaled down to this mesh's size)",
+                     run.options.runs);
     }
     uint64_t lo = UINT64_MAX, hi = 0;
     for (const Row &r : t.rows) {
@@ -128,11 +129,12 @@ void print_table(FILE *out, bool moving, const ModelRun &m, uint64_t step) {
     const std::vector<Row> &rows = m.table.rows;
     std::fprintf(out, "\n");
     if (moving) {
-        std::fprintf(out, "regime: moving light (%d %s, a different one every call)\n",
-                     w.numMoving, w.origin.lit ? "lights" : "facing patterns");
+        std::fprintf(out, "regime: moving light (%d %s, a different one every call)\n", w.numMoving,
+                     w.origin.lit ? "lights" : "facing patterns");
     } else {
-        std::fprintf(out, "regime: fixed light (the same %s every call: the paper's "
-                          "hot-cache setup)\n",
+        std::fprintf(out,
+                     "regime: fixed light (the same %s every call: the paper's "
+                     "hot-cache setup)\n",
                      w.origin.lit ? "light" : "facing pattern");
     }
     std::fprintf(out, "%-26s %-13s %10s %10s %9s %9s %8s | %8s %5s | %8s %5s | %s\n", "routine",
@@ -158,8 +160,8 @@ void print_table(FILE *out, bool moving, const ModelRun &m, uint64_t step) {
         }
         std::snprintf(mn, sizeof mn, batched ? "%.1f" : "%.0f", r.min);
         std::snprintf(md, sizeof md, batched ? "%.1f" : "%.0f", r.median);
-        const int pad =
-            std::max(batched ? 1 : 0, 10 - (int)std::strlen(mark) - (int)std::strlen(mn));
+        const int pad = std::max(batched ? 1 : 0,
+                                 10 - (int)std::strlen(mark) - (int)std::strlen(mn));
         std::fprintf(out, "%s%*s%s %10s %9.2f %9.2f ", mark, pad, "", mn, md, r.min / el,
                      r.median / el);
         const Row *ref = reference_row(rows, r);
@@ -223,8 +225,8 @@ void print_run_header(FILE *out, const BenchRun &run) {
                      "          one, each on its own input, as many as fit in 2/3 of the %zu KiB "
                      "L1D: rows marked xN\n",
                      (unsigned long long)m.batchThreshold, (unsigned long long)kBatchSteps,
-                     m.overhead.tries, (unsigned long long)m.emptyIqr,
-                     (unsigned long long)m.step, m.l1dBytes / 1024);
+                     m.overhead.tries, (unsigned long long)m.emptyIqr, (unsigned long long)m.step,
+                     m.l1dBytes / 1024);
     } else if (o.batch == 1) {
         std::fprintf(out, "batch     one call per timed region (--batch 1)\n");
     } else {
@@ -284,8 +286,8 @@ void print_notes(FILE *out, const BenchRun &run) {
     for (const ModelRun &m : run.models) {
         for (const Row &r : m.table.rows) {
             if (r.ok && r.rounds > 1 && r.median > 0 && !below_noise(r, run.machine.step)) {
-                const double spread =
-                    (r.medianWorst - std::min(r.medianWorst, r.median)) / r.median;
+                const double spread = (r.medianWorst - std::min(r.medianWorst, r.median)) /
+                                      r.median;
                 if (!worst || spread > worstSpread) {
                     worst = &r;
                     worstModel = &m;

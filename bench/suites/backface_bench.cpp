@@ -62,9 +62,9 @@ struct CullRow {
 struct CullSize {
     std::string name;
     int triangles = 0, vertices = 0, copies = 1;
-    double disagree = 0;        /* compact != noncompact, over all views */
-    double disagreeInBand = 0;  /* ... with |D| <= fixed16's bound: compact may be wrong */
-    double floatWrong = 0;      /* ... outside it: compact exact, the float method wrong */
+    double disagree = 0;       /* compact != noncompact, over all views */
+    double disagreeInBand = 0; /* ... with |D| <= fixed16's bound: compact may be wrong */
+    double floatWrong = 0;     /* ... outside it: compact exact, the float method wrong */
     double frontRatio = 0;
     std::vector<CullRow> rows;
 };
@@ -75,8 +75,8 @@ struct Layouts {
     sv::AlignedVector<sv_cull_triangle> t32;
     sv::AlignedVector<sv_cull_triangle16> t16;
     sv::AlignedVector<sv_cull_block4> blocks;
-    std::vector<int> indices; /* for the checks: 3 per triangle */
-    std::vector<const float *> corners; /* 3 per triangle, for the exact predicate */
+    std::vector<int> indices;                  /* for the checks: 3 per triangle */
+    std::vector<const float *> corners;        /* 3 per triangle, for the exact predicate */
     std::vector<std::vector<float>> positions; /* per copy */
 };
 
@@ -151,7 +151,8 @@ void measure_size(CullSize &cs, const Layouts &L, int nv, const Bounds &b,
         }
         len = std::sqrt(len) + 1e-12;
         const double dist = r * (2 + 2 * rng.unit());
-        views.push_back(Vec4{b.center.x + (float)(dist * d[0] / len), b.center.y + (float)(dist * d[1] / len),
+        views.push_back(Vec4{b.center.x + (float)(dist * d[0] / len),
+                             b.center.y + (float)(dist * d[1] / len),
                              b.center.z + (float)(dist * d[2] / len), 1});
     }
     /* What each call must return: per view, from the definitions. */
@@ -193,11 +194,20 @@ void measure_size(CullSize &cs, const Layouts &L, int nv, const Bounds &b,
             }
             std::function<void(int)> run;
             if (std::strcmp(m.name, "noncompact") == 0) {
-                run = [&](int i) { count = sv_backface_noncompact(L.t32.data(), nt, nv, &views[(size_t)(i % kViews)], bitsOut, nullptr); };
+                run = [&](int i) {
+                    count = sv_backface_noncompact(L.t32.data(), nt, nv,
+                                                   &views[(size_t)(i % kViews)], bitsOut, nullptr);
+                };
             } else if (std::strcmp(m.name, "compact") == 0) {
-                run = [&](int i) { count = sv_backface_compact(L.t16.data(), nt, nv, &views[(size_t)(i % kViews)], bitsOut, nullptr); };
+                run = [&](int i) {
+                    count = sv_backface_compact(L.t16.data(), nt, nv, &views[(size_t)(i % kViews)],
+                                                bitsOut, nullptr);
+                };
             } else {
-                run = [&, blockFn](int i) { count = blockFn(L.blocks.data(), nt, nv, &views[(size_t)(i % kViews)], bitsOut, nullptr); };
+                run = [&, blockFn](int i) {
+                    count = blockFn(L.blocks.data(), nt, nv, &views[(size_t)(i % kViews)], bitsOut,
+                                    nullptr);
+                };
             }
             CullRow row;
             row.variant = m.name;
@@ -205,8 +215,9 @@ void measure_size(CullSize &cs, const Layouts &L, int nv, const Bounds &b,
             row.t = time_seed_row(timer, run, [&](int i) {
                 const Expected &e = (m.compact ? wantC : wantNc)[(size_t)(i % kViews)];
                 if (!withBits) {
-                    return count == e.count ? std::string() : "count " + std::to_string(count) +
-                                                                  ", expected " + std::to_string(e.count);
+                    return count == e.count ? std::string()
+                                            : "count " + std::to_string(count) + ", expected " +
+                                                  std::to_string(e.count);
                 }
                 const std::vector<uint32_t> got(bitArray.begin(), bitArray.end() - 1);
                 return compare(count, got, e);
@@ -218,7 +229,8 @@ void measure_size(CullSize &cs, const Layouts &L, int nv, const Bounds &b,
 }
 
 std::vector<Method> methods_run(std::vector<std::string> &skipped) {
-    std::vector<Method> all = {{"noncompact", SV_ISA_NONE, false, 32}, {"compact", SV_ISA_NONE, true, 16}};
+    std::vector<Method> all = {{"noncompact", SV_ISA_NONE, false, 32},
+                               {"compact", SV_ISA_NONE, true, 16}};
     for (const sv::BackfaceBlockVariant &v : sv::backface_block_variants()) {
         all.push_back({v.name, v.isa, true, 16});
     }
@@ -243,10 +255,12 @@ const CullRow *row_of(const CullSize &s, const char *name, bool bits) {
 void print_table(FILE *out, const std::vector<CullSize> &sizes, const std::vector<Method> &methods,
                  bool bits) {
     const CacheSizes &c = cache_sizes();
-    std::fprintf(out, "\nbackface_cull %s, median ticks per triangle (moving camera); working set = "
-                      "the layout + the vertex bits; cache = the smallest holding the compact one's\n",
+    std::fprintf(out,
+                 "\nbackface_cull %s, median ticks per triangle (moving camera); working set = "
+                 "the layout + the vertex bits; cache = the smallest holding the compact one's\n",
                  bits ? "with the vertex bits (the seed's job)" : "count only (vertexBits NULL)");
-    std::fprintf(out, "%-30s %10s %9s %9s %6s", "mesh", "triangles", "32 B/tri", "16 B/tri", "cache");
+    std::fprintf(out, "%-30s %10s %9s %9s %6s", "mesh", "triangles", "32 B/tri", "16 B/tri",
+                 "cache");
     for (const Method &m : methods) std::fprintf(out, " %13s", m.name);
     std::fprintf(out, " %12s\n", "compact/nc");
     for (const CullSize &s : sizes) {
@@ -276,22 +290,26 @@ void print_table(FILE *out, const std::vector<CullSize> &sizes, const std::vecto
         }
         std::fprintf(out, "\n");
     }
-    std::fprintf(out, "compact/nc: how many times faster the best compact method is than the non-compact "
-                      "one\n");
+    std::fprintf(
+        out, "compact/nc: how many times faster the best compact method is than the non-compact "
+             "one\n");
 }
 
 void print_accuracy(FILE *out, const std::vector<CullSize> &sizes) {
-    std::fprintf(out, "\naccuracy: compact (16-bit normal) against non-compact (float) decisions, over "
-                      "%d views per mesh\n", kViews);
-    std::fprintf(out, "%-30s %12s %14s %14s %10s\n", "mesh", "differ", "within bound", "float wrong",
-                 "front");
+    std::fprintf(out,
+                 "\naccuracy: compact (16-bit normal) against non-compact (float) decisions, over "
+                 "%d views per mesh\n",
+                 kViews);
+    std::fprintf(out, "%-30s %12s %14s %14s %10s\n", "mesh", "differ", "within bound",
+                 "float wrong", "front");
     for (const CullSize &s : sizes) {
         std::fprintf(out, "%-30s %12.0f %14.0f %14.0f %9.1f%%\n", s.name.c_str(), s.disagree,
                      s.disagreeInBand, s.floatWrong, 100 * s.frontRatio);
     }
-    std::fprintf(out, "differ: triangle x view decisions that differ (of triangles x %d); within bound: "
-                      "|D| <= fixed16's bound, where the compact method may err; float wrong: outside "
-                      "it, so the compact decision is the exact one and the float method erred\n",
+    std::fprintf(out,
+                 "differ: triangle x view decisions that differ (of triangles x %d); within bound: "
+                 "|D| <= fixed16's bound, where the compact method may err; float wrong: outside "
+                 "it, so the compact decision is the exact one and the float method erred\n",
                  kViews);
 }
 
@@ -307,23 +325,37 @@ std::string backface_json(const std::vector<CullSize> &sizes, const SeedTimer &t
     j.begin_array();
     for (const CullSize &s : sizes) {
         j.begin_object();
-        j.key("mesh"); j.value(s.name);
-        j.key("triangles"); j.value(s.triangles);
-        j.key("vertices"); j.value(s.vertices);
-        j.key("copies"); j.value(s.copies);
-        j.key("front_ratio"); j.value(s.frontRatio);
-        j.key("compact_vs_noncompact_differ"); j.value(s.disagree);
-        j.key("differ_within_fixed16_bound"); j.value(s.disagreeInBand);
-        j.key("differ_float_wrong"); j.value(s.floatWrong);
+        j.key("mesh");
+        j.value(s.name);
+        j.key("triangles");
+        j.value(s.triangles);
+        j.key("vertices");
+        j.value(s.vertices);
+        j.key("copies");
+        j.value(s.copies);
+        j.key("front_ratio");
+        j.value(s.frontRatio);
+        j.key("compact_vs_noncompact_differ");
+        j.value(s.disagree);
+        j.key("differ_within_fixed16_bound");
+        j.value(s.disagreeInBand);
+        j.key("differ_float_wrong");
+        j.value(s.floatWrong);
         j.key("rows");
         j.begin_array();
         for (const CullRow &r : s.rows) {
             j.begin_object(true);
             seed_json_row(j, "backface_cull", r.variant, r.t);
-            j.key("vertex_bits"); j.value(r.bits);
-            j.key("ok"); j.value(r.t.ok);
-            if (!r.t.ok) { j.key("failure"); j.value(r.t.failure); }
-            j.key("ticks_per_triangle"); j.value(r.t.median / std::max(1, s.triangles));
+            j.key("vertex_bits");
+            j.value(r.bits);
+            j.key("ok");
+            j.value(r.t.ok);
+            if (!r.t.ok) {
+                j.key("failure");
+                j.value(r.t.failure);
+            }
+            j.key("ticks_per_triangle");
+            j.value(r.t.median / std::max(1, s.triangles));
             j.end_object();
         }
         j.end_array();
@@ -340,19 +372,24 @@ int run_backface_bench(const SeedCommand &cmd) {
     return run_seed_frame(cmd, "back-face", [&](FILE *out, std::string *doc) {
         const int cpu = pin_to_current_cpu();
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
-        print_seed_header(out, "shadowvol bench --backface: seed 001's view back-face culling "
-                               "(routine backface_cull) from L1 to beyond L3", timer, cpu);
+        print_seed_header(out,
+                          "shadowvol bench --backface: seed 001's view back-face culling "
+                          "(routine backface_cull) from L1 to beyond L3",
+                          timer, cpu);
         std::fprintf(out, "caches    %s\n", cache_summary(cache_sizes()).c_str());
         std::vector<std::string> skipped;
         const std::vector<Method> methods = methods_run(skipped);
         for (const std::string &s : skipped) {
-            std::fprintf(out, "skipped   %s: this CPU (or the ISA limit) lacks its instruction set\n", s.c_str());
+            std::fprintf(out,
+                         "skipped   %s: this CPU (or the ISA limit) lacks its instruction set\n",
+                         s.c_str());
         }
 
         struct Spec {
             int n, copies;
         };
-        std::vector<Spec> specs = {{1, 1}, {2, 1}, {3, 1}, {5, 1}, {9, 1}, {9, 4}, {9, 16}, {9, 64}};
+        std::vector<Spec> specs = {{1, 1}, {2, 1}, {3, 1},  {5, 1},
+                                   {9, 1}, {9, 4}, {9, 16}, {9, 64}};
         if (cmd.quick) specs = {{1, 1}, {3, 1}, {9, 1}};
         std::vector<CullSize> sizes;
         Rng rng{cmd.seed};

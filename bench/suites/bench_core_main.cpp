@@ -49,14 +49,13 @@ constexpr int kExitUsage = 2;
 constexpr int kExitBadModel = 3;
 
 void usage(FILE *out) {
-    std::fprintf(out,
-                 "usage: shadowvol bench [--quick] [--runs N] [--seed S]\n"
-                 "\n"
-                 "The cycle table (every routine of every variant this CPU runs, moving and\n"
-                 "fixed light) on the generated character (1344 triangles, the mesh of\n"
-                 "models/character_1344.glb). This build is the core-only one\n"
-                 "(docs/PLATFORMS.md): the full program's other commands and options are\n"
-                 "not in it.\n");
+    std::fprintf(out, "usage: shadowvol bench [--quick] [--runs N] [--seed S]\n"
+                      "\n"
+                      "The cycle table (every routine of every variant this CPU runs, moving and\n"
+                      "fixed light) on the generated character (1344 triangles, the mesh of\n"
+                      "models/character_1344.glb). This build is the core-only one\n"
+                      "(docs/PLATFORMS.md): the full program's other commands and options are\n"
+                      "not in it.\n");
 }
 
 bool parse_long(const char *s, long lo, long hi, long &out) {
@@ -132,12 +131,14 @@ int bench(int argc, char **argv) {
     try {
         ModelRun mr;
         const svgen::TriMesh mesh = svgen::build_character(1);
-        const sv::PreparedSurface prepared = sv::prepare_surface(
-            mesh.positions.data(), mesh.num_vertices(), mesh.indices.data(), mesh.indices.size());
-        mr.workload = workload_from_surface(
-            prepared, "character_1344",
-            "the generated character (tools/generate_models), the mesh of "
-            "models/character_1344.glb");
+        const sv::PreparedSurface prepared = sv::prepare_surface(mesh.positions.data(),
+                                                                 mesh.num_vertices(),
+                                                                 mesh.indices.data(),
+                                                                 mesh.indices.size());
+        mr.workload =
+            workload_from_surface(prepared, "character_1344",
+                                  "the generated character (tools/generate_models), the mesh of "
+                                  "models/character_1344.glb");
         mr.workload.surfaces = 1;
         place_lights(mr.workload, LightTargets{}, kLights, run.seed, nullptr);
         run.models.push_back(std::move(mr));

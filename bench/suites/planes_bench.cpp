@@ -55,7 +55,7 @@ struct PlanesMesh {
 };
 
 struct PlanesRow {
-    std::string what;    /* "derive", "bfg_1", "bfg_4", "planes_1", "planes_4" */
+    std::string what; /* "derive", "bfg_1", "bfg_4", "planes_1", "planes_4" */
     std::string variant;
     SeedTiming t;
 };
@@ -124,7 +124,8 @@ std::vector<Vec4> lights_around(const PlanesMesh &m, uint64_t seed) {
         const double jitter = (double)(s >> 40) / (double)(1ull << 24);
         const double a = 2 * M_PI * (i + jitter) / kLightsPlanes;
         const double e = 0.2 + 0.9 * ((i * 7) % kLightsPlanes) / kLightsPlanes;
-        out.push_back(Vec4{(float)(cx + r * std::cos(a) * std::cos(e)), (float)(cy + r * std::sin(e)),
+        out.push_back(Vec4{(float)(cx + r * std::cos(a) * std::cos(e)),
+                           (float)(cy + r * std::sin(e)),
                            (float)(cz + r * std::sin(a) * std::cos(e)), 1.0f});
     }
     return out;
@@ -191,7 +192,8 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
             return std::string();
         };
         for (const sv_planes_variant *v : run) {
-            if (progress) std::fprintf(progress, "\r%s: bfg %s x%d        ", m.name.c_str(), v->name, k);
+            if (progress)
+                std::fprintf(progress, "\r%s: bfg %s x%d        ", m.name.c_str(), v->name, k);
             PlanesRow r{"bfg_" + std::to_string(k), v->name, {}};
             r.t = time_seed_row(
                 timer,
@@ -222,7 +224,8 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
     if (progress) std::fprintf(progress, "\r%60s\r", "");
 }
 
-const PlanesRow *find_row(const PlanesResult &r, const std::string &what, const std::string &variant) {
+const PlanesRow *find_row(const PlanesResult &r, const std::string &what,
+                          const std::string &variant) {
     for (const PlanesRow &row : r.rows) {
         if (row.what == what && (variant.empty() || row.variant == variant)) return &row;
     }
@@ -255,12 +258,13 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
         std::fprintf(out, "\n");
     }
 
-    std::fprintf(out, "\nfacing for a frame of 1 and 4 moving lights, ticks per triangle "
-                      "(median; every call checked against the C references)\n"
-                      "  bfg:    sv_facing_from_positions per light (variant %s)\n"
-                      "  planes: derive planes once (%s) + sv_calculate_facing per light (%s)\n",
-                      sv_best_planes_variant()->name, sv_best_planes_variant()->name,
-                      sv_best_facing_variant()->name);
+    std::fprintf(out,
+                 "\nfacing for a frame of 1 and 4 moving lights, ticks per triangle "
+                 "(median; every call checked against the C references)\n"
+                 "  bfg:    sv_facing_from_positions per light (variant %s)\n"
+                 "  planes: derive planes once (%s) + sv_calculate_facing per light (%s)\n",
+                 sv_best_planes_variant()->name, sv_best_planes_variant()->name,
+                 sv_best_facing_variant()->name);
     std::fprintf(out, "%-24s %9s %9s %9s %9s %9s %12s\n", "mesh", "triangles", "bfg 1", "planes 1",
                  "bfg 4", "planes 4", "disagree");
     const std::string best = sv_best_planes_variant()->name;
@@ -273,8 +277,9 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
                      cell(find_row(r, "bfg_4", best), r.mesh.triangles).c_str(),
                      cell(find_row(r, "planes_4", ""), r.mesh.triangles).c_str(), dis);
     }
-    std::fprintf(out, "  disagree: triangles whose BFG facing differs from the derived planes' "
-                      "facing (C references), over %d lights\n",
+    std::fprintf(out,
+                 "  disagree: triangles whose BFG facing differs from the derived planes' "
+                 "facing (C references), over %d lights\n",
                  kLightsPlanes);
 
     std::fprintf(out, "\nbfg facing by variant, ticks per triangle for 1 light | 4 lights\n");
@@ -302,19 +307,29 @@ std::string planes_json(const std::vector<PlanesResult> &results, const SeedTime
     j.begin_array();
     for (const PlanesResult &r : results) {
         j.begin_object();
-        j.key("mesh"); j.value(r.mesh.name);
-        j.key("triangles"); j.value(r.mesh.triangles);
-        j.key("vertices"); j.value(r.mesh.vertices);
-        j.key("bfg_vs_planes_facing_differ"); j.value(r.disagree);
-        j.key("facing_compared"); j.value(r.compared);
+        j.key("mesh");
+        j.value(r.mesh.name);
+        j.key("triangles");
+        j.value(r.mesh.triangles);
+        j.key("vertices");
+        j.value(r.mesh.vertices);
+        j.key("bfg_vs_planes_facing_differ");
+        j.value(r.disagree);
+        j.key("facing_compared");
+        j.value(r.compared);
         j.key("rows");
         j.begin_array();
         for (const PlanesRow &row : r.rows) {
             j.begin_object(true);
             seed_json_row(j, row.what.c_str(), row.variant, row.t);
-            j.key("ok"); j.value(row.t.ok);
-            if (!row.t.ok) { j.key("failure"); j.value(row.t.failure); }
-            j.key("ticks_per_triangle"); j.value(row.t.median / std::max(1, r.mesh.triangles));
+            j.key("ok");
+            j.value(row.t.ok);
+            if (!row.t.ok) {
+                j.key("failure");
+                j.value(row.t.failure);
+            }
+            j.key("ticks_per_triangle");
+            j.value(row.t.median / std::max(1, r.mesh.triangles));
             j.end_object();
         }
         j.end_array();
@@ -331,8 +346,10 @@ int run_planes_bench(const SeedCommand &cmd) {
     return run_seed_frame(cmd, "planes", [&](FILE *out, std::string *doc) {
         const int cpu = pin_to_current_cpu();
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
-        print_seed_header(out, "shadowvol bench --planes: per-frame planes (derive once, facing "
-                               "per light) against BFG's facing from positions", timer, cpu);
+        print_seed_header(out,
+                          "shadowvol bench --planes: per-frame planes (derive once, facing "
+                          "per light) against BFG's facing from positions",
+                          timer, cpu);
         std::vector<PlanesResult> results;
         {
             PlanesResult r;
@@ -340,8 +357,8 @@ int run_planes_bench(const SeedCommand &cmd) {
             results.push_back(std::move(r));
         }
         if (!cmd.quick) {
-            for (const char *name : {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb",
-                                     "RiggedFigure.glb"}) {
+            for (const char *name :
+                 {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb", "RiggedFigure.glb"}) {
                 const std::string p = cmd.sharedModels + "/" + name;
                 if (access(p.c_str(), R_OK) != 0) {
                     std::fprintf(out, "note      %s not found: left out\n", p.c_str());
@@ -366,8 +383,8 @@ int run_planes_bench(const SeedCommand &cmd) {
             for (const PlanesRow &row : r.rows) {
                 if (!row.t.ok) {
                     failed++;
-                    std::fprintf(out, "FAILED %s %s %s: %s\n", r.mesh.name.c_str(), row.what.c_str(),
-                                 row.variant.c_str(), row.t.failure.c_str());
+                    std::fprintf(out, "FAILED %s %s %s: %s\n", r.mesh.name.c_str(),
+                                 row.what.c_str(), row.variant.c_str(), row.t.failure.c_str());
                 }
             }
         }

@@ -39,8 +39,10 @@ void release_arrays(Workload &w) {
 Workload generated_surface(const MeshSpec &s) {
     try {
         const svgen::TriMesh mesh = svgen::build_character(s.subdivision);
-        const sv::PreparedSurface prepared = sv::prepare_surface(
-            mesh.positions.data(), mesh.num_vertices(), mesh.indices.data(), mesh.indices.size());
+        const sv::PreparedSurface prepared = sv::prepare_surface(mesh.positions.data(),
+                                                                 mesh.num_vertices(),
+                                                                 mesh.indices.data(),
+                                                                 mesh.indices.size());
         Workload w = workload_from_surface(
             prepared, s.name,
             "the generated character (tools/generate_models), each quad subdivided " +
@@ -89,8 +91,8 @@ std::vector<MeshSpec> scaling_meshes(const ScalingOptions &o, std::string *note)
     std::vector<MeshSpec> specs;
     const int *first = o.quick ? std::begin(kQuickScalingSubdivisions)
                                : std::begin(kScalingSubdivisions);
-    const int *last =
-        o.quick ? std::end(kQuickScalingSubdivisions) : std::end(kScalingSubdivisions);
+    const int *last = o.quick ? std::end(kQuickScalingSubdivisions)
+                              : std::end(kScalingSubdivisions);
     for (const int *n = first; n != last; n++) {
         MeshSpec s;
         s.generated = true;
@@ -111,10 +113,9 @@ std::vector<MeshSpec> scaling_meshes(const ScalingOptions &o, std::string *note)
             specs.push_back(s);
         }
     }
-    const std::string own_note =
-        own.empty() ? std::string()
-                    : "; --model: " + std::to_string(own.size()) + " file" +
-                          (own.size() == 1 ? "" : "s");
+    const std::string own_note = own.empty() ? std::string()
+                                             : "; --model: " + std::to_string(own.size()) +
+                                                   " file" + (own.size() == 1 ? "" : "s");
 
     std::error_code ec;
     const std::string &dir = o.sharedModels;

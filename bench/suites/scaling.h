@@ -72,7 +72,7 @@ struct ScalingOptions {
     long maxTriangles = 0; /* larger meshes are left out; 0: no limit */
     uint64_t seed = 1;
     LightTargets targets;
-    int batch = 0;         /* as the cycle table's --batch */
+    int batch = 0;                              /* as the cycle table's --batch */
     std::vector<Routine> routines;              /* in table order */
     std::vector<const BenchVariant *> variants; /* in table order */
     bool progress = true;
@@ -85,10 +85,10 @@ struct ScalingOptions {
 
 /* One mesh to measure. */
 struct MeshSpec {
-    std::string name;     /* "character_5376", or the file name */
+    std::string name; /* "character_5376", or the file name */
     bool generated = false;
-    int subdivision = 0;  /* n, for a generated mesh */
-    std::string path;     /* a real model's file */
+    int subdivision = 0; /* n, for a generated mesh */
+    std::string path;    /* a real model's file */
 };
 
 /* The generated character of S (S.subdivision), prepared, as a workload
@@ -109,10 +109,10 @@ struct ScalingMesh {
 struct ScalingRun {
     MachineTiming machine;
     ScalingOptions options;
-    std::string isaLimit;      /* as BenchRun's */
+    std::string isaLimit; /* as BenchRun's */
     bool variantsChosen = false;
     std::vector<SkippedVariant> skipped;
-    std::string realModels;    /* where the real characters are, whether they run */
+    std::string realModels;           /* where the real characters are, whether they run */
     std::vector<std::string> leftOut; /* meshes above --max-triangles, with their sizes */
     std::vector<ScalingMesh> meshes;  /* in order of triangles */
     /* Streaming reads from memory, bytes per tick (measure_memory_load_rate),

@@ -81,8 +81,9 @@ int run_scaling(const ScalingCommand &cmd) {
             }
             pending.push_back(std::move(p));
         }
-        std::stable_sort(pending.begin(), pending.end(),
-                         [](const Pending &a, const Pending &b) { return a.triangles < b.triangles; });
+        std::stable_sort(pending.begin(), pending.end(), [](const Pending &a, const Pending &b) {
+            return a.triangles < b.triangles;
+        });
         for (const Pending &p : pending) {
             ScalingMesh m;
             m.spec = p.spec;
@@ -98,10 +99,9 @@ int run_scaling(const ScalingCommand &cmd) {
             const double t0 = monotonic_seconds();
             m.workload = m.spec.generated ? scaling_surface(m.spec) : std::move(pending[i].surface);
             if (m.workload.numTriangles != m.triangles) {
-                throw std::logic_error(m.spec.name + " has " +
-                                       std::to_string(m.workload.numTriangles) +
-                                       " triangles, not the " + std::to_string(m.triangles) +
-                                       " expected");
+                throw std::logic_error(
+                    m.spec.name + " has " + std::to_string(m.workload.numTriangles) +
+                    " triangles, not the " + std::to_string(m.triangles) + " expected");
             }
             light_scaling_workload(m.workload, o);
             m.seconds = monotonic_seconds() - t0;
@@ -142,9 +142,8 @@ int run_scaling(const ScalingCommand &cmd) {
 
     const int failed = failed_scaling_rows(run);
     if (failed) {
-        std::fprintf(stderr,
-                     "shadowvol bench: %d row%s failed the check against the reference\n", failed,
-                     failed == 1 ? "" : "s");
+        std::fprintf(stderr, "shadowvol bench: %d row%s failed the check against the reference\n",
+                     failed, failed == 1 ? "" : "s");
         return kExitCheckFailed;
     }
     return 0;

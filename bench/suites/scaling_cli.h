@@ -24,7 +24,7 @@ struct ScalingCommand {
     std::string plot;       /* --plot FILE: the same */
     TimerKind timer = TimerKind::rdtscp;
     bool timerAuto = true;
-    std::string isaLimit;   /* as BenchRun's */
+    std::string isaLimit; /* as BenchRun's */
     bool variantsChosen = false;
     std::vector<SkippedVariant> skipped;
 };

@@ -48,7 +48,7 @@ struct Run {
     std::string name;
     Shortcuts shortcuts;
     int threads = 1;
-    std::vector<double> ms;          /* per frame: pose + render */
+    std::vector<double> ms; /* per frame: pose + render */
     std::vector<std::vector<uint8_t>> rgb;
     int64_t indices_built = 0;
     uint64_t stencil_pixels = 0;
@@ -101,7 +101,8 @@ struct CullSide {
     uint64_t pixels = 0;
     std::vector<uint8_t> rgb;
 };
-CullSide cull_side(const sv::Scene &scene, int width, int height, const Shortcuts &sc, int repeats) {
+CullSide cull_side(const sv::Scene &scene, int width, int height, const Shortcuts &sc,
+                   int repeats) {
     CullSide best;
     for (int r = 0; r < repeats; r++) {
         RenderOptions o;
@@ -126,7 +127,8 @@ CullSide cull_side(const sv::Scene &scene, int width, int height, const Shortcut
 int find_surface(const sv::Scene &s, const std::string &suffix) {
     for (std::size_t i = 0; i < s.surfaces.size(); i++) {
         const std::string &n = s.surfaces[i].name;
-        if (n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
+        if (n.size() >= suffix.size() &&
+            n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
             return (int)i;
         }
     }
@@ -139,16 +141,19 @@ int run_scene_bench(const SeedCommand &cmd) {
     return run_seed_frame(cmd, "scene", [&](FILE *out, std::string *doc) {
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
         const double hz = timer.tscHz;
-        const int frames = cmd.quick ? 4 : 8, width = cmd.quick ? 320 : 640, height = cmd.quick ? 256 : 512;
+        const int frames = cmd.quick ? 4 : 8, width = cmd.quick ? 320 : 640,
+                  height = cmd.quick ? 256 : 512;
         const int cores = tbb::info::default_concurrency();
         sv::SequenceOptions so;
         so.file = SV_DEMO_SCENE;
         so.aspect = (double)width / height;
         int failed = 0;
-        print_seed_header(out, "shadowvol bench --scene: the demo scene per frame, and the culling decision", timer,
-                          -1);
-        std::fprintf(out, "scene: %s, %d frames 1/8 s apart from the walk's start, %dx%d, %d core(s)\n\n",
-                     so.file.c_str(), frames, width, height, cores);
+        print_seed_header(
+            out, "shadowvol bench --scene: the demo scene per frame, and the culling decision",
+            timer, -1);
+        std::fprintf(
+            out, "scene: %s, %d frames 1/8 s apart from the walk's start, %dx%d, %d core(s)\n\n",
+            so.file.c_str(), frames, width, height, cores);
 
         /* 1. Per frame: shortcuts and full, 1 thread and every core. */
         std::vector<Run> runs(4);
@@ -168,21 +173,25 @@ int run_scene_bench(const SeedCommand &cmd) {
         }
         const bool ok_frames = same_as_full == frames && same_threads == frames;
         failed += !ok_frames;
-        std::fprintf(out, "%-10s %8s %10s %12s %14s\n", "frame", "threads", "ms/frame", "indices", "stencil px");
+        std::fprintf(out, "%-10s %8s %10s %12s %14s\n", "frame", "threads", "ms/frame", "indices",
+                     "stencil px");
         for (const Run &r : runs) {
-            std::fprintf(out, "%-10s %8d %10.2f %12lld %14llu\n", r.name.c_str(), r.threads, r.median_ms(),
-                         (long long)r.indices_built / frames, (unsigned long long)r.stencil_pixels / frames);
+            std::fprintf(out, "%-10s %8d %10.2f %12lld %14llu\n", r.name.c_str(), r.threads,
+                         r.median_ms(), (long long)r.indices_built / frames,
+                         (unsigned long long)r.stencil_pixels / frames);
         }
         const double save1 = runs[1].median_ms() / runs[0].median_ms();
         const double saveN = runs[3].median_ms() / runs[2].median_ms();
         const double scale_short = runs[0].median_ms() / runs[2].median_ms();
         const double scale_full = runs[1].median_ms() / runs[3].median_ms();
         std::fprintf(out,
-                     "full / shortcuts: %.2fx on 1 thread, %.2fx on %d; 1 thread / %d: %.2fx with shortcuts, "
-                     "%.2fx full\ncheck: %d of %d frames equal their full frame, %d of %d the same bytes on 1 and %d "
+                     "full / shortcuts: %.2fx on 1 thread, %.2fx on %d; 1 thread / %d: %.2fx with "
+                     "shortcuts, "
+                     "%.2fx full\ncheck: %d of %d frames equal their full frame, %d of %d the same "
+                     "bytes on 1 and %d "
                      "threads%s\n\n",
-                     save1, saveN, cores, cores, scale_short, scale_full, same_as_full, frames, same_threads,
-                     frames, cores, ok_frames ? "" : "  FAILED");
+                     save1, saveN, cores, cores, scale_short, scale_full, same_as_full, frames,
+                     same_threads, frames, cores, ok_frames ? "" : "  FAILED");
 
         /* 2. Each shortcut alone switched off (every core). */
         struct Ablation {
@@ -194,10 +203,12 @@ int run_scene_bench(const SeedCommand &cmd) {
                                     {"view reach", &Shortcuts::view_reach, {}},
                                     {"culling test", &Shortcuts::cull_straddling, {}},
                                     {"caps for z-fail only", &Shortcuts::zpass_when_safe, {}},
-                                    {"directional dark cap", &Shortcuts::no_directional_dark_cap, {}},
+                                    {"directional dark cap",
+                                     &Shortcuts::no_directional_dark_cap,
+                                     {}},
                                     {"static reuse", &Shortcuts::reuse_static, {}}};
-        std::fprintf(out, "%-22s %10s %10s %12s %14s %8s\n", "without", "ms/frame", "+ms", "indices", "stencil px",
-                     "=all");
+        std::fprintf(out, "%-22s %10s %10s %12s %14s %8s\n", "without", "ms/frame", "+ms",
+                     "indices", "stencil px", "=all");
         for (Ablation &a : ab) {
             a.run.name = a.name;
             a.run.shortcuts = Shortcuts{};
@@ -205,14 +216,18 @@ int run_scene_bench(const SeedCommand &cmd) {
             a.run.threads = cores;
             play(so, frames, width, height, hz, a.run, nullptr);
             bool same = true;
-            for (int k = 0; k < frames; k++) same &= a.run.rgb[(std::size_t)k] == runs[2].rgb[(std::size_t)k];
+            for (int k = 0; k < frames; k++)
+                same &= a.run.rgb[(std::size_t)k] == runs[2].rgb[(std::size_t)k];
             failed += !same;
             std::fprintf(out, "%-22s %10.2f %+10.2f %12lld %14llu %8s\n", a.name, a.run.median_ms(),
-                         a.run.median_ms() - runs[2].median_ms(), (long long)a.run.indices_built / frames,
+                         a.run.median_ms() - runs[2].median_ms(),
+                         (long long)a.run.indices_built / frames,
                          (unsigned long long)a.run.stencil_pixels / frames, same ? "yes" : "NO");
         }
-        std::fprintf(out, "(each row: every shortcut but that one; +ms is what the shortcut saves per frame, "
-                          "=all: the same pictures as with all)\n\n");
+        std::fprintf(
+            out,
+            "(each row: every shortcut but that one; +ms is what the shortcut saves per frame, "
+            "=all: the same pictures as with all)\n\n");
 
         /* 3. The culling decision on both sides. */
         sv::SceneSequence seq(so);
@@ -231,13 +246,16 @@ int run_scene_bench(const SeedCommand &cmd) {
             if (demo.lights[li].kind == sv::LightKind::point && lamp < 0) lamp = (int)li;
         }
         if (terrain < 0 || character < 0 || headlight < 0 || lamp < 0) {
-            throw std::runtime_error(so.file + ": not the demo scene (no terrain, character, spot and point light)");
+            throw std::runtime_error(
+                so.file + ": not the demo scene (no terrain, character, spot and point light)");
         }
         std::vector<Case> cases = {{"terrain under a headlight", terrain, headlight, {}, {}, false},
                                    {"character inside the lamp", character, lamp, {}, {}, false}};
-        std::fprintf(out, "%-26s %9s %10s | %-8s %10s %10s %10s %10s | %-8s %10s %10s %10s %10s | %s\n",
-                     "culling decision", "triangles", "box", "test", "job kt", "stencil kt", "indices", "pixels",
-                     "other", "job kt", "stencil kt", "indices", "pixels", "cheaper");
+        std::fprintf(out,
+                     "%-26s %9s %10s | %-8s %10s %10s %10s %10s | %-8s %10s %10s %10s %10s | %s\n",
+                     "culling decision", "triangles", "box", "test", "job kt", "stencil kt",
+                     "indices", "pixels", "other", "job kt", "stencil kt", "indices", "pixels",
+                     "cheaper");
         const int repeats = cmd.quick ? 3 : 7;
         for (Case &c : cases) {
             sv::Scene one;
@@ -246,7 +264,8 @@ int run_scene_bench(const SeedCommand &cmd) {
             one.camera = demo.camera;
             Plane planes[SV_NUM_LIGHT_PLANES];
             sv::render::light_volume_planes(one.lights[0], planes);
-            c.straddles = sv::render::classify_box(planes, one.surfaces[0].lo, one.surfaces[0].hi) !=
+            c.straddles = sv::render::classify_box(planes, one.surfaces[0].lo,
+                                                   one.surfaces[0].hi) !=
                           sv::render::BoxSide::inside;
             Shortcuts test;
             test.view_reach = false; /* the volume is wanted even if out of view */
@@ -254,7 +273,7 @@ int run_scene_bench(const SeedCommand &cmd) {
             if (c.straddles) {
                 other.cull_straddling = false; /* the other side: no culling */
             } else {
-                other.cull_always = true;      /* the other side: the routine anyway */
+                other.cull_always = true; /* the other side: the routine anyway */
             }
             c.by_test = cull_side(one, width, height, test, repeats);
             c.other = cull_side(one, width, height, other, repeats);
@@ -262,25 +281,30 @@ int run_scene_bench(const SeedCommand &cmd) {
             /* The same volume drawn (culling culled nothing): the same
              * stencil work, so only the job tells them apart (the stencil
              * pass's ticks there differ by noise only). */
-            const bool same_volume = c.by_test.indices == c.other.indices && c.by_test.pixels == c.other.pixels;
+            const bool same_volume = c.by_test.indices == c.other.indices &&
+                                     c.by_test.pixels == c.other.pixels;
             const uint64_t a = c.by_test.job_ticks + (same_volume ? 0 : c.by_test.stencil_ticks),
                            b = c.other.job_ticks + (same_volume ? 0 : c.other.stencil_ticks);
             const bool test_cheaper = a <= b;
             failed += !same;
             std::fprintf(out,
-                         "%-26s %9d %10s | %-8s %10.1f %10.1f %10lld %10llu | %-8s %10.1f %10.1f %10lld %10llu | %s%s\n",
-                         c.what, one.surfaces[0].prepared.num_triangles(), c.straddles ? "straddles" : "inside",
+                         "%-26s %9d %10s | %-8s %10.1f %10.1f %10lld %10llu | %-8s %10.1f %10.1f "
+                         "%10lld %10llu | %s%s\n",
+                         c.what, one.surfaces[0].prepared.num_triangles(),
+                         c.straddles ? "straddles" : "inside",
                          c.by_test.culled ? "cull" : "no cull", (double)c.by_test.job_ticks / 1e3,
                          (double)c.by_test.stencil_ticks / 1e3, (long long)c.by_test.indices,
                          (unsigned long long)c.by_test.pixels, c.other.culled ? "cull" : "no cull",
-                         (double)c.other.job_ticks / 1e3, (double)c.other.stencil_ticks / 1e3, (long long)c.other.indices,
-                         (unsigned long long)c.other.pixels,
+                         (double)c.other.job_ticks / 1e3, (double)c.other.stencil_ticks / 1e3,
+                         (long long)c.other.indices, (unsigned long long)c.other.pixels,
                          test_cheaper ? "the test's side" : "the other side",
                          same ? "" : "  (pictures differ: FAILED)");
         }
-        std::fprintf(out, "(one surface, one light, min of %d frames: job = facing + culling + volume, then the "
-                          "stencil pass; where both sides draw the same volume only the job is compared)\n",
-                     repeats);
+        std::fprintf(
+            out,
+            "(one surface, one light, min of %d frames: job = facing + culling + volume, then the "
+            "stencil pass; where both sides draw the same volume only the job is compared)\n",
+            repeats);
 
         JsonWriter j;
         j.begin_object();
@@ -298,7 +322,8 @@ int run_scene_bench(const SeedCommand &cmd) {
             j.key("threads"), j.value(r.threads);
             j.key("median_ms"), j.value(r.median_ms());
             j.key("indices_per_frame"), j.value((long long)r.indices_built / frames);
-            j.key("stencil_pixels_per_frame"), j.value((unsigned long long)r.stencil_pixels / frames);
+            j.key("stencil_pixels_per_frame"),
+                j.value((unsigned long long)r.stencil_pixels / frames);
             j.end_object();
         }
         j.end_array();
@@ -321,8 +346,10 @@ int run_scene_bench(const SeedCommand &cmd) {
             j.key("case"), j.value(c.what);
             j.key("straddles"), j.value(c.straddles);
             j.key("test_culls"), j.value(c.by_test.culled);
-            j.key("test_ticks"), j.value((unsigned long long)c.by_test.job_ticks + c.by_test.stencil_ticks);
-            j.key("other_ticks"), j.value((unsigned long long)c.other.job_ticks + c.other.stencil_ticks);
+            j.key("test_ticks"),
+                j.value((unsigned long long)c.by_test.job_ticks + c.by_test.stencil_ticks);
+            j.key("other_ticks"),
+                j.value((unsigned long long)c.other.job_ticks + c.other.stencil_ticks);
             j.end_object();
         }
         j.end_array();

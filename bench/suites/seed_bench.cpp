@@ -97,12 +97,14 @@ SeedMesh loaded_seed_mesh(const std::string &path) {
 void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pinnedCpu) {
     std::fprintf(out, "%s\n", title);
     print_cpu_lines(out, pinnedCpu);
-    std::fprintf(out, "timer     %s, overhead %llu ticks subtracted; TSC %.3f GHz (ticks, not core "
-                      "cycles)\n",
+    std::fprintf(out,
+                 "timer     %s, overhead %llu ticks subtracted; TSC %.3f GHz (ticks, not core "
+                 "cycles)\n",
                  timer_name(t.kind), (unsigned long long)t.overhead, t.tscHz * 1e-9);
     std::fprintf(out, "build     %s, commit %s\n", build_flags().c_str(), git_commit().c_str());
-    std::fprintf(out, "runs      each row %.2f s of calls (at least %d, at most %d), min and median; "
-                      "every call checked\n",
+    std::fprintf(out,
+                 "runs      each row %.2f s of calls (at least %d, at most %d), min and median; "
+                 "every call checked\n",
                  t.budget, t.minCalls, t.maxCalls);
 }
 

@@ -30,7 +30,7 @@ namespace svbench {
  * them. */
 struct SeedCommand {
     bool quick = false;
-    std::string json;         /* --json FILE: "" none, "-" standard output */
+    std::string json; /* --json FILE: "" none, "-" standard output */
     TimerKind timer = TimerKind::rdtscp;
     long maxTriangles = 0;    /* --max-triangles: leave out larger meshes (0: none) */
     uint64_t seed = 1;        /* the lights' jitter */
@@ -52,8 +52,8 @@ int run_seed_frame(const SeedCommand &cmd, const char *what,
 
 struct SeedTiming {
     bool ok = true;
-    std::string failure; /* the first check that failed */
-    int calls = 0;       /* timed calls (each checked) */
+    std::string failure;        /* the first check that failed */
+    int calls = 0;              /* timed calls (each checked) */
     double min = 0, median = 0; /* ticks per call, the fences' cost subtracted */
 };
 
@@ -63,7 +63,7 @@ struct SeedTimer {
     TimerKind kind = TimerKind::rdtscp;
     uint64_t overhead = 0; /* min of an empty region */
     double tscHz = 0;
-    double budget = 0.2;   /* seconds per row */
+    double budget = 0.2; /* seconds per row */
     int minCalls = 3, maxCalls = 2000;
 };
 /* Measures the timer (kind's overhead, the TSC rate). */
@@ -82,9 +82,9 @@ void seed_json_row(JsonWriter &j, const char *routine, const std::string &varian
 
 /* A mesh of the seed tables. */
 struct SeedMesh {
-    std::string name;   /* "character_33600 (Dino size)", "spot.glb", ... */
+    std::string name; /* "character_33600 (Dino size)", "spot.glb", ... */
     std::string source;
-    Workload w;         /* the mesh arrays (no lights) */
+    Workload w; /* the mesh arrays (no lights) */
 };
 /* The generated character subdivided n x n (1344 n^2 triangles). */
 SeedMesh generated_seed_mesh(int n, const std::string &note);

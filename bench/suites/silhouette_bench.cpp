@@ -124,8 +124,8 @@ Placement make_placement(const Workload &w, const std::string &name, int axis, R
 std::string compare(const std::vector<sv::DirectedEdge> &got,
                     const std::vector<sv::DirectedEdge> &want) {
     if (got == want) return "";
-    return std::to_string(got.size()) + " edges, the SilEdges give " +
-           std::to_string(want.size()) + " (or they differ)";
+    return std::to_string(got.size()) + " edges, the SilEdges give " + std::to_string(want.size()) +
+           " (or they differ)";
 }
 
 /* The first triangle of each quad CreateSilTriangles wrote, back to the
@@ -142,13 +142,9 @@ std::vector<sv::DirectedEdge> edges_of_quads(const int *si, int numIndices) {
 }
 
 /* format_bytes, with 0 as "0 B" (it prints "unknown" there). */
-std::string mem_cell(double bytes) {
-    return bytes > 0 ? format_bytes(bytes) : "0 B";
-}
+std::string mem_cell(double bytes) { return bytes > 0 ? format_bytes(bytes) : "0 B"; }
 
-double ms_since(double t0) {
-    return (monotonic_seconds() - t0) * 1e3;
-}
+double ms_since(double t0) { return (monotonic_seconds() - t0) * 1e3; }
 
 void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress) {
     const Workload &w = sm.m.w;
@@ -167,7 +163,8 @@ void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress)
     sm.linearMs = lin[1];
     if (3L * w.numTriangles <= kQuadraticMaxUses) {
         const double t0 = monotonic_seconds();
-        const sv::ConnectivityTable q = sv::connectivity_quadratic(w.indices.data(), w.numTriangles);
+        const sv::ConnectivityTable q = sv::connectivity_quadratic(w.indices.data(),
+                                                                   w.numTriangles);
         sm.quadraticMs = ms_since(t0);
         sm.tablesAgree = q.neighbour == conn.neighbour && q.dangling_uses == conn.dangling_uses;
     }
@@ -186,7 +183,9 @@ void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress)
         };
         auto row = [&](SilRow r, const std::function<void(int)> &run,
                        const std::function<std::string(int)> &check) {
-            if (progress) std::fprintf(progress, "\r%s %s %-28s", sm.m.name.c_str(), p.name.c_str(), r.variant.c_str());
+            if (progress)
+                std::fprintf(progress, "\r%s %s %-28s", sm.m.name.c_str(), p.name.c_str(),
+                             r.variant.c_str());
             r.t = time_seed_row(timer, run, check);
             if (!r.t.ok) {
                 const bool overflow = r.t.failure.rfind("overflow", 0) == 0;
@@ -206,8 +205,15 @@ void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress)
             r.variant = std::string("siledge_") + v.name;
             r.permanent = (double)w.numSilEdges * sizeof(SilEdge);
             int written = 0;
-            row(r, [&](int i) { written = v.create_sil_triangles(quads.data(), facing(i), w.silEdges.data(), w.numSilEdges); },
-                [&](int i) { return compare(edges_of_quads(quads.data(), written), want(i, false)); });
+            row(
+                r,
+                [&](int i) {
+                    written = v.create_sil_triangles(quads.data(), facing(i), w.silEdges.data(),
+                                                     w.numSilEdges);
+                },
+                [&](int i) {
+                    return compare(edges_of_quads(quads.data(), written), want(i, false));
+                });
         }
 
         {
@@ -215,8 +221,11 @@ void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress)
             SilRow r;
             r.variant = "classic";
             r.permanent = (double)sm.sm.dangling.size() * sizeof(sv::DirectedEdge);
-            row(r, [&](int i) { n = classic.find(facing(i), out.data()); },
-                [&](int i) { return compare(sv::canonical_silhouette(out.data(), n), want(i, true)); });
+            row(
+                r, [&](int i) { n = classic.find(facing(i), out.data()); },
+                [&](int i) {
+                    return compare(sv::canonical_silhouette(out.data(), n), want(i, true));
+                });
             p.rows.back().temporary = (double)classic.peak_bytes();
         }
 
@@ -232,17 +241,22 @@ void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress)
                         p.rows.push_back(r);
                         continue;
                     }
-                    std::unique_ptr<sv::HashFinderBase> h = sv::make_hash_finder(sm.sm, bits, cols, simd);
+                    std::unique_ptr<sv::HashFinderBase> h = sv::make_hash_finder(sm.sm, bits, cols,
+                                                                                 simd);
                     r.temporary = (double)h->temporary_bytes();
                     r.permanent = (double)sm.sm.dangling.size() * sizeof(sv::DirectedEdge);
                     sv::HashStatus st = sv::HashStatus::ok;
-                    row(r, [&](int i) { st = h->find(facing(i), out.data(), &n); },
+                    row(
+                        r, [&](int i) { st = h->find(facing(i), out.data(), &n); },
                         [&](int i) -> std::string {
                             if (st == sv::HashStatus::overflow) {
                                 /* legitimate only for a table too narrow */
-                                if (cols >= sm.needColumns) return "FAILED: overflow of a wide enough table";
-                                return "overflow at vertex " + std::to_string(h->overflow_vertex()) +
-                                       " (this mesh needs up to " + std::to_string(sm.needColumns) + " columns)";
+                                if (cols >= sm.needColumns)
+                                    return "FAILED: overflow of a wide enough table";
+                                return "overflow at vertex " +
+                                       std::to_string(h->overflow_vertex()) +
+                                       " (this mesh needs up to " + std::to_string(sm.needColumns) +
+                                       " columns)";
                             }
                             return compare(sv::canonical_silhouette(out.data(), n), want(i, true));
                         });
@@ -256,16 +270,20 @@ void measure_mesh(SilMesh &sm, const SeedTimer &timer, Rng &rng, FILE *progress)
             r.variant = v.name;
             r.permanent = (double)conn.permanent_bytes();
             r.precomputeMs = sm.linearMs;
-            row(r, [&](int i) { n = v.fn(conn, w.indices.data(), w.numTriangles, facing(i), out.data()); },
-                [&](int i) { return compare(sv::canonical_silhouette(out.data(), n), want(i, false)); });
+            row(
+                r,
+                [&](int i) {
+                    n = v.fn(conn, w.indices.data(), w.numTriangles, facing(i), out.data());
+                },
+                [&](int i) {
+                    return compare(sv::canonical_silhouette(out.data(), n), want(i, false));
+                });
         }
     }
     if (progress) std::fprintf(progress, "\r%60s\r", "");
 }
 
-double us(const SeedTimer &t, double ticks) {
-    return ticks / t.tscHz * 1e6;
-}
+double us(const SeedTimer &t, double ticks) { return ticks / t.tscHz * 1e6; }
 
 void print_mesh(FILE *out, const SilMesh &sm, const SeedTimer &t) {
     const Workload &w = sm.m.w;
@@ -279,15 +297,18 @@ void print_mesh(FILE *out, const SilMesh &sm, const SeedTimer &t) {
         std::fprintf(out, "the seed's O(n^2) %.1f ms (%s)\n", sm.quadraticMs,
                      sm.tablesAgree ? "the same table" : "FAILED: a different table");
     } else {
-        std::fprintf(out, "the seed's O(n^2) not run (more than %ld edge uses)\n", kQuadraticMaxUses);
+        std::fprintf(out, "the seed's O(n^2) not run (more than %ld edge uses)\n",
+                     kQuadraticMaxUses);
     }
     std::fprintf(out, "  hash columns this mesh may need at worst: %d\n", sm.needColumns);
     for (const Placement &p : sm.placements) {
-        std::fprintf(out, "  light %s (16 lights around %.3g, %.3g, %.3g): %.1f%% of triangles lit, "
-                          "%.0f silhouette edges on average\n",
-                     p.name.c_str(), p.center.x, p.center.y, p.center.z, 100 * p.litRatio, p.silEdges);
-        std::fprintf(out, "    %-26s %12s %12s %10s %9s %10s %10s  %s\n", "find_silhouette", "median",
-                     "min", "median", "ticks/", "temporary", "permanent", "check");
+        std::fprintf(out,
+                     "  light %s (16 lights around %.3g, %.3g, %.3g): %.1f%% of triangles lit, "
+                     "%.0f silhouette edges on average\n",
+                     p.name.c_str(), p.center.x, p.center.y, p.center.z, 100 * p.litRatio,
+                     p.silEdges);
+        std::fprintf(out, "    %-26s %12s %12s %10s %9s %10s %10s  %s\n", "find_silhouette",
+                     "median", "min", "median", "ticks/", "temporary", "permanent", "check");
         std::fprintf(out, "    %-26s %12s %12s %10s %9s %10s %10s\n", "variant", "ticks", "ticks",
                      "us", "triangle", "memory", "memory");
         for (const SilRow &r : p.rows) {
@@ -322,18 +343,21 @@ std::string ms_cell(const SeedTimer &t, const SilRow *r) {
 
 /* The seed's table, and ours for the meshes closest to its two models. */
 void print_seed_table(FILE *out, const std::vector<SilMesh> &meshes, const SeedTimer &t) {
-    std::fprintf(out, "\nseed 003's table (its laptop, ms per silhouette) beside ours (this CPU, "
-                      "median ms per silhouette; hash = the 16-bit scalar table as the seed used)\n");
+    std::fprintf(out,
+                 "\nseed 003's table (its laptop, ms per silhouette) beside ours (this CPU, "
+                 "median ms per silhouette; hash = the 16-bit scalar table as the seed used)\n");
     std::fprintf(out, "  %-40s %10s %10s %10s %13s %12s\n", "model, light", "classic", "hash64",
                  "hash8", "connectivity", "best of ours");
     for (const SeedFigures &s : kSeed003) {
-        std::fprintf(out, "  %-40s %10.0f %10.0f %10.0f %13.0f\n",
-                     (std::string(s.model) + " (" + std::to_string(s.faces) + " faces), seed").c_str(),
-                     s.classic, s.fast64, s.fast8, s.connectivity);
+        std::fprintf(
+            out, "  %-40s %10.0f %10.0f %10.0f %13.0f\n",
+            (std::string(s.model) + " (" + std::to_string(s.faces) + " faces), seed").c_str(),
+            s.classic, s.fast64, s.fast8, s.connectivity);
         /* Ours: the mesh nearest in size to the seed's. */
         const SilMesh *best = nullptr;
         for (const SilMesh &m : meshes) {
-            if (!best || std::fabs(m.m.w.numTriangles - s.faces) < std::fabs(best->m.w.numTriangles - s.faces)) {
+            if (!best || std::fabs(m.m.w.numTriangles - s.faces) <
+                             std::fabs(best->m.w.numTriangles - s.faces)) {
                 best = &m;
             }
         }
@@ -343,13 +367,14 @@ void print_seed_table(FILE *out, const std::vector<SilMesh> &meshes, const SeedT
             for (const SilRow &r : p.rows) {
                 if (r.status == "ok" && (!fastest || r.t.median < fastest->t.median)) fastest = &r;
             }
-            std::fprintf(out, "  %-40s %10s %10s %10s %13s %12s\n",
-                         (best->m.name.substr(0, best->m.name.find(' ')) + ", light " + p.name).c_str(),
-                         ms_cell(t, find_row(p, "classic")).c_str(),
-                         ms_cell(t, find_row(p, "hash64_u16")).c_str(),
-                         ms_cell(t, find_row(p, "hash8_u16")).c_str(),
-                         ms_cell(t, find_row(p, "connectivity")).c_str(),
-                         fastest ? (ms_cell(t, fastest) + " " + fastest->variant).c_str() : "-");
+            std::fprintf(
+                out, "  %-40s %10s %10s %10s %13s %12s\n",
+                (best->m.name.substr(0, best->m.name.find(' ')) + ", light " + p.name).c_str(),
+                ms_cell(t, find_row(p, "classic")).c_str(),
+                ms_cell(t, find_row(p, "hash64_u16")).c_str(),
+                ms_cell(t, find_row(p, "hash8_u16")).c_str(),
+                ms_cell(t, find_row(p, "connectivity")).c_str(),
+                fastest ? (ms_cell(t, fastest) + " " + fastest->variant).c_str() : "-");
         }
     }
 }
@@ -366,12 +391,18 @@ std::string silhouette_json(const std::vector<SilMesh> &meshes, const SeedTimer 
     j.begin_array();
     for (const SeedFigures &s : kSeed003) {
         j.begin_object(true);
-        j.key("model"); j.value(s.model);
-        j.key("faces"); j.value(s.faces);
-        j.key("classic_ms"); j.value(s.classic);
-        j.key("hash64_ms"); j.value(s.fast64);
-        j.key("hash8_ms"); j.value(s.fast8);
-        j.key("connectivity_ms"); j.value(s.connectivity);
+        j.key("model");
+        j.value(s.model);
+        j.key("faces");
+        j.value(s.faces);
+        j.key("classic_ms");
+        j.value(s.classic);
+        j.key("hash64_ms");
+        j.value(s.fast64);
+        j.key("hash8_ms");
+        j.value(s.fast8);
+        j.key("connectivity_ms");
+        j.value(s.connectivity);
         j.end_object();
     }
     j.end_array();
@@ -380,37 +411,63 @@ std::string silhouette_json(const std::vector<SilMesh> &meshes, const SeedTimer 
     for (const SilMesh &m : meshes) {
         const Workload &w = m.m.w;
         j.begin_object();
-        j.key("name"); j.value(m.m.name);
-        j.key("source"); j.value(m.m.source);
-        j.key("triangles"); j.value(w.numTriangles);
-        j.key("vertices"); j.value(w.numVerts);
-        j.key("sil_edges"); j.value(w.numSilEdges);
-        j.key("dangling"); j.value(w.numDangling);
-        j.key("hash_columns_needed"); j.value(m.needColumns);
-        j.key("connectivity_linear_ms"); j.value(m.linearMs);
+        j.key("name");
+        j.value(m.m.name);
+        j.key("source");
+        j.value(m.m.source);
+        j.key("triangles");
+        j.value(w.numTriangles);
+        j.key("vertices");
+        j.value(w.numVerts);
+        j.key("sil_edges");
+        j.value(w.numSilEdges);
+        j.key("dangling");
+        j.value(w.numDangling);
+        j.key("hash_columns_needed");
+        j.value(m.needColumns);
+        j.key("connectivity_linear_ms");
+        j.value(m.linearMs);
         j.key("connectivity_quadratic_ms");
-        if (m.quadraticMs >= 0) j.value(m.quadraticMs); else j.null();
-        j.key("tables_agree"); j.value(m.tablesAgree);
+        if (m.quadraticMs >= 0)
+            j.value(m.quadraticMs);
+        else
+            j.null();
+        j.key("tables_agree");
+        j.value(m.tablesAgree);
         j.key("placements");
         j.begin_array();
         for (const Placement &p : m.placements) {
             j.begin_object();
-            j.key("light"); j.value(p.name);
-            j.key("lit_ratio"); j.value(p.litRatio);
-            j.key("silhouette_edges"); j.value(p.silEdges);
+            j.key("light");
+            j.value(p.name);
+            j.key("lit_ratio");
+            j.value(p.litRatio);
+            j.key("silhouette_edges");
+            j.value(p.silEdges);
             j.key("rows");
             j.begin_array();
             for (const SilRow &r : p.rows) {
                 j.begin_object(true);
                 seed_json_row(j, "find_silhouette", r.variant, r.t);
-                j.key("status"); j.value(r.status);
-                j.key("ok"); j.value(r.status != "FAILED");
-                if (!r.note.empty()) { j.key("note"); j.value(r.note); }
-                j.key("median_us"); j.value(us(t, r.t.median));
-                j.key("temporary_bytes"); j.value(r.temporary);
-                j.key("permanent_bytes"); j.value(r.permanent);
+                j.key("status");
+                j.value(r.status);
+                j.key("ok");
+                j.value(r.status != "FAILED");
+                if (!r.note.empty()) {
+                    j.key("note");
+                    j.value(r.note);
+                }
+                j.key("median_us");
+                j.value(us(t, r.t.median));
+                j.key("temporary_bytes");
+                j.value(r.temporary);
+                j.key("permanent_bytes");
+                j.value(r.permanent);
                 j.key("precompute_ms");
-                if (r.precomputeMs >= 0) j.value(r.precomputeMs); else j.null();
+                if (r.precomputeMs >= 0)
+                    j.value(r.precomputeMs);
+                else
+                    j.null();
                 j.end_object();
             }
             j.end_array();
@@ -435,8 +492,10 @@ int run_silhouette_bench(const SeedCommand &cmd) {
     return run_seed_frame(cmd, "silhouette", [&](FILE *out, std::string *doc) {
         const int cpu = pin_to_current_cpu();
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
-        print_seed_header(out, "shadowvol bench --silhouette: seed 003's silhouette finders beside "
-                               "the paper's SilEdges (routine find_silhouette)", timer, cpu);
+        print_seed_header(out,
+                          "shadowvol bench --silhouette: seed 003's silhouette finders beside "
+                          "the paper's SilEdges (routine find_silhouette)",
+                          timer, cpu);
 
         /* The meshes: the paper's character, the generator's nearest to
          * the seed's Dino (28,766 faces: n = 5, 33,600) and Dragon (63,744:

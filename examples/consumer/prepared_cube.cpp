@@ -16,23 +16,27 @@ int main() {
     std::vector<float> p;
     std::vector<uint32_t> idx;
     // Six faces, each with its own four corners (so welding has work).
-    const int faces[6][4][3] = {
-        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
-        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
-        {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
+    const int faces[6][4][3] = {{{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}},
+                                {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                                {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
+                                {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+                                {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}},
+                                {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
     for (const auto &f : faces) {
         const uint32_t base = (uint32_t)(p.size() / 3);
         for (const auto &c : f)
             for (int k = 0; k < 3; k++) p.push_back((float)c[k]);
         for (uint32_t t : {0u, 1u, 2u, 0u, 2u, 3u}) idx.push_back(base + t);
     }
-    const sv::PreparedSurface s = sv::prepare_surface(p.data(), p.size() / 3, idx.data(), idx.size());
+    const sv::PreparedSurface s = sv::prepare_surface(p.data(), p.size() / 3, idx.data(),
+                                                      idx.size());
     if (s.num_vertices() != 8 || s.num_triangles() != 12 || s.num_sil_edges() != 18) {
-        std::fprintf(stderr, "prepare_surface: %d vertices, %d triangles, %d edges (want 8, 12, 18)\n",
+        std::fprintf(stderr,
+                     "prepare_surface: %d vertices, %d triangles, %d edges (want 8, 12, 18)\n",
                      s.num_vertices(), s.num_triangles(), s.num_sil_edges());
         return 1;
     }
-    const Vec4 light = {0.5f, 0.5f, 5.0f, 1.0f};  // above the z = 1 face only
+    const Vec4 light = {0.5f, 0.5f, 5.0f, 1.0f}; // above the z = 1 face only
     sv::AlignedVector<uint8_t> facing(s.num_triangles() + 1);
     sv_calculate_facing_c_ref(s.planes.data(), s.num_triangles(), &light, facing.data());
     sv::AlignedVector<int> out(sv_shadow_volume_capacity(s.num_indices(), s.num_sil_edges()));

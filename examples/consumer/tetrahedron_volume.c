@@ -18,10 +18,10 @@ int main(void) {
                             u[0] * v[1] - u[1] * v[0]};
         planes[t] = (Plane){n[0], n[1], n[2], -(n[0] * a[0] + n[1] * a[1] + n[2] * a[2])};
     }
-    const Vec4 light = {2, 3, 4, 1};            /* a point light */
+    const Vec4 light = {2, 3, 4, 1}; /* a point light */
     _Alignas(16) uint8_t facing[4 + 1];
     sv_calculate_facing_c_ref(planes, 4, &light, facing); /* facing[4] = 1 */
-    _Alignas(16) int out[6 * 6 + 6 * 4];          /* sv_shadow_volume_capacity(12, 6) */
+    _Alignas(16) int out[6 * 6 + 6 * 4];                  /* sv_shadow_volume_capacity(12, 6) */
     const sv_variant *v = sv_best_variant();
     const int n = sv_create_shadow_volume_checked(v, out, sizeof out / sizeof out[0], tri, 12, 4,
                                                   edges, 6, facing, NULL);

@@ -93,9 +93,9 @@ DefaultModels default_models(bool bundled_only);
 
 /* The light placements, nearest first. */
 struct Placement {
-    const char *name;     /* graze, hair, inside, 2r, ..., 1e6r, dir, axis */
+    const char *name; /* graze, hair, inside, 2r, ..., 1e6r, dir, axis */
     bool directional;
-    double radii;         /* point lights at a fixed distance: it, in radii */
+    double radii; /* point lights at a fixed distance: it, in radii */
     const char *summary;
 };
 const std::vector<Placement> &placements();
@@ -117,12 +117,12 @@ struct LightSet {
 LightSet make_lights(const StudyModel &m, const Placement &p, int count, uint64_t seed);
 
 struct StudyOptions {
-    int lights = 32;        /* per placement */
-    int timing_rounds = 3;  /* timed passes over the lights */
+    int lights = 32;       /* per placement */
+    int timing_rounds = 3; /* timed passes over the lights */
     bool timing = true;
     uint64_t seed = 1;
-    std::vector<const Variant *> variants; /* empty: every runnable one */
-    std::vector<const Placement *> placements; /* empty: all */
+    std::vector<const Variant *> variants;             /* empty: every runnable one */
+    std::vector<const Placement *> placements;         /* empty: all */
     std::function<void(const std::string &)> progress; /* may be empty */
 };
 
@@ -148,7 +148,7 @@ struct StudyResult {
     std::vector<StudyRow> rows;
     std::vector<std::string> failures; /* the first few broken contracts */
     int64_t failure_count = 0;
-    std::string timer;  /* the rdtsc fencing used */
+    std::string timer; /* the rdtsc fencing used */
     double tsc_hz = 0;
     int pinned_cpu = -1;
 };

@@ -44,11 +44,11 @@ struct SurfaceData {
 SurfaceData make_surface_data(const PreparedSurface &s, const float center[3], float radius);
 
 enum class Contract {
-    exact,     /* the exact facing, always */
-    bounded,   /* equal to exact wherever |D| > facing_error_bound(arithmetic) */
-    biased,    /* equal to (D > tau') wherever |D - tau'| > the float_planes bound,
+    exact,   /* the exact facing, always */
+    bounded, /* equal to exact wherever |D| > facing_error_bound(arithmetic) */
+    biased,  /* equal to (D > tau') wherever |D - tau'| > the float_planes bound,
                   tau' = +-threshold (eps_bias) */
-    same_as    /* byte for byte the variant `same_as` (a SIMD twin) */
+    same_as  /* byte for byte the variant `same_as` (a SIMD twin) */
 };
 
 /* Runs the variant on one surface: facing gets numTriangles + 1 bytes.
@@ -60,12 +60,12 @@ using RunFn = int (*)(const SurfaceData &d, const Vec4 &light, const uint8_t *pr
 
 struct Variant {
     const char *name;
-    unsigned isa;          /* SV_ISA_* bits sv_cpu_isa() must have */
+    unsigned isa; /* SV_ISA_* bits sv_cpu_isa() must have */
     Contract contract;
     FacingArithmetic arithmetic; /* bounded and biased: whose bound */
-    const char *same_as;   /* Contract::same_as: the definition it equals */
-    const char *family;    /* the plot's grouping: c_ref, fma, double, ... */
-    const char *summary;   /* one line: what it computes */
+    const char *same_as;         /* Contract::same_as: the definition it equals */
+    const char *family;          /* the plot's grouping: c_ref, fma, double, ... */
+    const char *summary;         /* one line: what it computes */
     RunFn run;
 };
 

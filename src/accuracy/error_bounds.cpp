@@ -78,8 +78,8 @@ namespace {
 
 constexpr double kEta = 0x1p-53;
 constexpr double kEps = 0x1p-24;
-constexpr double kSub = 0x1p-150;  /* half the float subnormal spacing */
-constexpr double kFtz = 0x1p-126;  /* what a flush to zero can lose */
+constexpr double kSub = 0x1p-150; /* half the float subnormal spacing */
+constexpr double kFtz = 0x1p-126; /* what a flush to zero can lose */
 constexpr double kMargin = 1.01;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -105,13 +105,11 @@ const char *facing_arithmetic_name(FacingArithmetic a) {
 
 namespace {
 
-__attribute__((noinline)) TriangleErrorModel error_model_impl(const float p0[3],
-                                                              const float p1[3],
+__attribute__((noinline)) TriangleErrorModel error_model_impl(const float p0[3], const float p1[3],
                                                               const float p2[3]) {
     TriangleErrorModel m;
     for (int i = 0; i < 3; i++) {
-        m.finite = m.finite && std::isfinite(p0[i]) && std::isfinite(p1[i]) &&
-                   std::isfinite(p2[i]);
+        m.finite = m.finite && std::isfinite(p0[i]) && std::isfinite(p1[i]) && std::isfinite(p2[i]);
     }
     m.plane = triangle_plane(p0, p1, p2);
     m.plane_d = triangle_plane_double(p0, p1, p2);
@@ -182,8 +180,8 @@ __attribute__((noinline)) double bound_impl(FacingArithmetic a, const TriangleEr
         return kMargin * (direction + gamma(4, kEta) * Md);
     }
     const double pf[4] = {m.plane.a, m.plane.b, m.plane.c, m.plane.d};
-    const double Mf = std::fabs(pf[0] * L[0]) + std::fabs(pf[1] * L[1]) +
-                      std::fabs(pf[2] * L[2]) + std::fabs(pf[3] * w);
+    const double Mf = std::fabs(pf[0] * L[0]) + std::fabs(pf[1] * L[1]) + std::fabs(pf[2] * L[2]) +
+                      std::fabs(pf[3] * w);
     if (!(Mf * (1.0 + gamma(4, kEps)) < (double)FLT_MAX)) return kInf;
     const double rounding = kEps * Md + kSub * (L1 + aw);
     const int ops = a == FacingArithmetic::float_planes ? 7 : 4;
@@ -199,8 +197,7 @@ __attribute__((noinline)) double bound_impl(FacingArithmetic a, const TriangleEr
 
 /* Both under the default MXCSR, like the preparation they describe (the
  * planes of sv::prepare_surface are assumed built without DAZ). */
-TriangleErrorModel triangle_error_model(const float p0[3], const float p1[3],
-                                        const float p2[3]) {
+TriangleErrorModel triangle_error_model(const float p0[3], const float p1[3], const float p2[3]) {
     const unsigned saved = sv_mxcsr_enter();
     TriangleErrorModel m = error_model_impl(p0, p1, p2);
     sv_mxcsr_leave(saved);

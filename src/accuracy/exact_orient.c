@@ -239,10 +239,8 @@ double sv_exact_det_estimate(const float p0[3], const float p1[3], const float p
     return d;
 }
 
-__attribute__((noinline)) static double signed_distance_body(const float p0[3],
-                                                             const float p1[3],
-                                                             const float p2[3],
-                                                             const Vec4 *light) {
+__attribute__((noinline)) static double signed_distance_body(const float p0[3], const float p1[3],
+                                                             const float p2[3], const Vec4 *light) {
     int sign;
     const double det = det_estimate_body(p0, p1, p2, light, &sign);
     if (sign == 0) return det; /* 0, or NaN for non-finite input */
@@ -257,9 +255,9 @@ double sv_exact_signed_distance(const float p0[3], const float p1[3], const floa
     return d;
 }
 
-__attribute__((noinline)) static int facing_exact_body(const float *positions,
-                                                       const int *indices, int numTriangles,
-                                                       const Vec4 *light, uint8_t *facing) {
+__attribute__((noinline)) static int facing_exact_body(const float *positions, const int *indices,
+                                                       int numTriangles, const Vec4 *light,
+                                                       uint8_t *facing) {
     int exact_used = 0;
     for (int t = 0; t < numTriangles; t++) {
         const float *p0 = positions + 3 * (size_t)indices[3 * (size_t)t];
@@ -335,9 +333,8 @@ facing_exact_avx2_body(const float *positions, const int *indices, int numTriang
                              _mm256_mul_pd(_mm256_add_pd(abs_pd(uxvy), abs_pd(vxuy)), abs_pd(rz)));
         const __m256d bound = _mm256_mul_pd(errA, perm);
         const int pos = _mm256_movemask_pd(_mm256_cmp_pd(det, bound, _CMP_GT_OQ));
-        const int neg =
-            _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(_mm256_setzero_pd(), det), bound,
-                                             _CMP_GT_OQ));
+        const int neg = _mm256_movemask_pd(
+            _mm256_cmp_pd(_mm256_sub_pd(_mm256_setzero_pd(), det), bound, _CMP_GT_OQ));
         const int finite = _mm256_movemask_pd(_mm256_cmp_pd(perm, dmax, _CMP_LE_OQ));
         /* pos and neg exclude each other; a finite lane in neither is undecided. */
         const int undecided = finite & ~(pos | neg);
@@ -364,8 +361,8 @@ facing_exact_avx2_body(const float *positions, const int *indices, int numTriang
     return exact_used;
 }
 
-int sv_calculate_facing_exact_avx2(const float *positions, const int *indices,
-                                   int numTriangles, const Vec4 *light, uint8_t *facing) {
+int sv_calculate_facing_exact_avx2(const float *positions, const int *indices, int numTriangles,
+                                   const Vec4 *light, uint8_t *facing) {
     if (numTriangles < 0) return 0;
     const unsigned saved = sv_mxcsr_enter();
     const int n = facing_exact_avx2_body(positions, indices, numTriangles, light, facing);

@@ -148,8 +148,8 @@ static inline int sv_expansion_sum(int elen, const double *e, int flen, const do
  * h needs 2 * elen * flen, scratch 2 * elen * flen + 2 * elen. */
 static inline int sv_expansion_product(int elen, const double *e, int flen, const double *f,
                                        double *h, double *scratch) {
-    double *part = scratch;                      /* 2 * elen */
-    double *acc = scratch + 2 * elen;            /* the running sum */
+    double *part = scratch;           /* 2 * elen */
+    double *acc = scratch + 2 * elen; /* the running sum */
     int n = sv_scale_expansion(elen, e, f[0], h);
     for (int j = 1; j < flen; j++) {
         const int pn = sv_scale_expansion(elen, e, f[j], part);

@@ -42,8 +42,7 @@ void sv_calculate_facing_double(const PlaneD *planes, int numTriangles, const Ve
 
 /* Four planes (one per register) -> a, b, c, d of the four. */
 SV_TARGET_AVX2 static inline void transpose4d(__m256d r0, __m256d r1, __m256d r2, __m256d r3,
-                                              __m256d *a, __m256d *b, __m256d *c,
-                                              __m256d *d) {
+                                              __m256d *a, __m256d *b, __m256d *c, __m256d *d) {
     const __m256d t0 = _mm256_unpacklo_pd(r0, r1); /* a0 a1 | c0 c1 */
     const __m256d t1 = _mm256_unpackhi_pd(r0, r1); /* b0 b1 | d0 d1 */
     const __m256d t2 = _mm256_unpacklo_pd(r2, r3); /* a2 a3 | c2 c3 */
@@ -54,8 +53,8 @@ SV_TARGET_AVX2 static inline void transpose4d(__m256d r0, __m256d r1, __m256d r2
     *d = _mm256_permute2f128_pd(t1, t3, 0x31);
 }
 
-SV_TARGET_AVX2 static inline unsigned facing4(const PlaneD *p, __m256d lx, __m256d ly,
-                                              __m256d lz, __m256d lw) {
+SV_TARGET_AVX2 static inline unsigned facing4(const PlaneD *p, __m256d lx, __m256d ly, __m256d lz,
+                                              __m256d lw) {
     __m256d a, b, c, d;
     transpose4d(_mm256_loadu_pd(&p[0].a), _mm256_loadu_pd(&p[1].a), _mm256_loadu_pd(&p[2].a),
                 _mm256_loadu_pd(&p[3].a), &a, &b, &c, &d);
@@ -85,8 +84,8 @@ double_avx2_body(const PlaneD *planes, int numTriangles, const Vec4 *light, uint
     facing[numTriangles] = 1;
 }
 
-void sv_calculate_facing_double_avx2(const PlaneD *planes, int numTriangles,
-                                     const Vec4 *light, uint8_t *facing) {
+void sv_calculate_facing_double_avx2(const PlaneD *planes, int numTriangles, const Vec4 *light,
+                                     uint8_t *facing) {
     if (numTriangles < 0) return;
     const unsigned saved = sv_mxcsr_enter();
     double_avx2_body(planes, numTriangles, light, facing);

@@ -55,10 +55,9 @@ void sv_calculate_facing_eps_bias(const Plane *planes, int numTriangles, const V
 }
 
 __attribute__((noinline)) static float threshold_body(float distance, float angle,
-                                                      const float center[3],
-                                                      const Vec4 *light) {
-    if (!(distance >= 0.0f) || !(angle >= 0.0f) || !isfinite(light->x) ||
-        !isfinite(light->y) || !isfinite(light->z) || !isfinite(light->w)) {
+                                                      const float center[3], const Vec4 *light) {
+    if (!(distance >= 0.0f) || !(angle >= 0.0f) || !isfinite(light->x) || !isfinite(light->y) ||
+        !isfinite(light->z) || !isfinite(light->w)) {
         return NAN;
     }
     const double w = light->w;
@@ -72,8 +71,7 @@ __attribute__((noinline)) static float threshold_body(float distance, float angl
     return f;
 }
 
-float sv_eps_bias_threshold(float distance, float angle, const float center[3],
-                            const Vec4 *light) {
+float sv_eps_bias_threshold(float distance, float angle, const float center[3], const Vec4 *light) {
     const unsigned saved = sv_mxcsr_enter();
     const float t = threshold_body(distance, angle, center, light);
     sv_mxcsr_leave(saved);

@@ -54,9 +54,8 @@ static inline uint8_t fixed16_one(const sv_plane16_block *b, int k, const float 
     return s > 0.0f;
 }
 
-__attribute__((noinline)) static void fixed16_body(const sv_plane16_block *blocks,
-                                                   int numTriangles, const Vec4 *light,
-                                                   uint8_t *facing) {
+__attribute__((noinline)) static void fixed16_body(const sv_plane16_block *blocks, int numTriangles,
+                                                   const Vec4 *light, uint8_t *facing) {
     float l[4];
     scaled_light(light, l);
     for (int i = 0; i < numTriangles; i++) {
@@ -83,8 +82,8 @@ SV_TARGET_AVX2 static inline __m256 load_q(const int16_t *q) {
 }
 
 /* The eight facing bits of one block. */
-SV_TARGET_AVX2 static inline unsigned block_mask(const sv_plane16_block *b, __m256 lx,
-                                                 __m256 ly, __m256 lz, __m256 lw) {
+SV_TARGET_AVX2 static inline unsigned block_mask(const sv_plane16_block *b, __m256 lx, __m256 ly,
+                                                 __m256 lz, __m256 lw) {
     __m256 s = _mm256_add_ps(_mm256_mul_ps(load_q(b->nx), lx), _mm256_mul_ps(load_q(b->ny), ly));
     s = _mm256_add_ps(s, _mm256_mul_ps(load_q(b->nz), lz));
     s = _mm256_sub_ps(s, _mm256_mul_ps(_mm256_loadu_ps(b->tn), lw));
@@ -108,19 +107,18 @@ SV_TARGET_AVX2 static inline void fixed16_avx2_impl(const sv_plane16_block *bloc
         if (prefetch) {
             /* The address as an integer: blocks + k + 4 may lie past the
              * array, where pointer arithmetic is undefined. */
-            _mm_prefetch((const char *)((uintptr_t)(blocks + k) + 4 * sizeof *blocks),
-                         _MM_HINT_T0);
+            _mm_prefetch((const char *)((uintptr_t)(blocks + k) + 4 * sizeof *blocks), _MM_HINT_T0);
         }
-        const unsigned long long bytes =
-            _pdep_u64(block_mask(&blocks[k], lx, ly, lz, lw), 0x0101010101010101ull);
+        const unsigned long long bytes = _pdep_u64(block_mask(&blocks[k], lx, ly, lz, lw),
+                                                   0x0101010101010101ull);
         memcpy(facing + (size_t)k * SV_PLANE16_BLOCK, &bytes, 8);
     }
     /* The last, partial block is in memory in full (its unused entries are
      * zero): evaluate it whole, store only its triangles' bytes. */
     const int rest = numTriangles % SV_PLANE16_BLOCK;
     if (rest) {
-        const unsigned long long bytes =
-            _pdep_u64(block_mask(&blocks[full], lx, ly, lz, lw), 0x0101010101010101ull);
+        const unsigned long long bytes = _pdep_u64(block_mask(&blocks[full], lx, ly, lz, lw),
+                                                   0x0101010101010101ull);
         memcpy(facing + (size_t)full * SV_PLANE16_BLOCK, &bytes, (size_t)rest);
     }
     facing[numTriangles] = 1;
@@ -133,8 +131,8 @@ fixed16_avx2_body(const sv_plane16_block *blocks, int numTriangles, const Vec4 *
 }
 
 SV_TARGET_AVX2 __attribute__((noinline)) static void
-fixed16_avx2_prefetch_body(const sv_plane16_block *blocks, int numTriangles,
-                           const Vec4 *light, uint8_t *facing) {
+fixed16_avx2_prefetch_body(const sv_plane16_block *blocks, int numTriangles, const Vec4 *light,
+                           uint8_t *facing) {
     fixed16_avx2_impl(blocks, numTriangles, light, facing, 1);
 }
 
@@ -146,9 +144,8 @@ void sv_calculate_facing_fixed16_avx2(const sv_plane16_block *blocks, int numTri
     sv_mxcsr_leave(saved);
 }
 
-void sv_calculate_facing_fixed16_avx2_prefetch(const sv_plane16_block *blocks,
-                                               int numTriangles, const Vec4 *light,
-                                               uint8_t *facing) {
+void sv_calculate_facing_fixed16_avx2_prefetch(const sv_plane16_block *blocks, int numTriangles,
+                                               const Vec4 *light, uint8_t *facing) {
     if (numTriangles < 0) return;
     const unsigned saved = sv_mxcsr_enter();
     fixed16_avx2_prefetch_body(blocks, numTriangles, light, facing);

@@ -53,8 +53,7 @@ SV_TARGET_AVX2_FMA static inline __m256 load_pair(const float *p, int s) {
 /* Eight planes (rows r0..r3 of two planes each, from load_pair) -> a, b,
  * c, d of planes 0..7 in order: the 4x4 transpose within each lane. */
 SV_TARGET_AVX2_FMA static inline void transpose8(__m256 r0, __m256 r1, __m256 r2, __m256 r3,
-                                                 __m256 *a, __m256 *b, __m256 *c,
-                                                 __m256 *d) {
+                                                 __m256 *a, __m256 *b, __m256 *c, __m256 *d) {
     const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
     const __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
     *a = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(t0), _mm256_castps_pd(t1)));
@@ -73,8 +72,8 @@ fma_avx2_body(const Plane *planes, int numTriangles, const Vec4 *light, uint8_t 
     for (; i <= numTriangles - 8; i += 8) {
         const float *p = &planes[i].a;
         __m256 a, b, c, d;
-        transpose8(load_pair(p, 0), load_pair(p, 1), load_pair(p, 2), load_pair(p, 3), &a, &b,
-                   &c, &d);
+        transpose8(load_pair(p, 0), load_pair(p, 1), load_pair(p, 2), load_pair(p, 3), &a, &b, &c,
+                   &d);
         __m256 s = _mm256_mul_ps(a, lx);
         s = _mm256_fmadd_ps(b, ly, s);
         s = _mm256_fmadd_ps(c, lz, s);

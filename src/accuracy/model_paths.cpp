@@ -27,8 +27,7 @@ DefaultModels default_models(bool bundled_only) {
     d.paths.push_back(std::string(SV_MODELS_DIR) + "/character_1344.glb");
     d.shared_dir = SV_SHARED_MODELS_DIR;
     if (bundled_only) {
-        d.note = "the bundled character only (--quick); the real characters are in " +
-                 d.shared_dir;
+        d.note = "the bundled character only (--quick); the real characters are in " + d.shared_dir;
         return d;
     }
     DIR *dir = opendir(d.shared_dir.c_str());
@@ -50,7 +49,8 @@ DefaultModels default_models(bool bundled_only) {
     d.paths.insert(d.paths.end(), shared.begin(), shared.end());
     d.note = "the bundled character and " + std::to_string(shared.size()) + " model(s) from " +
              d.shared_dir;
-    if (shared.empty()) d.note = "NOTE: no .glb in " + d.shared_dir + ": only the bundled character";
+    if (shared.empty())
+        d.note = "NOTE: no .glb in " + d.shared_dir + ": only the bundled character";
     return d;
 }
 

@@ -65,8 +65,8 @@ __attribute__((noinline)) void double_planes_impl(const PreparedSurface &s, Plan
  * rounding mode); tn = (q / 32767) . centroid, the centroid and the dot
  * product in double, rounded to float once (overflow gives +-inf, which the
  * bound reports as "no promise"). */
-__attribute__((noinline)) void plane16_impl(const float p0[3], const float p1[3],
-                                           const float p2[3], int16_t q[3], float *tn) {
+__attribute__((noinline)) void plane16_impl(const float p0[3], const float p1[3], const float p2[3],
+                                            int16_t q[3], float *tn) {
     q[0] = q[1] = q[2] = 0;
     *tn = 0.0f;
     const PlaneD n = plane_double_impl(p0, p1, p2);
@@ -83,7 +83,7 @@ __attribute__((noinline)) void plane16_impl(const float p0[3], const float p1[3]
 }
 
 __attribute__((noinline)) void fixed16_planes_impl(const PreparedSurface &s,
-                                                  sv_plane16_block *out) {
+                                                   sv_plane16_block *out) {
     const int nt = s.num_triangles();
     for (int t = 0; t < nt; t++) {
         const float *p0 = &s.positions[3 * (std::size_t)s.indices[3 * (std::size_t)t]];

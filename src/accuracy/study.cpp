@@ -29,8 +29,8 @@ namespace {
  * point within an ulp or so of the plane, on either side). */
 constexpr double kHairHeight = 0x1p-20;
 constexpr double kGrazeHeight = 0x1p-40;
-constexpr double kJitter = 1e-6;        /* of the light's distance, or radians */
-constexpr int kCanaryBytes = 16;        /* after facing[numTriangles] */
+constexpr double kJitter = 1e-6; /* of the light's distance, or radians */
+constexpr int kCanaryBytes = 16; /* after facing[numTriangles] */
 constexpr uint8_t kCanary = 0xA5;
 /* A timed region covers at least this many triangles: a few hundred TSC
  * steps at the fastest variants, so the TSC's resolution (tens of ticks
@@ -97,8 +97,8 @@ std::unique_ptr<StudyModel> load_study_model(const std::string &path) {
         auto s = std::make_unique<StudySurface>();
         s->name = gs.name;
         try {
-            s->prepared = prepare_surface(gs.positions.data(), gs.num_vertices(),
-                                          gs.indices.data(), gs.indices.size());
+            s->prepared = prepare_surface(gs.positions.data(), gs.num_vertices(), gs.indices.data(),
+                                          gs.indices.size());
         } catch (const PrepareError &e) {
             throw StudyError(path + ": surface " + gs.name + ": " + e.what());
         }
@@ -135,8 +135,8 @@ std::unique_ptr<StudyModel> load_study_model(const std::string &path) {
         s->error_models.resize((std::size_t)nt);
         s->normal_length.resize((std::size_t)nt);
         for (int t = 0; t < nt; t++) {
-            s->error_models[(std::size_t)t] =
-                triangle_error_model(vertex(p, t, 0), vertex(p, t, 1), vertex(p, t, 2));
+            s->error_models[(std::size_t)t] = triangle_error_model(vertex(p, t, 0), vertex(p, t, 1),
+                                                                   vertex(p, t, 2));
             s->normal_length[(std::size_t)t] =
                 sv_exact_normal_length(vertex(p, t, 0), vertex(p, t, 1), vertex(p, t, 2));
         }
@@ -328,8 +328,7 @@ const std::vector<double> &Study::bounds(const StudySurface &s, const Vec4 &l, T
 }
 
 template <class Timer>
-void Study::time_variant(const Variant &v, const StudyModel &m, const LightSet &ls,
-                         StudyRow &row) {
+void Study::time_variant(const Variant &v, const StudyModel &m, const LightSet &ls, StudyRow &row) {
     std::vector<FacingBuffer> bufs(m.surfaces.size());
     for (std::size_t s = 0; s < m.surfaces.size(); s++) {
         bufs[s].reset(m.surfaces[s]->prepared.num_triangles());
@@ -372,8 +371,8 @@ void Study::time_variant(const Variant &v, const StudyModel &m, const LightSet &
 
 void Study::run_placement(const StudyModel &m, const Placement &p,
                           const std::vector<const Variant *> &vars) {
-    const LightSet ls =
-        make_lights(m, p, o_.lights, o_.seed * 0x9E3779B97F4A7C15ull + m.content_hash);
+    const LightSet ls = make_lights(m, p, o_.lights,
+                                    o_.seed * 0x9E3779B97F4A7C15ull + m.content_hash);
     const std::size_t nv = vars.size();
     std::vector<StudyRow> rows(nv);
     for (std::size_t vi = 0; vi < nv; vi++) {
@@ -400,8 +399,8 @@ void Study::run_placement(const StudyModel &m, const Placement &p,
                 sil_exact += truth.facing[(std::size_t)e.p1] != truth.facing[(std::size_t)e.p2];
             }
             auto where = [&](const Variant &v, int t) {
-                return std::string(v.name) + ", " + m.name + " surface " + s.name + ", " +
-                       p.name + " light " + light_text(l) + ", triangle " + std::to_string(t);
+                return std::string(v.name) + ", " + m.name + " surface " + s.name + ", " + p.name +
+                       " light " + light_text(l) + ", triangle " + std::to_string(t);
             };
             for (std::size_t vi = 0; vi < nv; vi++) {
                 const Variant &v = *vars[vi];
@@ -440,7 +439,8 @@ void Study::run_placement(const StudyModel &m, const Placement &p,
                                        ? variant_by_name(v.same_as)->contract
                                        : v.contract;
                 int64_t mis = 0;
-                for (int t = 0; t < nt; t++) mis += f.bytes[(std::size_t)t] != truth.facing[(std::size_t)t];
+                for (int t = 0; t < nt; t++)
+                    mis += f.bytes[(std::size_t)t] != truth.facing[(std::size_t)t];
                 row.misclassified += mis;
                 if (c == Contract::exact) {
                     if (mis) {
@@ -456,8 +456,10 @@ void Study::run_placement(const StudyModel &m, const Placement &p,
                             row.uncertain++;
                         } else if (f.bytes[(std::size_t)t] != truth.facing[(std::size_t)t]) {
                             char buf[160];
-                            std::snprintf(buf, sizeof buf, ": facing %d, exact %d, D %.6g > bound %.6g",
-                                          f.bytes[(std::size_t)t], truth.facing[(std::size_t)t], D, b);
+                            std::snprintf(buf, sizeof buf,
+                                          ": facing %d, exact %d, D %.6g > bound %.6g",
+                                          f.bytes[(std::size_t)t], truth.facing[(std::size_t)t], D,
+                                          b);
                             fail(where(v, t) + buf);
                             row.violations++;
                         }
@@ -472,7 +474,8 @@ void Study::run_placement(const StudyModel &m, const Placement &p,
                             row.uncertain++;
                         } else if (f.bytes[(std::size_t)t] != (D > tau)) {
                             char buf[160];
-                            std::snprintf(buf, sizeof buf, ": facing %d, D %.6g, threshold %.6g, bound %.6g",
+                            std::snprintf(buf, sizeof buf,
+                                          ": facing %d, D %.6g, threshold %.6g, bound %.6g",
                                           f.bytes[(std::size_t)t], D, tau, b);
                             fail(where(v, t) + buf);
                             row.violations++;
@@ -484,8 +487,8 @@ void Study::run_placement(const StudyModel &m, const Placement &p,
                 if (mis) {
                     for (const SilEdge &e : ps.sil_edges) {
                         const std::size_t a = (std::size_t)e.p1, b = (std::size_t)e.p2;
-                        row.silhouette_changed +=
-                            (truth.facing[a] != truth.facing[b]) != (f.bytes[a] != f.bytes[b]);
+                        row.silhouette_changed += (truth.facing[a] != truth.facing[b]) !=
+                                                  (f.bytes[a] != f.bytes[b]);
                     }
                 }
                 /* Flicker: frames L, L', L; counted on the step L' -> L.
@@ -518,9 +521,7 @@ void Study::run_placement(const StudyModel &m, const Placement &p,
             case svbench::TimerKind::rdtscp:
                 time_variant<svbench::TscRdtscp>(*vars[vi], m, ls, rows[vi]);
                 break;
-            default:
-                time_variant<svbench::TscCpuid>(*vars[vi], m, ls, rows[vi]);
-                break;
+            default: time_variant<svbench::TscCpuid>(*vars[vi], m, ls, rows[vi]); break;
             }
         }
     }

@@ -44,8 +44,8 @@ int run_fixed16(const SurfaceData &d, const Vec4 &l, const uint8_t *, uint8_t *f
 
 template <int (*F)(const float *, const int *, int, const Vec4 *, uint8_t *)>
 int run_exact(const SurfaceData &d, const Vec4 &l, const uint8_t *, uint8_t *facing) {
-    return F(d.surface->positions.data(), d.surface->indices.data(),
-             d.surface->num_triangles(), &l, facing);
+    return F(d.surface->positions.data(), d.surface->indices.data(), d.surface->num_triangles(), &l,
+             facing);
 }
 
 /* Seed 001's view culling with the light as the viewer: its front-facing
@@ -69,8 +69,7 @@ int run_cull_blocks(const SurfaceData &d, const Vec4 &l, const uint8_t *, uint8_
 
 /* The threshold is part of the timed work: a renderer computes it per
  * light too. */
-int run_eps_bias(const SurfaceData &d, const Vec4 &l, const uint8_t *previous,
-                 uint8_t *facing) {
+int run_eps_bias(const SurfaceData &d, const Vec4 &l, const uint8_t *previous, uint8_t *facing) {
     const float t = sv_eps_bias_threshold(d.eps_distance, d.eps_angle, d.center, &l);
     sv_calculate_facing_eps_bias(d.surface->planes.data(), d.surface->num_triangles(), &l, t,
                                  previous, facing);
@@ -97,12 +96,11 @@ std::vector<Variant> build() {
     v.push_back({"c_ref_avx2", facing_isa("avx2"), Contract::same_as, A::float_planes, "c_ref",
                  "c_ref", "appendix A in AVX2 (sv_facing_variants: avx2)",
                  run_planes<sv_calculate_facing_avx2>});
-    v.push_back({"c_ref_avx512", facing_isa("avx512"), Contract::same_as, A::float_planes,
-                 "c_ref", "c_ref", "appendix A in AVX-512 (sv_facing_variants: avx512)",
+    v.push_back({"c_ref_avx512", facing_isa("avx512"), Contract::same_as, A::float_planes, "c_ref",
+                 "c_ref", "appendix A in AVX-512 (sv_facing_variants: avx512)",
                  run_planes<sv_calculate_facing_avx512>});
     v.push_back({"fma", SV_ISA_NONE, Contract::bounded, A::float_planes_fma, nullptr, "fma",
-                 "float planes, dot product as three fmaf",
-                 run_planes<sv_calculate_facing_fma>});
+                 "float planes, dot product as three fmaf", run_planes<sv_calculate_facing_fma>});
     v.push_back({"fma_avx2", kAvx2, Contract::same_as, A::float_planes_fma, "fma", "fma",
                  "fma, eight planes per step (AVX2 + FMA)",
                  run_planes<sv_calculate_facing_fma_avx2>});
@@ -121,12 +119,11 @@ std::vector<Variant> build() {
     v.push_back({"fixed16_avx2_prefetch", kAvx2, Contract::same_as, A::fixed16, "fixed16",
                  "fixed16", "fixed16_avx2 with prefetcht0 four blocks ahead",
                  run_fixed16<sv_calculate_facing_fixed16_avx2_prefetch>});
-    v.push_back({"cull_compact", SV_ISA_NONE, Contract::bounded, A::fixed16, nullptr,
-                 "cull_compact",
-                 "seed 001's view culling, 16-byte triangles: front = fixed16's s >= 0",
-                 run_cull_compact});
-    v.push_back({"cull_compact_sse2", SV_ISA_SSE2, Contract::same_as, A::fixed16,
-                 "cull_compact", "cull_compact", "seed 001's compact SIMD: 4 per step (SSE2)",
+    v.push_back(
+        {"cull_compact", SV_ISA_NONE, Contract::bounded, A::fixed16, nullptr, "cull_compact",
+         "seed 001's view culling, 16-byte triangles: front = fixed16's s >= 0", run_cull_compact});
+    v.push_back({"cull_compact_sse2", SV_ISA_SSE2, Contract::same_as, A::fixed16, "cull_compact",
+                 "cull_compact", "seed 001's compact SIMD: 4 per step (SSE2)",
                  run_cull_blocks<sv_backface_compact_sse2>});
     v.push_back({"cull_compact_sse2_prefetch", SV_ISA_SSE2, Contract::same_as, A::fixed16,
                  "cull_compact", "cull_compact", "cull_compact_sse2 with prefetcht0 1 KiB ahead",
@@ -137,9 +134,8 @@ std::vector<Variant> build() {
     v.push_back({"cull_compact_avx512", kAvx2 | SV_ISA_AVX512, Contract::same_as, A::fixed16,
                  "cull_compact", "cull_compact", "compact view culling, 16 per step (AVX-512)",
                  run_cull_blocks<sv_backface_compact_avx512>});
-    v.push_back({"eps_bias", SV_ISA_NONE, Contract::biased, A::float_planes, nullptr,
-                 "eps_bias", "c_ref's s > threshold (1e-5 radius + 1e-5 rad band)",
-                 run_eps_bias});
+    v.push_back({"eps_bias", SV_ISA_NONE, Contract::biased, A::float_planes, nullptr, "eps_bias",
+                 "c_ref's s > threshold (1e-5 radius + 1e-5 rad band)", run_eps_bias});
     v.push_back({"exact", SV_ISA_NONE, Contract::exact, A::float_planes, nullptr, "exact",
                  "exact orientation: double filter + expansion arithmetic",
                  run_exact<sv_calculate_facing_exact>});

@@ -97,8 +97,8 @@ private:
     void load_nodes();
     void load_skins();
     void load_animations();
-    void load_sampler(const std::string &label, const tinygltf::AnimationSampler &s,
-                      int components, AnimSampler &out);
+    void load_sampler(const std::string &label, const tinygltf::AnimationSampler &s, int components,
+                      AnimSampler &out);
     void check_lights();
     void check_cameras();
     void place_lights_and_cameras();
@@ -297,8 +297,8 @@ void AnimLoader::load_animations() {
         const tinygltf::Animation &g = model.animations[ai];
         Animation an;
         an.name = g.name.empty() ? "animation#" + std::to_string(ai) : g.name;
-        const std::string label =
-            "animation " + std::to_string(ai) + (g.name.empty() ? "" : " " + quoted(g.name));
+        const std::string label = "animation " + std::to_string(ai) +
+                                  (g.name.empty() ? "" : " " + quoted(g.name));
         const int num_samplers = static_cast<int>(g.samplers.size());
         std::vector<int> components(g.samplers.size(), 0); /* 0: no pose channel uses it */
         std::vector<std::string> first_user(g.samplers.size());
@@ -471,9 +471,9 @@ void AnimLoader::place_lights_and_cameras() {
             a.index = node.light;
             a.name = l.name.empty() ? "light#" + std::to_string(node.light) : l.name;
             SceneLight &s = a.light;
-            s.kind = l.type == "point" ? LightKind::point
-                   : l.type == "spot"  ? LightKind::spot
-                                       : LightKind::directional;
+            s.kind = l.type == "point"  ? LightKind::point
+                     : l.type == "spot" ? LightKind::spot
+                                        : LightKind::directional;
             s.position = Vec3d{0, 0, 0};
             s.direction = Vec3d{0, 0, -1};
             s.range = l.type == "directional" ? 0.0 : l.range;

@@ -42,8 +42,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 /* load_gltf's T * R * S (src/gltf/gltf_nodes.cpp, local_matrix). */
 Mat4d trs_matrix(const double t[3], const double q_in[4], const double s[3]) {
-    const double norm =
-        std::sqrt(q_in[0] * q_in[0] + q_in[1] * q_in[1] + q_in[2] * q_in[2] + q_in[3] * q_in[3]);
+    const double norm = std::sqrt(q_in[0] * q_in[0] + q_in[1] * q_in[1] + q_in[2] * q_in[2] +
+                                  q_in[3] * q_in[3]);
     const double x = q_in[0] / norm, y = q_in[1] / norm, z = q_in[2] / norm, w = q_in[3] / norm;
     const double r[3][3] = {
         {1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)},
@@ -134,8 +134,8 @@ void sample(const AnimSampler &s, double t, double *out) {
             break;
         case AnimSampler::Interp::cubicspline: {
             const float *v0 = value(k), *v1 = value(k + 1);
-            const float *b0 = &s.output[k * stride + 2 * n];   /* out-tangent of k */
-            const float *a1 = &s.output[(k + 1) * stride];     /* in-tangent of k+1 */
+            const float *b0 = &s.output[k * stride + 2 * n]; /* out-tangent of k */
+            const float *a1 = &s.output[(k + 1) * stride];   /* in-tangent of k+1 */
             const double u2 = u * u, u3 = u2 * u;
             const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u;
             const double h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
@@ -261,8 +261,8 @@ void pose_surface(const AnimatedAsset &asset, const AnimatedSurface &surface, co
     for (std::size_t v = 0; v < nv; v++) {
         const double x = rest[3 * v], y = rest[3 * v + 1], z = rest[3 * v + 2];
         for (int r = 0; r < 3; r++) {
-            out[3 * v + r] =
-                static_cast<float>(m.m[r] * x + m.m[4 + r] * y + m.m[8 + r] * z + m.m[12 + r]);
+            out[3 * v + r] = static_cast<float>(m.m[r] * x + m.m[4 + r] * y + m.m[8 + r] * z +
+                                                m.m[12 + r]);
         }
     }
 }

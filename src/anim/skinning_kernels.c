@@ -60,27 +60,27 @@ static inline __attribute__((always_inline)) void store3_sse(float *out, __m128 
  * influences (the counts the loader gives: the loop over influences is
  * then unrolled, which saves a third of the instructions) and for any
  * other count. The arithmetic is the same in all three. */
-#define SV_SKIN_LOOP(vertex_fn)                                                            \
-    do {                                                                                   \
-        if (influences == 4) {                                                             \
-            for (size_t v = 0; v < num_vertices; v++)                                      \
-                vertex_fn(joint_matrices, rest + 3 * v, joints + 4 * v, weights + 4 * v, 4, \
-                          out + 3 * v);                                                    \
-        } else if (influences == 8) {                                                      \
-            for (size_t v = 0; v < num_vertices; v++)                                      \
-                vertex_fn(joint_matrices, rest + 3 * v, joints + 8 * v, weights + 8 * v, 8, \
-                          out + 3 * v);                                                    \
-        } else {                                                                           \
-            const size_t n = (size_t)influences;                                           \
-            for (size_t v = 0; v < num_vertices; v++)                                      \
-                vertex_fn(joint_matrices, rest + 3 * v, joints + n * v, weights + n * v,   \
-                          influences, out + 3 * v);                                        \
-        }                                                                                  \
+#define SV_SKIN_LOOP(vertex_fn)                                                                    \
+    do {                                                                                           \
+        if (influences == 4) {                                                                     \
+            for (size_t v = 0; v < num_vertices; v++)                                              \
+                vertex_fn(joint_matrices, rest + 3 * v, joints + 4 * v, weights + 4 * v, 4,        \
+                          out + 3 * v);                                                            \
+        } else if (influences == 8) {                                                              \
+            for (size_t v = 0; v < num_vertices; v++)                                              \
+                vertex_fn(joint_matrices, rest + 3 * v, joints + 8 * v, weights + 8 * v, 8,        \
+                          out + 3 * v);                                                            \
+        } else {                                                                                   \
+            const size_t n = (size_t)influences;                                                   \
+            for (size_t v = 0; v < num_vertices; v++)                                              \
+                vertex_fn(joint_matrices, rest + 3 * v, joints + n * v, weights + n * v,           \
+                          influences, out + 3 * v);                                                \
+        }                                                                                          \
     } while (0)
 
-static inline __attribute__((always_inline)) void
-vertex_sse2(const float *joint_matrices, const float *p, const uint16_t *j, const float *w,
-            int n, float *out) {
+static inline __attribute__((always_inline)) void vertex_sse2(const float *joint_matrices,
+                                                              const float *p, const uint16_t *j,
+                                                              const float *w, int n, float *out) {
     const float *m = joint_matrices + 16 * (size_t)j[0];
     __m128 wk = _mm_set1_ps(w[0]);
     __m128 c0 = _mm_mul_ps(wk, _mm_loadu_ps(m));
@@ -104,8 +104,8 @@ vertex_sse2(const float *joint_matrices, const float *p, const uint16_t *j, cons
 void sv_skin_sse2(SV_SKIN_ARGS) { SV_SKIN_LOOP(vertex_sse2); }
 
 static inline __attribute__((always_inline, target("avx2"))) void
-vertex_avx2(const float *joint_matrices, const float *p, const uint16_t *j, const float *w,
-            int n, float *out) {
+vertex_avx2(const float *joint_matrices, const float *p, const uint16_t *j, const float *w, int n,
+            float *out) {
     const float *m = joint_matrices + 16 * (size_t)j[0];
     __m256 wk = _mm256_set1_ps(w[0]);
     __m256 c01 = _mm256_mul_ps(wk, _mm256_loadu_ps(m));     /* columns 0 | 1 */
@@ -129,8 +129,8 @@ vertex_avx2(const float *joint_matrices, const float *p, const uint16_t *j, cons
 __attribute__((target("avx2"))) void sv_skin_avx2(SV_SKIN_ARGS) { SV_SKIN_LOOP(vertex_avx2); }
 
 static inline __attribute__((always_inline, target("avx512f,avx512vl"))) void
-vertex_avx512(const float *joint_matrices, const float *p, const uint16_t *j, const float *w,
-              int n, float *out) {
+vertex_avx512(const float *joint_matrices, const float *p, const uint16_t *j, const float *w, int n,
+              float *out) {
     __m512 b = _mm512_mul_ps(_mm512_set1_ps(w[0]),
                              _mm512_loadu_ps(joint_matrices + 16 * (size_t)j[0]));
     for (int k = 1; k < n; k++) {

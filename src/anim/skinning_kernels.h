@@ -14,9 +14,9 @@
 extern "C" {
 #endif
 
-#define SV_SKIN_ARGS                                                                      \
-    const float *joint_matrices, const float *rest, const uint16_t *joints,               \
-        const float *weights, int influences, size_t num_vertices, float *out
+#define SV_SKIN_ARGS                                                                               \
+    const float *joint_matrices, const float *rest, const uint16_t *joints, const float *weights,  \
+        int influences, size_t num_vertices, float *out
 
 void sv_skin_c_ref(SV_SKIN_ARGS);
 void sv_skin_sse2(SV_SKIN_ARGS);

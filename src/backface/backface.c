@@ -30,7 +30,7 @@
 #include "shadowvol_backface.h"
 
 /* The seed's SELECT_VTX: bit v % 32 of word v / 32. */
-#define SELECT_VTX(bits, v) ((bits)[(v) >> 5] |= 1u << ((v) & 31))
+#define SELECT_VTX(bits, v) ((bits)[(v) >> 5] |= 1u << ((v)&31))
 
 /* A triangle's decision F: its front byte (when asked), and its three
  * vertices marked when it is front-facing. Returns F (0 or 1). */
@@ -88,8 +88,8 @@ int sv_backface_noncompact(const sv_cull_triangle *tris, int numTriangles, int n
 /* ---- 2. Compact: 16-byte triangles --------------------------------------- */
 
 __attribute__((noinline)) static int compact_body(const sv_cull_triangle16 *tris, int n,
-                                                  int numVertices, const Vec4 *view,
-                                                  uint32_t *bits, uint8_t *front) {
+                                                  int numVertices, const Vec4 *view, uint32_t *bits,
+                                                  uint8_t *front) {
     clear_bits(bits, numVertices);
     float v[4];
     scaled_view(view, v);
@@ -97,7 +97,8 @@ __attribute__((noinline)) static int compact_body(const sv_cull_triangle16 *tris
     for (int i = 0; i < n; i++) {
         const sv_cull_triangle16 *t = &tris[i];
         /* fixed16's s, left to right; int16 -> float is exact */
-        const float s = (float)t->nx * v[0] + (float)t->ny * v[1] + (float)t->nz * v[2] - t->tn * v[3];
+        const float s = (float)t->nx * v[0] + (float)t->ny * v[1] + (float)t->nz * v[2] -
+                        t->tn * v[3];
         ff += record(s >= 0.0f, front, i, bits, t->v1, t->v2, t->v3);
     }
     return ff;
@@ -157,8 +158,8 @@ static inline unsigned block_mask_sse2(const sv_cull_block4 *b, __m128 v0, __m12
     return (unsigned)_mm_movemask_ps(_mm_cmpge_ps(s, _mm_setzero_ps()));
 }
 
-static inline int sse2_blocks(const sv_cull_block4 *blocks, int firstBlock, int n,
-                              const float v[4], uint32_t *bits, uint8_t *front, int prefetch) {
+static inline int sse2_blocks(const sv_cull_block4 *blocks, int firstBlock, int n, const float v[4],
+                              uint32_t *bits, uint8_t *front, int prefetch) {
     const __m128 v0 = _mm_set1_ps(v[0]), v1 = _mm_set1_ps(v[1]), v2 = _mm_set1_ps(v[2]),
                  vw = _mm_set1_ps(v[3]);
     const int nb = (n + SV_CULL_BLOCK - 1) / SV_CULL_BLOCK;
@@ -173,16 +174,18 @@ static inline int sse2_blocks(const sv_cull_block4 *blocks, int firstBlock, int 
         }
         const unsigned m = block_mask_sse2(&blocks[b], v0, v1, v2, vw) &
                            lane_mask(SV_CULL_BLOCK * b, n, SV_CULL_BLOCK);
-        if (m || front) ff += emit_mask(blocks, SV_CULL_BLOCK * b, m,
-                                        n - SV_CULL_BLOCK * b < SV_CULL_BLOCK ? n - SV_CULL_BLOCK * b : SV_CULL_BLOCK,
-                                        bits, front);
+        if (m || front)
+            ff += emit_mask(blocks, SV_CULL_BLOCK * b, m,
+                            n - SV_CULL_BLOCK * b < SV_CULL_BLOCK ? n - SV_CULL_BLOCK * b
+                                                                  : SV_CULL_BLOCK,
+                            bits, front);
     }
     return ff;
 }
 
-__attribute__((noinline)) static int sse2_body(const sv_cull_block4 *blocks, int n,
-                                               int numVertices, const Vec4 *view,
-                                               uint32_t *bits, uint8_t *front, int prefetch) {
+__attribute__((noinline)) static int sse2_body(const sv_cull_block4 *blocks, int n, int numVertices,
+                                               const Vec4 *view, uint32_t *bits, uint8_t *front,
+                                               int prefetch) {
     clear_bits(bits, numVertices);
     float v[4];
     scaled_view(view, v);
@@ -241,8 +244,8 @@ SV_TARGET_AVX2 __attribute__((noinline)) static int avx2_body(const sv_cull_bloc
                                         _mm256_mul_ps(int16x8_to_ps(a->ny, b->ny), v1)),
                           _mm256_mul_ps(int16x8_to_ps(a->nz, b->nz), v2)),
             _mm256_mul_ps(tn, vw));
-        const unsigned m =
-            (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s, _mm256_setzero_ps(), _CMP_GE_OQ));
+        const unsigned m = (unsigned)_mm256_movemask_ps(
+            _mm256_cmp_ps(s, _mm256_setzero_ps(), _CMP_GE_OQ));
         if (m || front) ff += emit_mask(blocks, 8 * k, m, 8, bits, front);
     }
     /* An odd last block, and the last block's padding lanes: SSE2, the
@@ -276,8 +279,8 @@ SV_TARGET_AVX512 static inline __m512 int16x16_to_ps(const sv_cull_block4 *b, in
 
 SV_TARGET_AVX512 __attribute__((noinline)) static int avx512_body(const sv_cull_block4 *blocks,
                                                                   int n, int numVertices,
-                                                                  const Vec4 *view,
-                                                                  uint32_t *bits, uint8_t *front) {
+                                                                  const Vec4 *view, uint32_t *bits,
+                                                                  uint8_t *front) {
     clear_bits(bits, numVertices);
     float v[4];
     scaled_view(view, v);
@@ -291,20 +294,19 @@ SV_TARGET_AVX512 __attribute__((noinline)) static int avx512_body(const sv_cull_
         tn = _mm512_insertf32x4(tn, _mm_load_ps(b[1].tn), 1);
         tn = _mm512_insertf32x4(tn, _mm_load_ps(b[2].tn), 2);
         tn = _mm512_insertf32x4(tn, _mm_load_ps(b[3].tn), 3);
-        const __m512 s = _mm512_sub_ps(
-            _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(int16x16_to_ps(b, 0), v0),
-                                        _mm512_mul_ps(int16x16_to_ps(b, 1), v1)),
-                          _mm512_mul_ps(int16x16_to_ps(b, 2), v2)),
-            _mm512_mul_ps(tn, vw));
+        const __m512 s =
+            _mm512_sub_ps(_mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(int16x16_to_ps(b, 0), v0),
+                                                      _mm512_mul_ps(int16x16_to_ps(b, 1), v1)),
+                                        _mm512_mul_ps(int16x16_to_ps(b, 2), v2)),
+                          _mm512_mul_ps(tn, vw));
         const unsigned m = (unsigned)_mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_GE_OQ);
         if (m || front) ff += emit_mask(blocks, 16 * k, m, 16, bits, front);
     }
     return ff + sse2_blocks(blocks, 4 * steps, n, v, bits, front, 0);
 }
 
-int sv_backface_compact_avx512(const sv_cull_block4 *blocks, int numTriangles,
-                               int numVertices, const Vec4 *view, uint32_t *vertexBits,
-                               uint8_t *front) {
+int sv_backface_compact_avx512(const sv_cull_block4 *blocks, int numTriangles, int numVertices,
+                               const Vec4 *view, uint32_t *vertexBits, uint8_t *front) {
     if (numTriangles < 0) return 0;
     const unsigned saved = sv_mxcsr_enter();
     const int ff = avx512_body(blocks, numTriangles, numVertices, view, vertexBits, front);

@@ -14,7 +14,8 @@ namespace sv {
 namespace {
 
 /* C's three 16-bit vertex numbers: triangle T's (0 when not kept). */
-template <class Triangle> void set_vertices(Triangle &c, const PreparedSurface &s, int t, bool keep) {
+template <class Triangle>
+void set_vertices(Triangle &c, const PreparedSurface &s, int t, bool keep) {
     const int *v = &s.indices[3 * (std::size_t)t];
     c.v1 = keep ? (uint16_t)v[0] : 0;
     c.v2 = keep ? (uint16_t)v[1] : 0;

@@ -24,12 +24,12 @@ extern "C" {
 #define SV_ABI_FAIL_YMM_UPPER (1u << 10)
 #define SV_ABI_FAIL_ZMM_UPPER (1u << 11)
 #define SV_ABI_FAIL_STACK_CANARY (1u << 12)
-#define SV_ABI_FAIL_XMM(n) (1u << (16 + (n) - 6)) /* win64: xmm6..xmm15 */
+#define SV_ABI_FAIL_XMM(n) (1u << (16 + (n)-6)) /* win64: xmm6..xmm15 */
 
 /* sv_abi_flags bits, from sv_abi_detect(). */
-#define SV_ABI_HAS_AVX 1u     /* vzeroupper runs before the call */
-#define SV_ABI_HAS_XINUSE 2u  /* XGETBV ecx=1: the dirty-upper checks run */
-#define SV_ABI_HAS_SSE2 4u    /* the xmm garbage is loaded */
+#define SV_ABI_HAS_AVX 1u    /* vzeroupper runs before the call */
+#define SV_ABI_HAS_XINUSE 2u /* XGETBV ecx=1: the dirty-upper checks run */
+#define SV_ABI_HAS_SSE2 4u   /* the xmm garbage is loaded */
 
 #define SV_ABI_ARGS 8           /* argument words sv_abi_checked_call passes */
 #define SV_ABI_STACK_CANARIES 4 /* words above the stack arguments */
@@ -40,12 +40,12 @@ uintptr_t sv_abi_checked_call(const void *fn, const uintptr_t *args);
 /* Fills sv_abi_flags from CPUID / XGETBV and returns it. */
 uint32_t sv_abi_detect(void);
 
-extern uintptr_t sv_abi_canary[8];       /* callee-saved GPR values */
+extern uintptr_t sv_abi_canary[8]; /* callee-saved GPR values */
 extern uintptr_t sv_abi_stack_canary[SV_ABI_STACK_CANARIES];
-extern uint8_t sv_abi_xmm_garbage[256];  /* xmm0-15 (xmm0-7 on x86-32) */
+extern uint8_t sv_abi_xmm_garbage[256]; /* xmm0-15 (xmm0-7 on x86-32) */
 extern uint32_t sv_abi_failed;
 extern uint32_t sv_abi_flags;
-extern uint32_t sv_abi_xinuse_after;     /* XINUSE after the last call */
+extern uint32_t sv_abi_xinuse_after; /* XINUSE after the last call */
 
 /* "System V x86-64", "Windows x64" or "x86-32 cdecl". */
 const char *sv_abi_name(void);

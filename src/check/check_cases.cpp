@@ -59,8 +59,8 @@ const std::vector<size_t> kIntOffsets = allowed_offsets(1, 4);
 
 std::vector<uint8_t> facing_bytes(Rng &rng, int n, Facing mode) {
     std::vector<uint8_t> f((size_t)std::max(n, 0));
-    const double p = mode == Facing::none ? 0.0
-                     : mode == Facing::all ? 1.0
+    const double p = mode == Facing::none   ? 0.0
+                     : mode == Facing::all  ? 1.0
                      : mode == Facing::half ? 0.5
                                             : rng.unit();
     for (auto &b : f) b = rng.chance(p) ? 1 : 0;
@@ -169,8 +169,9 @@ void run_facing(std::vector<Row> &rows, Rng &rng, bool fused) {
                                          pbuf.as<const Plane>(), n, &l, out.data());
                 count_case(row);
                 if (got != want_count) {
-                    record_failure(row, at, "returned " + std::to_string(got) + ", c_ref's count " +
-                                                std::to_string(want_count));
+                    record_failure(row, at,
+                                   "returned " + std::to_string(got) + ", c_ref's count " +
+                                       std::to_string(want_count));
                 }
             } else {
                 abi_call(row.abi, &failed, k.calculate_facing, pbuf.as<const Plane>(), n, &l,
@@ -223,7 +224,8 @@ LightVolume light_volume(Rng &rng, int numVerts, Box box) {
     b.extents = {rng.uniform(0, 2), rng.uniform(0, 2), rng.uniform(0, 2), rng.uniform(-9, 9)};
     lv.positions.resize((size_t)std::max(numVerts, 0));
     for (Vec4 &v : lv.positions) {
-        v = {b.center.x + b.extents.x * rng.uniform(-1, 1), b.center.y + b.extents.y * rng.uniform(-1, 1),
+        v = {b.center.x + b.extents.x * rng.uniform(-1, 1),
+             b.center.y + b.extents.y * rng.uniform(-1, 1),
              b.center.z + b.extents.z * rng.uniform(-1, 1), rng.uniform(-9, 9)};
     }
     lv.planes.resize(SV_NUM_LIGHT_PLANES);
@@ -267,14 +269,14 @@ void run_calculate_cull_bits(std::vector<Row> &rows, Rng &rng) {
             GuardedBuffer out(nb, co, pat);
             const Bounds bb = b;
             uint32_t failed = 0;
-            const int got = abi_call(row.abi, &failed, k.calculate_cull_bits,
-                                     pbuf.as<const Vec4>(), n, &bb, lbuf.as<const Plane>(),
-                                     out.data());
+            const int got = abi_call(row.abi, &failed, k.calculate_cull_bits, pbuf.as<const Vec4>(),
+                                     n, &bb, lbuf.as<const Plane>(), out.data());
             count_case(row);
             record_abi(row, failed, at);
             if (got != want_ret) {
-                record_failure(row, at, "returned " + std::to_string(got) + ", c_ref " +
-                                            std::to_string(want_ret));
+                record_failure(row, at,
+                               "returned " + std::to_string(got) + ", c_ref " +
+                                   std::to_string(want_ret));
             }
             // Returning 1 leaves cullBits unwritten: the pattern stays.
             const std::string d = first_difference(out.data(), want.data(), nb, "cullBits");
@@ -306,8 +308,9 @@ void run_count_facing(std::vector<Row> &rows, Rng &rng) {
             count_case(row);
             record_abi(row, failed, at);
             if (got != want) {
-                record_failure(row, at, "returned " + std::to_string(got) + ", c_ref " +
-                                            std::to_string(want));
+                record_failure(row, at,
+                               "returned " + std::to_string(got) + ", c_ref " +
+                                   std::to_string(want));
             }
             if (!unchanged(fbuf, facing)) record_failure(row, at, "modified its const facing");
             check_guards(row, at, {"around facing"}, {&fbuf});
@@ -357,8 +360,10 @@ void run_count_facing_cull(std::vector<Row> &rows, Rng &rng) {
         const std::vector<uint8_t> cull8 = cull_bytes(rng, numVerts, indices);
         const std::vector<uint8_t> cull7 = without_bit7(cull8);
         std::vector<uint8_t> want_f8 = facing, want_f7 = facing;
-        const int want8 = sv_count_facing_cull_c_ref(want_f8.data(), n, indices.data(), cull8.data());
-        const int want7 = sv_count_facing_cull_c_ref(want_f7.data(), n, indices.data(), cull7.data());
+        const int want8 = sv_count_facing_cull_c_ref(want_f8.data(), n, indices.data(),
+                                                     cull8.data());
+        const int want7 = sv_count_facing_cull_c_ref(want_f7.data(), n, indices.data(),
+                                                     cull7.data());
         const uint8_t pat = guard_pattern(rng);
         const size_t fo = pick(kByteOffsets, caseno), io = pick(kIntOffsets, caseno);
         for (Row &row : rows) {
@@ -372,15 +377,17 @@ void run_count_facing_cull(std::vector<Row> &rows, Rng &rng) {
             GuardedBuffer ibuf = guarded_copy(indices, io, pat);
             GuardedBuffer cbuf = guarded_copy(cull, fo, pat);
             uint32_t failed = 0;
-            const int got = abi_call(row.abi, &failed, k.kernels.count_facing_cull, fbuf.data(),
-                                     n, ibuf.as<const int>(), (const uint8_t *)cbuf.data());
+            const int got = abi_call(row.abi, &failed, k.kernels.count_facing_cull, fbuf.data(), n,
+                                     ibuf.as<const int>(), (const uint8_t *)cbuf.data());
             count_case(row);
             record_abi(row, failed, at);
             if (got != want) {
-                record_failure(row, at, "returned " + std::to_string(got) + ", c_ref " +
-                                            std::to_string(want));
+                record_failure(row, at,
+                               "returned " + std::to_string(got) + ", c_ref " +
+                                   std::to_string(want));
             }
-            const std::string d = first_difference(fbuf.data(), want_f.data(), want_f.size(), "facing");
+            const std::string d = first_difference(fbuf.data(), want_f.data(), want_f.size(),
+                                                   "facing");
             if (!d.empty()) record_failure(row, at, d);
             if (!unchanged(ibuf, indices) || !unchanged(cbuf, cull)) {
                 record_failure(row, at, "modified its const indices or cull bits");
@@ -418,11 +425,13 @@ std::vector<SilEdge> sil_edges(Rng &rng, int n, int numTriangles) {
 void compare_indices(Row &row, const std::string &at, int got, int want, const GuardedBuffer &out,
                      const std::vector<int> &want_out) {
     if (got != want) {
-        record_failure(row, at, "returned " + std::to_string(got) + ", c_ref " + std::to_string(want));
+        record_failure(row, at,
+                       "returned " + std::to_string(got) + ", c_ref " + std::to_string(want));
         return;
     }
-    const std::string d = first_difference(reinterpret_cast<const int *>(out.data()), want_out.data(),
-                                           (size_t)std::max(want, 0), "shadowIndices");
+    const std::string d = first_difference(reinterpret_cast<const int *>(out.data()),
+                                           want_out.data(), (size_t)std::max(want, 0),
+                                           "shadowIndices");
     if (!d.empty()) record_failure(row, at, d);
 }
 
@@ -436,7 +445,8 @@ void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng) {
         const std::vector<SilEdge> edges = sil_edges(rng, n, numTriangles);
         const size_t out_ints = (size_t)6 * (size_t)std::max(n, 0);
         std::vector<int> want_out(out_ints + 6);
-        const int want = sv_create_sil_triangles_c_ref(want_out.data(), facing.data(), edges.data(), n);
+        const int want = sv_create_sil_triangles_c_ref(want_out.data(), facing.data(), edges.data(),
+                                                       n);
         const uint8_t pat = guard_pattern(rng);
         const size_t fo = pick(kByteOffsets, caseno), eo = pick(kIntOffsets, caseno);
         for (Row &row : rows) {
@@ -448,15 +458,17 @@ void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng) {
             GuardedBuffer fbuf = guarded_copy(facing, fo, pat);
             GuardedBuffer ebuf = guarded_copy(edges, eo, pat);
             uint32_t failed = 0;
-            const int got = abi_call(row.abi, &failed, k.kernels.create_sil_triangles, out.as<int>(),
-                                     (const uint8_t *)fbuf.data(), ebuf.as<const SilEdge>(), n);
+            const int got = abi_call(row.abi, &failed, k.kernels.create_sil_triangles,
+                                     out.as<int>(), (const uint8_t *)fbuf.data(),
+                                     ebuf.as<const SilEdge>(), n);
             count_case(row);
             record_abi(row, failed, at);
             compare_indices(row, at, got, want, out, want_out);
             if (!unchanged(fbuf, facing) || !unchanged(ebuf, edges)) {
                 record_failure(row, at, "modified its const facing or edges");
             }
-            check_guards(row, at, {"outside 6 * numSilEdges ints", "around facing", "around the edges"},
+            check_guards(row, at,
+                         {"outside 6 * numSilEdges ints", "around facing", "around the edges"},
                          {&out, &fbuf, &ebuf});
         }
     });
@@ -481,7 +493,8 @@ void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng) {
         for (int &i : indices) i = vertex_index(rng, numVerts);
         const size_t out_ints = (size_t)6 * n;
         std::vector<int> want_out(out_ints + 6);
-        const int want = sv_create_cap_triangles_c_ref(want_out.data(), facing.data(), indices.data(), 3 * n);
+        const int want = sv_create_cap_triangles_c_ref(want_out.data(), facing.data(),
+                                                       indices.data(), 3 * n);
         const uint8_t pat = guard_pattern(rng);
         const size_t fo = pick(kByteOffsets, caseno);
         for (Row &row : rows) {
@@ -494,15 +507,17 @@ void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng) {
             GuardedBuffer fbuf = guarded_copy(facing, fo, pat);
             GuardedBuffer ibuf = guarded_copy(indices, io, pat);
             uint32_t failed = 0;
-            const int got = abi_call(row.abi, &failed, k.kernels.create_cap_triangles, out.as<int>(),
-                                     (const uint8_t *)fbuf.data(), ibuf.as<const int>(), 3 * n);
+            const int got = abi_call(row.abi, &failed, k.kernels.create_cap_triangles,
+                                     out.as<int>(), (const uint8_t *)fbuf.data(),
+                                     ibuf.as<const int>(), 3 * n);
             count_case(row);
             record_abi(row, failed, at);
             compare_indices(row, at, got, want, out, want_out);
             if (!unchanged(fbuf, facing) || !unchanged(ibuf, indices)) {
                 record_failure(row, at, "modified its const facing or indices");
             }
-            check_guards(row, at, {"outside 6 * numTriangles ints", "around facing", "around the indices"},
+            check_guards(row, at,
+                         {"outside 6 * numTriangles ints", "around facing", "around the indices"},
                          {&out, &fbuf, &ibuf});
         }
     });
@@ -523,8 +538,15 @@ struct Mesh {
 
 // The paper's C by name, not the table's c_ref: the oracle stays whatever
 // a table holds.
-const sv_variant kRef = {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref, sv_count_facing_cull_c_ref,
-                         sv_create_sil_triangles_c_ref, sv_create_cap_triangles_c_ref, 1, 1, 1};
+const sv_variant kRef = {"c_ref",
+                         SV_ISA_NONE,
+                         sv_count_facing_c_ref,
+                         sv_count_facing_cull_c_ref,
+                         sv_create_sil_triangles_c_ref,
+                         sv_create_cap_triangles_c_ref,
+                         1,
+                         1,
+                         1};
 
 Mesh random_mesh(Rng &rng, int numTriangles) {
     Mesh m;
@@ -558,8 +580,9 @@ void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull) {
         std::vector<uint8_t> want_f[2] = {facing, facing};
         int want[2];
         for (int b7 = 0; b7 < 2; b7++) {
-            want[b7] = sv_create_shadow_volume(&kRef, want_out[b7].data(), indices.data(), numIndices,
-                                               edges.data(), numEdges, want_f[b7].data(),
+            want[b7] = sv_create_shadow_volume(&kRef, want_out[b7].data(), indices.data(),
+                                               numIndices, edges.data(), numEdges,
+                                               want_f[b7].data(),
                                                cull ? (b7 ? cull8 : cull7).data() : nullptr);
         }
         const uint8_t pat = guard_pattern(rng);
@@ -583,11 +606,13 @@ void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull) {
             const int got = abi_call(row.abi, &failed, sv_create_shadow_volume, kv, out.as<int>(),
                                      ibuf.as<const int>(), numIndices, ebuf.as<const SilEdge>(),
                                      numEdges, fbuf.data(),
-                                     cull ? (const uint8_t *)cbuf.data() : (const uint8_t *)nullptr);
+                                     cull ? (const uint8_t *)cbuf.data()
+                                          : (const uint8_t *)nullptr);
             count_case(row);
             record_abi(row, failed, at);
             compare_indices(row, at, got, want[b7], out, want_out[b7]);
-            const std::string d = first_difference(fbuf.data(), want_f[b7].data(), facing.size(), "facing");
+            const std::string d = first_difference(fbuf.data(), want_f[b7].data(), facing.size(),
+                                                   "facing");
             if (!d.empty()) record_failure(row, at, d);
             if (!unchanged(ibuf, indices) || !unchanged(ebuf, edges) || !unchanged(cbuf, cb)) {
                 record_failure(row, at, "modified its const input");
@@ -625,8 +650,9 @@ void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng) {
         const size_t cap = sv_shadow_volume_capacity(numIndices, numEdges);
         std::vector<uint8_t> want_f((size_t)numTriangles + 1), cull((size_t)numVerts);
         sv_calculate_facing_c_ref(planes.data(), numTriangles, &light, want_f.data());
-        const bool culled = light_planes && !sv_calculate_cull_bits_c_ref(lv.positions.data(), numVerts,
-                                                                          &lv.bounds, light_planes, cull.data());
+        const bool culled = light_planes &&
+                            !sv_calculate_cull_bits_c_ref(lv.positions.data(), numVerts, &lv.bounds,
+                                                          light_planes, cull.data());
         std::vector<int> want_out(cap + 6);
         const int want = sv_create_shadow_volume(&kRef, want_out.data(), indices.data(), numIndices,
                                                  edges.data(), numEdges, want_f.data(),
@@ -637,11 +663,12 @@ void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng) {
         const size_t oo = pick(kIntOffsets, caseno), io = pick(kIntOffsets, caseno / 4);
         const size_t fo = pick(kByteOffsets, caseno);
         static const char *const kModeNames[] = {"no light planes", "box inside all planes",
-                                                 "every plane through the box", "box behind every plane",
-                                                 "planes mixed"};
-        const std::string at = "triangles=" + std::to_string(numTriangles) + ", " + kModeNames[mode + 1] +
-                               ", output offset " + std::to_string(oo) + ", indices offset " +
-                               std::to_string(io) + ", facing offset " + std::to_string(fo);
+                                                 "every plane through the box",
+                                                 "box behind every plane", "planes mixed"};
+        const std::string at = "triangles=" + std::to_string(numTriangles) + ", " +
+                               kModeNames[mode + 1] + ", output offset " + std::to_string(oo) +
+                               ", indices offset " + std::to_string(io) + ", facing offset " +
+                               std::to_string(fo);
         for (Row &row : rows) {
             const Kernels &k = row.variant->for_triangles(numTriangles);
             GuardedBuffer out(cap * sizeof(int), oo, pat);
@@ -670,7 +697,8 @@ void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng) {
             count_case(row);
             record_abi(row, failed, at);
             compare_indices(row, at, got, want, out, want_out);
-            const std::string d = first_difference(fbuf.data(), want_f.data(), want_f.size(), "facing");
+            const std::string d = first_difference(fbuf.data(), want_f.data(), want_f.size(),
+                                                   "facing");
             if (!d.empty()) record_failure(row, at, d);
             if (!unchanged(pbuf, planes) || !unchanged(ibuf, indices) || !unchanged(ebuf, edges) ||
                 !unchanged(vbuf, lv.positions) || !unchanged(lbuf, lv.planes)) {

@@ -46,7 +46,8 @@ std::string GuardedBuffer::guard_damage() const {
         if (data_[-(ptrdiff_t)i] != pattern_) return std::to_string(i) + " bytes before the start";
     }
     for (size_t i = 0; i < kGuard; i++) {
-        if (data_[bytes_ + i] != pattern_) return "at byte " + std::to_string(i) + " past the bound";
+        if (data_[bytes_ + i] != pattern_)
+            return "at byte " + std::to_string(i) + " past the bound";
     }
     return "";
 }

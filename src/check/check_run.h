@@ -53,8 +53,8 @@ template <class T>
 std::string first_difference(const T *got, const T *want, size_t n, const char *what) {
     for (size_t i = 0; i < n; i++) {
         if (std::memcmp(&got[i], &want[i], sizeof(T)) != 0) {
-            return std::string(what) + "[" + std::to_string(i) + "] = " +
-                   std::to_string((long long)got[i]) + ", c_ref " +
+            return std::string(what) + "[" + std::to_string(i) +
+                   "] = " + std::to_string((long long)got[i]) + ", c_ref " +
                    std::to_string((long long)want[i]);
         }
     }

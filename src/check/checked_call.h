@@ -30,8 +30,7 @@ template <class R, class... P> struct fn_traits<R (*)(P...)> {
 };
 
 template <class Fn>
-constexpr bool is_fn_ptr_v =
-    std::is_pointer_v<Fn> && std::is_function_v<std::remove_pointer_t<Fn>>;
+constexpr bool is_fn_ptr_v = std::is_pointer_v<Fn> &&std::is_function_v<std::remove_pointer_t<Fn>>;
 
 // The register word for one argument of type T.
 template <class T> uintptr_t arg_word(T v, uint64_t garbage) {
@@ -71,14 +70,13 @@ inline void detect_once() {
 template <class Fn, class Gen, class... A, size_t... I>
 void fill_words(uintptr_t *w, Gen &gen, std::index_sequence<I...>, A... args) {
     using P = typename fn_traits<Fn>::params;
-    ((w[I] = arg_word<std::tuple_element_t<I, P>>(
-          static_cast<std::tuple_element_t<I, P>>(args), gen.next())),
+    ((w[I] = arg_word<std::tuple_element_t<I, P>>(static_cast<std::tuple_element_t<I, P>>(args),
+                                                  gen.next())),
      ...);
 }
 
 // Calls fn(args...) checked; *failed receives sv_abi_failed (0: all kept).
-template <class Fn, class Gen, class... A,
-          class = std::enable_if_t<is_fn_ptr_v<Fn>>>
+template <class Fn, class Gen, class... A, class = std::enable_if_t<is_fn_ptr_v<Fn>>>
 typename fn_traits<Fn>::ret checked_call(Gen &gen, uint32_t *failed, Fn fn, A... args) {
     using R = typename fn_traits<Fn>::ret;
     static_assert(sizeof...(A) == fn_traits<Fn>::arity, "wrong number of arguments");

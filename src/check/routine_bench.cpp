@@ -60,7 +60,8 @@ struct BenchWorkload::Data {
             p = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
         }
         positions.resize((size_t)numVerts);
-        for (Vec4 &v : positions) v = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), 1};
+        for (Vec4 &v : positions)
+            v = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), 1};
         bounds.center = {0, 0, 0, 1};
         bounds.extents = {1, 1, 1, 0};
         // Three planes through the box, three clear of it: half the box
@@ -129,12 +130,15 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
     Data &d = *d_;
     const int n = kTriangles;
     const int ne = (int)d.edges.size();
-    const auto restore_facing = [&] { std::memcpy(d.scratch_facing.data(), d.facing.data(), d.facing.size()); };
+    const auto restore_facing = [&] {
+        std::memcpy(d.scratch_facing.data(), d.facing.data(), d.facing.size());
+    };
     // The result goes to a volatile sink, so no call is optimised away.
     volatile int sink = 0;
     switch (routine) {
     case Routine::calculate_facing:
-        return d.time_calls([&] { k.calculate_facing(d.planes.data(), n, &d.light, d.scratch_facing.data()); });
+        return d.time_calls(
+            [&] { k.calculate_facing(d.planes.data(), n, &d.light, d.scratch_facing.data()); });
     case Routine::calculate_cull_bits:
         return d.time_calls([&] {
             sink = k.calculate_cull_bits(d.positions.data(), d.numVerts, &d.bounds, d.lightPlanes,
@@ -153,7 +157,8 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
         });
     case Routine::create_sil_triangles:
         return d.time_calls([&] {
-            sink = k.kernels.create_sil_triangles(d.out.as<int>(), d.facing_buf.data(), d.edges.data(), ne);
+            sink = k.kernels.create_sil_triangles(d.out.as<int>(), d.facing_buf.data(),
+                                                  d.edges.data(), ne);
         });
     case Routine::create_cap_triangles:
         return d.time_calls([&] {
@@ -164,8 +169,9 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
     case Routine::shadow_volume_cull: {
         const uint8_t *cull = routine == Routine::shadow_volume_cull ? d.cull.data() : nullptr;
         return d.time_with_reset(restore_facing, [&] {
-            sink = sv_create_shadow_volume(&k.kernels, d.out.as<int>(), d.indices_buf.as<int>(), 3 * n,
-                                           d.edges.data(), ne, d.scratch_facing.data(), cull);
+            sink = sv_create_shadow_volume(&k.kernels, d.out.as<int>(), d.indices_buf.as<int>(),
+                                           3 * n, d.edges.data(), ne, d.scratch_facing.data(),
+                                           cull);
         });
     }
     case Routine::shadow_volume_for_light: {
@@ -174,8 +180,14 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
         // kernels: A, B and its decision, the volume.
         const size_t cap = d.out.size() / sizeof(int);
         if (k.plan) {
-            const sv_surface surface = {d.planes.data(), d.indices_buf.as<int>(), 3 * n, d.edges.data(), ne,
-                                        d.positions.data(), d.numVerts, d.bounds};
+            const sv_surface surface = {d.planes.data(),
+                                        d.indices_buf.as<int>(),
+                                        3 * n,
+                                        d.edges.data(),
+                                        ne,
+                                        d.positions.data(),
+                                        d.numVerts,
+                                        d.bounds};
             return d.time_calls([&] {
                 sink = sv_shadow_volume_for_light(k.plan, &surface, &d.light, d.lightPlanes,
                                                   d.out.as<int>(), cap, d.scratch_facing.data(),
@@ -186,8 +198,8 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
             k.calculate_facing(d.planes.data(), n, &d.light, d.scratch_facing.data());
             const int inside = k.calculate_cull_bits(d.positions.data(), d.numVerts, &d.bounds,
                                                      d.lightPlanes, d.cull_out.data());
-            sink = sv_create_shadow_volume(&k.kernels, d.out.as<int>(), d.indices_buf.as<int>(), 3 * n,
-                                           d.edges.data(), ne, d.scratch_facing.data(),
+            sink = sv_create_shadow_volume(&k.kernels, d.out.as<int>(), d.indices_buf.as<int>(),
+                                           3 * n, d.edges.data(), ne, d.scratch_facing.data(),
                                            inside ? nullptr : d.cull_out.data());
         });
     }

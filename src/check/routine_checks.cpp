@@ -14,10 +14,9 @@ namespace svcheck {
 namespace {
 
 const char *const kRoutineNames[kNumRoutines] = {
-    "calculate_facing",     "calculate_cull_bits",  "calculate_facing_count",
-    "count_facing",         "count_facing_cull",    "create_sil_triangles",
-    "create_cap_triangles", "shadow_volume",        "shadow_volume_cull",
-    "shadow_volume_for_light",
+    "calculate_facing",   "calculate_cull_bits",     "calculate_facing_count", "count_facing",
+    "count_facing_cull",  "create_sil_triangles",    "create_cap_triangles",   "shadow_volume",
+    "shadow_volume_cull", "shadow_volume_for_light",
 };
 
 // The library's own contract check decides whether bit 7 is in
@@ -104,7 +103,8 @@ std::vector<Variant> library_variants() {
         out.push_back(make_variant(kv[i].name, sv_facing_variant_by_name(kv[i].name), &kv[i]));
     }
     for (int i = 0; i < nf; i++) {
-        if (!sv_variant_by_name(fv[i].name)) out.push_back(make_variant(fv[i].name, &fv[i], nullptr));
+        if (!sv_variant_by_name(fv[i].name))
+            out.push_back(make_variant(fv[i].name, &fv[i], nullptr));
     }
     // The plans this process would use now (SV_PLAN_ESTIMATE: the wisdom
     // file's or the built-in ones; nothing is measured here).
@@ -157,8 +157,8 @@ void record_abi(Row &row, uint32_t failed, const std::string &where) {
 #if defined(SV_HAVE_ABI_CHECKER)
     if (failed) {
         char buf[512];
-        record_failure(row, where, std::string("ABI broken: ") +
-                                       sv_abi_failure_names(failed, buf, sizeof buf));
+        record_failure(row, where,
+                       std::string("ABI broken: ") + sv_abi_failure_names(failed, buf, sizeof buf));
     }
 #else
     (void)row;

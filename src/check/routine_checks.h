@@ -87,8 +87,8 @@ struct Result {
     Routine routine;
     std::string variant;
     Status status = ok;
-    int cases = 0;    // calls compared
-    int failures = 0; // of them, how many differed or broke a rule
+    int cases = 0;      // calls compared
+    int failures = 0;   // of them, how many differed or broke a rule
     std::string detail; // skipped: the reason; failed: the first failing case
 };
 

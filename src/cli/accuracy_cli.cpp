@@ -205,9 +205,11 @@ int accuracy_main(int argc, char **argv) {
                     usage_error("unknown variant '" + quoted(v) + "' (variants: " + names + ")");
                 }
                 if (!sv::acc::runnable(*var)) {
-                    usage_error("variant '" + quoted(v) + "' needs an instruction set this CPU lacks");
+                    usage_error("variant '" + quoted(v) +
+                                "' needs an instruction set this CPU lacks");
                 }
-                if (std::find(opt.variants.begin(), opt.variants.end(), var) == opt.variants.end()) {
+                if (std::find(opt.variants.begin(), opt.variants.end(), var) ==
+                    opt.variants.end()) {
                     opt.variants.push_back(var);
                 }
             } else if (a.is("--placement")) {
@@ -218,7 +220,8 @@ int accuracy_main(int argc, char **argv) {
                     for (const sv::acc::Placement &x : sv::acc::placements()) {
                         names += (names.empty() ? "" : ", ") + std::string(x.name);
                     }
-                    usage_error("unknown placement '" + quoted(p) + "' (placements: " + names + ")");
+                    usage_error("unknown placement '" + quoted(p) + "' (placements: " + names +
+                                ")");
                 }
                 if (std::find(opt.placements.begin(), opt.placements.end(), pl) ==
                     opt.placements.end()) {
@@ -227,7 +230,8 @@ int accuracy_main(int argc, char **argv) {
             } else if (a.arg().rfind('-', 0) == 0) {
                 usage_error("unknown option '" + quoted(a.arg()) + "'");
             } else {
-                usage_error("unexpected argument '" + quoted(a.arg()) + "' (models go after --model)");
+                usage_error("unexpected argument '" + quoted(a.arg()) +
+                            "' (models go after --model)");
             }
         }
     } catch (const UsageError &e) {
@@ -279,11 +283,13 @@ int accuracy_main(int argc, char **argv) {
                       "against accuracy\n");
     std::fprintf(out, "CPU: %s\n", svbench::cpu_model().c_str());
     if (timing) {
-        std::fprintf(out, "timer: %s, TSC %.3f GHz, %s; ticks/tri: median over timed regions "
-                          "(moving light), per triangle\n",
+        std::fprintf(out,
+                     "timer: %s, TSC %.3f GHz, %s; ticks/tri: median over timed regions "
+                     "(moving light), per triangle\n",
                      res.timer.c_str(), res.tsc_hz / 1e9,
-                     res.pinned_cpu >= 0 ? ("pinned to CPU " + std::to_string(res.pinned_cpu)).c_str()
-                                         : "not pinned");
+                     res.pinned_cpu >= 0
+                         ? ("pinned to CPU " + std::to_string(res.pinned_cpu)).c_str()
+                         : "not pinned");
     }
     if (model_args.empty()) std::fprintf(out, "models: %s\n", defaults.note.c_str());
     std::fprintf(out,
@@ -346,8 +352,8 @@ int accuracy_main(int argc, char **argv) {
                          sv::acc::variant_by_name(v->same_as)->contract == Contract::exact);
         std::fprintf(out, "%-22s %9s %13s %11s %10s %10s %10s  %s\n", v->name,
                      ticks_text(t).c_str(), fraction(t.mis, t.tests).c_str(),
-                     fraction(t.sil_changed, t.sil).c_str(),
-                     fraction(t.uncertain, t.tests).c_str(), fraction(t.flicker, t.tests).c_str(),
+                     fraction(t.sil_changed, t.sil).c_str(), fraction(t.uncertain, t.tests).c_str(),
+                     fraction(t.flicker, t.tests).c_str(),
                      ex ? fraction(t.exact_stage, t.tests).c_str() : "-",
                      contract_text(*v).c_str());
     }
@@ -356,12 +362,14 @@ int accuracy_main(int argc, char **argv) {
         std::fprintf(out, "\nPASSED: every facing byte within its variant's contract (%.1f s).\n",
                      seconds);
     } else {
-        std::fprintf(out, "\nFAILED: %lld facing bytes broke their variant's contract; the first:\n",
+        std::fprintf(out,
+                     "\nFAILED: %lld facing bytes broke their variant's contract; the first:\n",
                      (long long)res.failure_count);
         for (const std::string &f : res.failures) std::fprintf(out, "  %s\n", f.c_str());
         if (out != stderr) {
-            std::fprintf(stderr, "shadowvol accuracy: %lld facing bytes broke their variant's "
-                                 "contract (first: %s)\n",
+            std::fprintf(stderr,
+                         "shadowvol accuracy: %lld facing bytes broke their variant's "
+                         "contract (first: %s)\n",
                          (long long)res.failure_count, res.failures[0].c_str());
         }
     }
@@ -393,8 +401,8 @@ int accuracy_main(int argc, char **argv) {
     /* ---- JSON ---- */
     if (!json_path.empty()) {
         std::string j = "{\"schema\": \"shadowvol-accuracy/1\",\n";
-        j += " \"cpu\": " + json_string(svbench::cpu_model()) + ", \"timer\": " +
-             (timing ? json_string(res.timer) : std::string("null")) +
+        j += " \"cpu\": " + json_string(svbench::cpu_model()) +
+             ", \"timer\": " + (timing ? json_string(res.timer) : std::string("null")) +
              ", \"tsc_hz\": " + (timing ? json_number(res.tsc_hz) : "null") +
              ", \"quick\": " + (quick ? "true" : "false") +
              ", \"lights_per_placement\": " + std::to_string(opt.lights) +
@@ -431,14 +439,16 @@ int accuracy_main(int argc, char **argv) {
                              sv::acc::variant_by_name(r.variant->same_as)->contract ==
                                  Contract::exact);
             const bool dir = r.placement->directional;
-            const double dist = dir ? NAN : r.placement->radii > 0 ? r.placement->radii
-                                                                   : r.mean_distance_radii;
-            j += std::string(i ? ",\n  " : "\n  ") + "{\"variant\": " + json_string(r.variant->name) +
+            const double dist = dir                      ? NAN
+                                : r.placement->radii > 0 ? r.placement->radii
+                                                         : r.mean_distance_radii;
+            j += std::string(i ? ",\n  " : "\n  ") +
+                 "{\"variant\": " + json_string(r.variant->name) +
                  ", \"model\": " + json_string(r.model->name) +
                  ", \"light\": {\"kind\": " + (dir ? "\"directional\"" : "\"point\"") +
                  ", \"placement\": " + json_string(r.placement->name) +
-                 ", \"distance_radii\": " + json_number(dist) +
-                 ", \"height_radii\": " + (r.height_radii > 0 ? json_number(r.height_radii) : "null") +
+                 ", \"distance_radii\": " + json_number(dist) + ", \"height_radii\": " +
+                 (r.height_radii > 0 ? json_number(r.height_radii) : "null") +
                  ", \"count\": " + std::to_string(r.lights) + "}" +
                  ", \"triangles\": " + std::to_string(r.triangles) +
                  ", \"tests\": " + std::to_string(r.tests) +

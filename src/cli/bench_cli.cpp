@@ -159,8 +159,8 @@ std::string wrap(const std::string &list, size_t width, const char *newline) {
     size_t pos = 0;
     while (pos < list.size()) {
         const size_t comma = list.find(", ", pos);
-        const std::string item =
-            list.substr(pos, comma == std::string::npos ? std::string::npos : comma + 1 - pos);
+        const std::string item = list.substr(pos, comma == std::string::npos ? std::string::npos
+                                                                             : comma + 1 - pos);
         pos = comma == std::string::npos ? list.size() : comma + 2;
         if (!line.empty() && line.size() + 1 + item.size() > width) {
             out += line + newline;
@@ -182,18 +182,18 @@ struct CliOptions {
     bool hasLight = false;
     Vec4 light{};
     LightTargets targets;
-    std::string json;               /* --json FILE; "" none, "-" stdout */
-    bool scaling = false;           /* --scaling: scaling.h instead of the cycle table */
-    bool limits = false;            /* --limits: machine_limits.h after each table */
-    bool silhouette = false;        /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
-    bool backface = false;          /* --backface: seed 001's culling (backface_bench.cpp) */
-    bool planes = false;            /* --planes: per-frame planes (planes_bench.cpp) */
-    bool scene = false;             /* --scene: the demo scene per frame (scene_bench.cpp) */
-    std::string plot;               /* --plot FILE (with --scaling) */
-    long maxTriangles = 0;          /* --max-triangles N (with --scaling) */
-    bool regimeGiven = false;       /* options the scaling run has no use for */
+    std::string json;         /* --json FILE; "" none, "-" stdout */
+    bool scaling = false;     /* --scaling: scaling.h instead of the cycle table */
+    bool limits = false;      /* --limits: machine_limits.h after each table */
+    bool silhouette = false;  /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
+    bool backface = false;    /* --backface: seed 001's culling (backface_bench.cpp) */
+    bool planes = false;      /* --planes: per-frame planes (planes_bench.cpp) */
+    bool scene = false;       /* --scene: the demo scene per frame (scene_bench.cpp) */
+    std::string plot;         /* --plot FILE (with --scaling) */
+    long maxTriangles = 0;    /* --max-triangles N (with --scaling) */
+    bool regimeGiven = false; /* options the scaling run has no use for */
     bool lightGiven = false;
-    std::string isa;                /* --isa; "" none */
+    std::string isa;                            /* --isa; "" none */
     std::vector<const BenchVariant *> variants; /* --variant, as given */
     bool help = false;
 };
@@ -322,8 +322,8 @@ CliOptions parse(int argc, char **argv) {
         } else if (opt == "--max-triangles") {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
-                                 opt == "--silhouette" || opt == "--backface" ||
-                                 opt == "--planes" || opt == "--scene")) {
+                                opt == "--silhouette" || opt == "--backface" || opt == "--planes" ||
+                                opt == "--scene")) {
             bad(opt + " takes no value");
         } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -338,9 +338,10 @@ CliOptions parse(int argc, char **argv) {
                                  : c.backface ? "--backface"
                                  : c.planes   ? "--planes"
                                               : "--scene";
-        if ((c.silhouette + c.backface + c.planes + c.scene > 1) || c.scaling || c.limits || !c.plot.empty() ||
-            !c.models.empty() || c.lightGiven || c.regimeGiven || !c.table.routines.empty() ||
-            !c.variants.empty() || c.runs || c.table.batch || c.targets.facing != LightTargets{}.facing ||
+        if ((c.silhouette + c.backface + c.planes + c.scene > 1) || c.scaling || c.limits ||
+            !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
+            !c.table.routines.empty() || !c.variants.empty() || c.runs || c.table.batch ||
+            c.targets.facing != LightTargets{}.facing ||
             c.targets.silhouette != LightTargets{}.silhouette) {
             bad(mode + " takes --quick, --json, --max-triangles, --seed, --timer and --isa only");
         }
@@ -360,7 +361,8 @@ CliOptions parse(int argc, char **argv) {
         for (const std::string &m : c.models) {
             if (m == "synthetic" || m == "all") {
                 bad("--scaling --model takes glTF files and folders (the generated character "
-                    "and the real characters of " SV_SHARED_MODELS_DIR " always run), not " + m);
+                    "and the real characters of " SV_SHARED_MODELS_DIR " always run), not " +
+                    m);
             }
         }
         if (c.regimeGiven) {
@@ -395,9 +397,8 @@ CliOptions parse(int argc, char **argv) {
 void choose_variants(const CliOptions &c, std::vector<const BenchVariant *> &chosen,
                      std::vector<SkippedVariant> &skipped) {
     for (const BenchVariant &v : bench_variants()) {
-        const bool asked =
-            c.variants.empty() ||
-            std::find(c.variants.begin(), c.variants.end(), &v) != c.variants.end();
+        const bool asked = c.variants.empty() ||
+                           std::find(c.variants.begin(), c.variants.end(), &v) != c.variants.end();
         if ((v.isa & sv_cpu_isa_detected()) != v.isa) {
             skipped.push_back({v.name, "this CPU lacks its instruction set"});
         } else if ((v.isa & sv_cpu_isa()) != v.isa) {
@@ -601,8 +602,8 @@ void bench_usage(FILE *out) {
         "could not be loaded.\n",
         kIsaLevels, kDefaultRuns, kQuickRuns, kMinScaledRuns,
         wrap(routine_list(), 58, "\n                     ").c_str(), variant_list().c_str(),
-        kMaxBatch, SV_SHARED_MODELS_DIR, kDefaultScalingRuns, kQuickScalingRuns,
-        kMinScalingRuns, kMinQuickScalingRuns);
+        kMaxBatch, SV_SHARED_MODELS_DIR, kDefaultScalingRuns, kQuickScalingRuns, kMinScalingRuns,
+        kMinQuickScalingRuns);
 }
 
 int bench_main(int argc, char **argv) {

@@ -117,19 +117,20 @@ int check_main(int argc, char **argv) {
                 bool known = false;
                 for (const svcheck::Variant &t : table) known = known || t.name == v;
                 if (!known) {
-                    usage_error("unknown variant '" + quoted(v) + "' (known: " +
-                                joined(variant_names(table)) + ")");
+                    usage_error("unknown variant '" + quoted(v) +
+                                "' (known: " + joined(variant_names(table)) + ")");
                 }
                 want_variants.push_back(v);
             } else if (a.is("--function")) {
                 const std::string f = a.value();
                 svcheck::Routine r;
                 if (!svcheck::routine_by_name(f, &r)) {
-                    usage_error("unknown function '" + quoted(f) + "' (known: " +
-                                joined(routine_names()) + ")");
+                    usage_error("unknown function '" + quoted(f) +
+                                "' (known: " + joined(routine_names()) + ")");
                 }
                 // (named twice: checked once)
-                if (std::find(routines.begin(), routines.end(), r) == routines.end()) routines.push_back(r);
+                if (std::find(routines.begin(), routines.end(), r) == routines.end())
+                    routines.push_back(r);
             } else if (a.is("--seed")) {
                 seed = a.seed();
                 seeded = true;
@@ -140,7 +141,8 @@ int check_main(int argc, char **argv) {
             }
         }
     } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol check: %s\nTry 'shadowvol check --help'.\n", e.message.c_str());
+        std::fprintf(stderr, "shadowvol check: %s\nTry 'shadowvol check --help'.\n",
+                     e.message.c_str());
         return 2;
     }
     if (routines.empty()) routines = svcheck::all_routines();
@@ -155,7 +157,8 @@ int check_main(int argc, char **argv) {
     char isa[160];
     std::printf("seed      %llu (replay: --seed %llu)\n", (unsigned long long)seed,
                 (unsigned long long)seed);
-    std::printf("cpu       %s (%s)\n", sv_isa_level_name(), sv_isa_names(sv_cpu_isa(), isa, sizeof isa));
+    std::printf("cpu       %s (%s)\n", sv_isa_level_name(),
+                sv_isa_names(sv_cpu_isa(), isa, sizeof isa));
     std::printf("abi       %s\n", svcheck::abi_checker_summary().c_str());
     std::printf("planned   %s\n", plan_sources().c_str());
     if (bench) {
@@ -167,7 +170,8 @@ int check_main(int argc, char **argv) {
     svcheck::Variant ref;
     if (bench) {
         work.reset(new svcheck::BenchWorkload(seed));
-        ref = svcheck::make_variant("c_ref", sv_facing_variant_by_name("c_ref"), sv_variant_by_name("c_ref"));
+        ref = svcheck::make_variant("c_ref", sv_facing_variant_by_name("c_ref"),
+                                    sv_variant_by_name("c_ref"));
     }
     int ok = 0, failed = 0, skipped = 0;
     std::string first_failed;
@@ -199,11 +203,13 @@ int check_main(int argc, char **argv) {
                 for (const svcheck::Variant &c : chosen) v = c.name == res.variant ? &c : v;
                 // c_ref's row is the reference's own timing (one measurement,
                 // so its ratio is 1.00 and not the noise of two).
-                const double t = res.variant == "c_ref"
-                                     ? ref_ticks
-                                     : work->ticks(r, v->for_triangles(svcheck::BenchWorkload::kTriangles));
+                const double t =
+                    res.variant == "c_ref"
+                        ? ref_ticks
+                        : work->ticks(r, v->for_triangles(svcheck::BenchWorkload::kTriangles));
                 char buf[64];
-                std::snprintf(buf, sizeof buf, "%10.0f ticks %6.2fx  ", t, t > 0 ? ref_ticks / t : 0.0);
+                std::snprintf(buf, sizeof buf, "%10.0f ticks %6.2fx  ", t,
+                              t > 0 ? ref_ticks / t : 0.0);
                 timing = buf;
             } else if (bench) {
                 timing = std::string(33, ' ');
@@ -215,7 +221,8 @@ int check_main(int argc, char **argv) {
     }
     std::printf("summary   %d ok, %d failed, %d skipped\n", ok, failed, skipped);
     if (ok + failed == 0 && skipped == 0) {
-        std::fprintf(stderr, "shadowvol check: the named variants have none of the named routines\n");
+        std::fprintf(stderr,
+                     "shadowvol check: the named variants have none of the named routines\n");
         return 2;
     }
     if (failed) {

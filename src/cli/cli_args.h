@@ -78,8 +78,8 @@ public:
         const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
         const unsigned long long v = digits ? std::strtoull(s.c_str(), &end, 10) : 0;
         if (!digits || errno == ERANGE || *end) {
-            usage_error(opt_ + " needs a whole number from 0 to 18446744073709551615, not '" + quoted(s) +
-                        "'");
+            usage_error(opt_ + " needs a whole number from 0 to 18446744073709551615, not '" +
+                        quoted(s) + "'");
         }
         return v;
     }

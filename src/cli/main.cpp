@@ -45,11 +45,13 @@ const Command kCommands[] = {
      svcli::accuracy_main, svcli::accuracy_usage},
     {"render", "render a scene's shadows in the project's stencil, checked by rays and by Mesa",
      svcli::render_main, svcli::render_usage},
-    {"scene", "play a glTF scene in time, building only what each frame requires, proved pixel for pixel",
+    {"scene",
+     "play a glTF scene in time, building only what each frame requires, proved pixel for pixel",
      svcli::scene_main, svcli::scene_usage},
     {"check", "every routine of every variant this CPU runs against c_ref, ABI-checked; --bench",
      svcli::check_main, svcli::check_usage},
-    {"tune", "measure every variant per routine and mesh size; save this CPU's fastest as its plans",
+    {"tune",
+     "measure every variant per routine and mesh size; save this CPU's fastest as its plans",
      svcli::tune_main, svcli::tune_usage},
 };
 
@@ -73,10 +75,11 @@ void usage(FILE *out) {
     for (const Command &c : kCommands) {
         std::fprintf(out, "  %-10s %s\n", c.name, c.summary);
     }
-    std::fprintf(out, "\n"
-                      "'shadowvol <command> --help' describes a command's options.\n"
-                      "Exit status: 0 done, 1 a correctness check failed, 2 bad arguments,\n"
-                      "3 a model could not be loaded, 4 verify cannot decide (the reason printed).\n");
+    std::fprintf(out,
+                 "\n"
+                 "'shadowvol <command> --help' describes a command's options.\n"
+                 "Exit status: 0 done, 1 a correctness check failed, 2 bad arguments,\n"
+                 "3 a model could not be loaded, 4 verify cannot decide (the reason printed).\n");
 }
 
 } // namespace

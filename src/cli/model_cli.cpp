@@ -54,7 +54,8 @@ long long memory_size(ArgReader &a) {
     const std::string unit = v.substr(digits);
     long long shift = unit.empty() || unit == "M" ? 20 : unit == "K" ? 10 : unit == "G" ? 30 : -1;
     if (digits == 0 || digits > 12 || shift < 0) {
-        usage_error("--max-memory needs a size like 512K, 800M (or 800), 8G; not '" + quoted(v) + "'");
+        usage_error("--max-memory needs a size like 512K, 800M (or 800), 8G; not '" + quoted(v) +
+                    "'");
     }
     return std::stoll(v.substr(0, digits)) << shift;
 }
@@ -244,8 +245,8 @@ int inspect_main(int argc, char **argv) {
     int prims = 0, closed = 0;
     for (const Surface &s : m.surfaces) {
         const sv::PrepareReport &r = s.prepared.report;
-        row(s.source.name, std::to_string(s.source.primitives), s.source.mirrored ? "yes" : "no",
-            r, is_closed(r) ? "yes" : "no");
+        row(s.source.name, std::to_string(s.source.primitives), s.source.mirrored ? "yes" : "no", r,
+            is_closed(r) ? "yes" : "no");
         add_report(total, r);
         prims += s.source.primitives;
         closed += is_closed(r);
@@ -257,7 +258,8 @@ int inspect_main(int argc, char **argv) {
     for (const std::string &n : m.notes) std::fprintf(out, "note: %s\n", n.c_str());
 
     if (json.f) {
-        std::fprintf(json.f, "{\"schema\": \"shadowvol-inspect/1\", \"model\": %s,\n \"surfaces\": [",
+        std::fprintf(json.f,
+                     "{\"schema\": \"shadowvol-inspect/1\", \"model\": %s,\n \"surfaces\": [",
                      json_string(model).c_str());
         for (std::size_t i = 0; i < m.surfaces.size(); i++) {
             const Surface &s = m.surfaces[i];
@@ -392,7 +394,7 @@ int verify_main(int argc, char **argv) {
 
     LoadedModel m;
     if (!load_model("verify", model, args.mesh, args.max_triangles, &m)) return kExitBadModel;
-    {   /* Hostile sizes: memory and time estimated before any volume. */
+    { /* Hostile sizes: memory and time estimated before any volume. */
         int64_t largest = 0, total = 0;
         for (const Surface &s : m.surfaces) {
             largest = std::max<int64_t>(largest, s.prepared.num_triangles());
@@ -439,7 +441,7 @@ int verify_main(int argc, char **argv) {
         const auto t0 = std::chrono::steady_clock::now();
         const uint64_t surface_seed = seed * 0x9E3779B97F4A7C15ull + si;
         const std::vector<sv::VerifyLight> ls = sv::make_verify_lights(s.prepared, lights,
-                                                                      surface_seed);
+                                                                       surface_seed);
         for (std::size_t li = 0; li < ls.size(); li++) {
             if (progress) {
                 std::fprintf(stderr, "\rverify: surface %zu/%zu, light %zu/%zu ", si + 1,
@@ -447,8 +449,9 @@ int verify_main(int argc, char **argv) {
                 std::fflush(stderr);
             }
             const sv::VerifyLight &l = ls[li];
-            const sv::LightResult r =
-                sv::verify_light(s.prepared, l, variants, options, surface_seed ^ (li + 1) * 0xD1B54A32D192ED03ull);
+            const sv::LightResult r = sv::verify_light(s.prepared, l, variants, options,
+                                                       surface_seed ^
+                                                           (li + 1) * 0xD1B54A32D192ED03ull);
             v.lights++;
             (l.light.w == 0.0f ? v.directional_lights : v.point_lights)++;
             v.culled_lights += l.culled;
@@ -470,7 +473,8 @@ int verify_main(int argc, char **argv) {
         v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (progress) std::fprintf(stderr, "\r%60s\r", "");
         const sv::PrepareReport &r = s.prepared.report;
-        std::fprintf(out, "%-34s %8lld %6s %6d %7lld %9lld %9lld %9lld %9lld %8lld %7lld %7lld %7.1f\n",
+        std::fprintf(out,
+                     "%-34s %8lld %6s %6d %7lld %9lld %9lld %9lld %9lld %8lld %7lld %7lld %7.1f\n",
                      shorten(s.source.name, 34).c_str(), (long long)r.triangles,
                      is_closed(r) ? "yes" : "no", v.lights, (long long)v.volumes,
                      (long long)(v.volume_triangles / std::max<int64_t>(v.distinct_volumes, 1)),
@@ -499,15 +503,14 @@ int verify_main(int argc, char **argv) {
                  "near a boundary; %lld rays replaced; %lld crossings of edge-on casting "
                  "triangles.\n",
                  t.lights, t.point_lights, t.culled_lights, t.directional_lights,
-                 (long long)t.volumes, (long long)t.distinct_volumes,
-                 (long long)t.culled_triangles, (long long)t.counts.points,
-                 (long long)t.counts.in_shadow, (long long)t.counts.lit,
+                 (long long)t.volumes, (long long)t.distinct_volumes, (long long)t.culled_triangles,
+                 (long long)t.counts.points, (long long)t.counts.in_shadow, (long long)t.counts.lit,
                  (long long)t.counts.crossing_checked, (long long)t.counts.inside_mesh,
                  (long long)t.counts.skipped, (long long)t.counts.ray_retries,
                  (long long)t.counts.inverted_prisms);
     if (!failure.empty()) {
-        std::fprintf(out, "FAILED: surface %s: %s\n", m.surfaces[failed_surface].source.name.c_str(),
-                     failure.c_str());
+        std::fprintf(out, "FAILED: surface %s: %s\n",
+                     m.surfaces[failed_surface].source.name.c_str(), failure.c_str());
         if (out != stderr) {
             std::fprintf(stderr, "shadowvol verify: %s: surface %s: %s\n", model.c_str(),
                          m.surfaces[failed_surface].source.name.c_str(), failure.c_str());
@@ -536,7 +539,9 @@ int verify_main(int argc, char **argv) {
                      "],\n \"passed\": %s, \"verdict\": \"%s\", \"failure\": %s, "
                      "\"undecided\": %s,\n \"surfaces\": [",
                      failure.empty() && undecided.empty() ? "true" : "false",
-                     !failure.empty() ? "failed" : !undecided.empty() ? "undecided" : "passed",
+                     !failure.empty()     ? "failed"
+                     : !undecided.empty() ? "undecided"
+                                          : "passed",
                      failure.empty() ? "null" : json_string(failure).c_str(),
                      failure.empty() && !undecided.empty() ? json_string(undecided).c_str()
                                                            : "null");
@@ -556,9 +561,9 @@ int verify_main(int argc, char **argv) {
                          is_closed(m.surfaces[i].prepared.report) ? "true" : "false", v.lights,
                          v.point_lights, v.culled_lights, v.directional_lights,
                          (long long)v.volumes, (long long)v.distinct_volumes,
-                         (long long)v.culled_triangles, (long long)c.points,
-                         (long long)c.in_shadow, (long long)c.lit, (long long)c.crossing_checked,
-                         (long long)c.inside_mesh, (long long)c.skipped, (long long)c.ray_retries,
+                         (long long)v.culled_triangles, (long long)c.points, (long long)c.in_shadow,
+                         (long long)c.lit, (long long)c.crossing_checked, (long long)c.inside_mesh,
+                         (long long)c.skipped, (long long)c.ray_retries,
                          (long long)c.inverted_prisms, v.seconds);
         }
         std::fprintf(json.f, "]}\n");

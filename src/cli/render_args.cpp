@@ -13,15 +13,16 @@ namespace svcli {
 void parse_frame_size(const std::string &text, int &width, int &height) {
     const std::size_t x = text.find('x');
     auto num = [&](const std::string &t) -> long long {
-        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
+        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos)
+            return -1;
         return std::stoll(t);
     };
     const long long a = x == std::string::npos ? -1 : num(text.substr(0, x));
     const long long b = x == std::string::npos ? -1 : num(text.substr(x + 1));
     if (a < 1 || b < 1 || a > sv::render::kMaxFrameSide || b > sv::render::kMaxFrameSide ||
         a * b > sv::render::kMaxFramePixels) {
-        usage_error("--size needs WxH with 1 <= W, H <= " + std::to_string(sv::render::kMaxFrameSide) +
-                    " (not '" + quoted(text) + "')");
+        usage_error("--size needs WxH with 1 <= W, H <= " +
+                    std::to_string(sv::render::kMaxFrameSide) + " (not '" + quoted(text) + "')");
     }
     width = (int)a, height = (int)b;
 }
@@ -48,7 +49,8 @@ bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil) 
     if (a.is("--stencil")) {
         const std::string m = a.value();
         if (!sv::render::stencil_method_by_name(m, stencil)) {
-            usage_error("--stencil needs " + sv::render::stencil_method_names() + ", not '" + quoted(m) + "'");
+            usage_error("--stencil needs " + sv::render::stencil_method_names() + ", not '" +
+                        quoted(m) + "'");
         }
     } else {
         return false;
@@ -71,10 +73,14 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
             parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--mode")) {
             const std::string m = a.value();
-            if (m == "zpass") r.mode = sv::render::ModeChoice::zpass;
-            else if (m == "zfail") r.mode = sv::render::ModeChoice::zfail;
-            else if (m == "auto") r.mode = sv::render::ModeChoice::automatic;
-            else usage_error("--mode needs zpass, zfail or auto, not '" + quoted(m) + "'");
+            if (m == "zpass")
+                r.mode = sv::render::ModeChoice::zpass;
+            else if (m == "zfail")
+                r.mode = sv::render::ModeChoice::zfail;
+            else if (m == "auto")
+                r.mode = sv::render::ModeChoice::automatic;
+            else
+                usage_error("--mode needs zpass, zfail or auto, not '" + quoted(m) + "'");
         } else if (a.is("--out")) {
             r.out_dir = a.value();
         } else if (a.is("--json")) {

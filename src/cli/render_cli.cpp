@@ -82,7 +82,6 @@ void counters_json(svbench::JsonWriter &j, const sv::raster::PassCounters &c) {
     j.end_object();
 }
 
-
 void render_usage(FILE *out) {
     std::fprintf(
         out,
@@ -141,7 +140,8 @@ int render_main(int argc, char **argv) {
             return 0;
         }
     } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol render: %s\nTry 'shadowvol render --help'.\n", e.message.c_str());
+        std::fprintf(stderr, "shadowvol render: %s\nTry 'shadowvol render --help'.\n",
+                     e.message.c_str());
         return kExitUsage;
     } catch (const sv::SceneError &e) {
         std::fprintf(stderr, "shadowvol render: %s\n", e.what());
@@ -152,7 +152,8 @@ int render_main(int argc, char **argv) {
         kernels = sv::raster::row_kernels_by_name(args.kernels.c_str());
         if (!kernels || (kernels->isa & sv_cpu_isa()) != kernels->isa) {
             std::fprintf(stderr, "shadowvol render: --kernels %s: %s\n", args.kernels.c_str(),
-                         kernels ? "this CPU (or SV_ISA) does not run it" : "unknown (c, avx2, avx512)");
+                         kernels ? "this CPU (or SV_ISA) does not run it"
+                                 : "unknown (c, avx2, avx512)");
             return kExitUsage;
         }
     }
@@ -193,7 +194,8 @@ int render_main(int argc, char **argv) {
     if (args.ground) sv::add_ground(scene);
     const double aspect = (double)args.width / args.height;
     scene.camera = args.has_camera ? args.camera : sv::frame_camera(scene, aspect);
-    if (scene.camera.near_distance == 0) scene.camera.near_distance = sv::fitting_near_distance(scene, scene.camera);
+    if (scene.camera.near_distance == 0)
+        scene.camera.near_distance = sv::fitting_near_distance(scene, scene.camera);
     scene.lights = args.lights.empty() ? sv::default_lights(scene) : args.lights;
     for (sv::SceneLight &l : scene.lights) {
         if (l.placed_automatically) l = sv::auto_light(scene, l.kind);
@@ -207,12 +209,15 @@ int render_main(int argc, char **argv) {
     }
     for (const std::string &n : scene.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
 
-    const uint64_t bytes = sv::render::frame_bytes(args.width, args.height, (int)scene.lights.size());
-    std::fprintf(stderr, "shadowvol render: %dx%d, %zu light(s), %lld triangles; the frame needs %.1f MiB\n",
-                 args.width, args.height, scene.lights.size(), (long long)scene.triangles(),
-                 (double)bytes / (1 << 20));
+    const uint64_t bytes = sv::render::frame_bytes(args.width, args.height,
+                                                   (int)scene.lights.size());
+    std::fprintf(
+        stderr, "shadowvol render: %dx%d, %zu light(s), %lld triangles; the frame needs %.1f MiB\n",
+        args.width, args.height, scene.lights.size(), (long long)scene.triangles(),
+        (double)bytes / (1 << 20));
     if (!make_dir(args.out_dir)) {
-        std::fprintf(stderr, "shadowvol render: --out %s: cannot create the folder\n", args.out_dir.c_str());
+        std::fprintf(stderr, "shadowvol render: --out %s: cannot create the folder\n",
+                     args.out_dir.c_str());
         return kExitUsage;
     }
 
@@ -228,11 +233,13 @@ int render_main(int argc, char **argv) {
     try {
         frame = sv::render::render_frame(scene, opt);
     } catch (const std::bad_alloc &) {
-        std::fprintf(stderr, "shadowvol render: out of memory for a %dx%d frame\n", args.width, args.height);
+        std::fprintf(stderr, "shadowvol render: out of memory for a %dx%d frame\n", args.width,
+                     args.height);
         return kExitUsage;
     }
     const double hz = svbench::estimate_tsc_hz(0.05);
-    const int threads = args.threads ? args.threads : (int)std::max(1u, std::thread::hardware_concurrency());
+    const int threads = args.threads ? args.threads
+                                     : (int)std::max(1u, std::thread::hardware_concurrency());
 
     /* The judges. */
     std::vector<sv::render::Truth> truths;
@@ -273,12 +280,15 @@ int render_main(int argc, char **argv) {
     }
     try {
         sv::render::write_png(args.out_dir + "/shaded.png", shaded);
-        sv::render::write_png(args.out_dir + "/stencil.png", sv::render::side_by_side(stencil_panels));
+        sv::render::write_png(args.out_dir + "/stencil.png",
+                              sv::render::side_by_side(stencil_panels));
         if (!truth_panels.empty()) {
-            sv::render::write_png(args.out_dir + "/truth.png", sv::render::side_by_side(truth_panels));
+            sv::render::write_png(args.out_dir + "/truth.png",
+                                  sv::render::side_by_side(truth_panels));
         }
         if (!gl_panels.empty()) {
-            sv::render::write_png(args.out_dir + "/gl_diff.png", sv::render::side_by_side(gl_panels));
+            sv::render::write_png(args.out_dir + "/gl_diff.png",
+                                  sv::render::side_by_side(gl_panels));
         }
     } catch (const std::exception &e) {
         std::fprintf(stderr, "shadowvol render: %s\n", e.what());
@@ -287,24 +297,31 @@ int render_main(int argc, char **argv) {
 
     /* The report. */
     bool failed = false;
-    std::printf("scene: %zu surface(s), %lld triangles, %zu light(s); camera eye (%g, %g, %g) target (%g, %g, %g) fov %g near %g\n",
-                scene.surfaces.size(), (long long)scene.triangles(), scene.lights.size(), scene.camera.eye.x,
-                scene.camera.eye.y, scene.camera.eye.z, scene.camera.target.x, scene.camera.target.y,
-                scene.camera.target.z, scene.camera.fov_y_degrees, scene.camera.near_distance);
-    std::printf("frame: %dx%d, mode %s, stencil %s, row kernels %s, volume kernels %s, TSC %.3f GHz\n",
-                frame.width, frame.height, sv::render::mode_name(args.mode), frame.stencil_method.c_str(),
-                frame.kernels.c_str(), frame.variant.c_str(), hz / 1e9);
-    std::printf("depth pass: %llu triangles, %llu pixels tested, %llu written, %.2f ms (%llu ticks)\n",
-                (unsigned long long)frame.depth_counters.triangles,
-                (unsigned long long)frame.depth_counters.pixels_tested,
-                (unsigned long long)frame.depth_counters.pixels_written, ms(frame.ticks_depth, hz),
-                (unsigned long long)frame.ticks_depth);
-    std::printf("\n%-3s %-46s %4s %5s %8s %8s | %9s %9s %9s %9s | %10s %10s %9s | %8s %8s %8s %6s %6s | %8s %8s %7s\n",
-                "#", "light", "vols", "zfail", "indices", "drawn", "facing", "volume", "stencil", "shading",
-                "st.tested", "st.written", "st.bytes", "lit", "shadowed", "boundary", "mism", "off",
-                "gl.diff", "gl.other", "gl/own");
-    std::printf("%-3s %-46s %4s %5s %8s %8s | %9s %9s %9s %9s | %10s %10s %9s | %8s %8s %8s %6s %6s | %8s %8s %7s\n",
-                "", "", "", "", "", "", "ms", "ms", "ms", "ms", "", "", "r+w", "", "", "", "", "", "", "", "x");
+    std::printf("scene: %zu surface(s), %lld triangles, %zu light(s); camera eye (%g, %g, %g) "
+                "target (%g, %g, %g) fov %g near %g\n",
+                scene.surfaces.size(), (long long)scene.triangles(), scene.lights.size(),
+                scene.camera.eye.x, scene.camera.eye.y, scene.camera.eye.z, scene.camera.target.x,
+                scene.camera.target.y, scene.camera.target.z, scene.camera.fov_y_degrees,
+                scene.camera.near_distance);
+    std::printf(
+        "frame: %dx%d, mode %s, stencil %s, row kernels %s, volume kernels %s, TSC %.3f GHz\n",
+        frame.width, frame.height, sv::render::mode_name(args.mode), frame.stencil_method.c_str(),
+        frame.kernels.c_str(), frame.variant.c_str(), hz / 1e9);
+    std::printf(
+        "depth pass: %llu triangles, %llu pixels tested, %llu written, %.2f ms (%llu ticks)\n",
+        (unsigned long long)frame.depth_counters.triangles,
+        (unsigned long long)frame.depth_counters.pixels_tested,
+        (unsigned long long)frame.depth_counters.pixels_written, ms(frame.ticks_depth, hz),
+        (unsigned long long)frame.ticks_depth);
+    std::printf("\n%-3s %-46s %4s %5s %8s %8s | %9s %9s %9s %9s | %10s %10s %9s | %8s %8s %8s %6s "
+                "%6s | %8s %8s %7s\n",
+                "#", "light", "vols", "zfail", "indices", "drawn", "facing", "volume", "stencil",
+                "shading", "st.tested", "st.written", "st.bytes", "lit", "shadowed", "boundary",
+                "mism", "off", "gl.diff", "gl.other", "gl/own");
+    std::printf("%-3s %-46s %4s %5s %8s %8s | %9s %9s %9s %9s | %10s %10s %9s | %8s %8s %8s %6s "
+                "%6s | %8s %8s %7s\n",
+                "", "", "", "", "", "", "ms", "ms", "ms", "ms", "", "", "r+w", "", "", "", "", "",
+                "", "", "x");
     for (std::size_t li = 0; li < frame.lights.size(); li++) {
         const sv::render::LightFrame &lf = frame.lights[li];
         const sv::render::Comparison *c = li < cmps.size() ? &cmps[li] : nullptr;
@@ -319,17 +336,20 @@ int render_main(int argc, char **argv) {
                           (unsigned long long)c->off_boundary_mismatches);
             failed |= c->off_boundary_mismatches > 0;
         } else {
-            std::snprintf(truth_cols, sizeof truth_cols, "%8s %8s %8s %6s %6s", "-", "-", "-", "-", "-");
+            std::snprintf(truth_cols, sizeof truth_cols, "%8s %8s %8s %6s %6s", "-", "-", "-", "-",
+                          "-");
         }
         if (g) {
-            std::snprintf(gl_cols, sizeof gl_cols, "%8llu %8llu %7.2f", (unsigned long long)g->differing,
-                          (unsigned long long)g->other,
-                          lf.seconds_stencil > 0 ? g->mesa_stencil_seconds / lf.seconds_stencil : 0.0);
+            std::snprintf(gl_cols, sizeof gl_cols, "%8llu %8llu %7.2f",
+                          (unsigned long long)g->differing, (unsigned long long)g->other,
+                          lf.seconds_stencil > 0 ? g->mesa_stencil_seconds / lf.seconds_stencil
+                                                 : 0.0);
             failed |= g->other > 0;
         } else {
             std::snprintf(gl_cols, sizeof gl_cols, "%8s %8s %7s", "-", "-", "-");
         }
-        std::printf("%-3zu %-46s %4zu %5d %8lld %8lld | %9.3f %9.3f %9.3f %9.3f | %10llu %10llu %9llu | %s | %s\n",
+        std::printf("%-3zu %-46s %4zu %5d %8lld %8lld | %9.3f %9.3f %9.3f %9.3f | %10llu %10llu "
+                    "%9llu | %s | %s\n",
                     li, desc.c_str(), lf.volumes.size(), lf.zfail_volumes, (long long)lf.indices,
                     (long long)lf.drawn_indices, ms(lf.ticks_facing, hz), ms(lf.ticks_volume, hz),
                     ms(lf.ticks_stencil, hz), ms(frame.ticks_shading, hz),
@@ -341,15 +361,18 @@ int render_main(int argc, char **argv) {
     }
     for (std::size_t li = 0; li < frame.lights.size(); li++) {
         const sv::render::LightFrame &lf = frame.lights[li];
-        std::printf("ticks %zu: facing %llu, volume %llu, stencil %llu; the frame's depth pass %llu, lighting pass %llu\n", li,
-                    (unsigned long long)lf.ticks_facing, (unsigned long long)lf.ticks_volume,
+        std::printf("ticks %zu: facing %llu, volume %llu, stencil %llu; the frame's depth pass "
+                    "%llu, lighting pass %llu\n",
+                    li, (unsigned long long)lf.ticks_facing, (unsigned long long)lf.ticks_volume,
                     (unsigned long long)lf.ticks_stencil, (unsigned long long)frame.ticks_depth,
                     (unsigned long long)frame.ticks_shading);
     }
     for (std::size_t li = 0; li < truths.size(); li++) {
-        std::printf("truth %zu: %llu rays in %.2f s (%.2f M rays/s, %d threads, BVH of src/verify)\n", li,
-                    (unsigned long long)truths[li].rays, truths[li].seconds,
-                    truths[li].seconds > 0 ? (double)truths[li].rays / truths[li].seconds / 1e6 : 0.0, threads);
+        std::printf(
+            "truth %zu: %llu rays in %.2f s (%.2f M rays/s, %d threads, BVH of src/verify)\n", li,
+            (unsigned long long)truths[li].rays, truths[li].seconds,
+            truths[li].seconds > 0 ? (double)truths[li].rays / truths[li].seconds / 1e6 : 0.0,
+            threads);
         for (int p : cmps[li].first_off_boundary) {
             std::printf("  off-boundary mismatch at pixel (%d, %d): stencil %u\n", p % frame.width,
                         p / frame.width, frame.lights[li].stencil[(std::size_t)p]);
@@ -359,15 +382,19 @@ int render_main(int argc, char **argv) {
         std::printf("mesa: %s\n", gl_renderer.c_str());
         for (std::size_t li = 0; li < gls.size(); li++) {
             const sv::render::GlComparison &g = gls[li];
-            std::printf("gl %zu: %llu pixels differ (%.6f%%): %llu on a volume triangle's edge (within %.4f px), %llu at a depth tie, %llu other; "
+            std::printf("gl %zu: %llu pixels differ (%.6f%%): %llu on a volume triangle's edge "
+                        "(within %.4f px), %llu at a depth tie, %llu other; "
                         "Mesa's stencil pass %.2f ms against ours %.2f ms (Mesa / ours = %.2f)\n",
                         li, (unsigned long long)g.differing,
                         100.0 * (double)g.differing / ((double)frame.width * frame.height),
-                        (unsigned long long)g.on_edge, g.max_edge_distance, (unsigned long long)g.depth_tie,
-                        (unsigned long long)g.other, 1e3 * g.mesa_stencil_seconds,
-                        1e3 * frame.lights[li].seconds_stencil,
-                        frame.lights[li].seconds_stencil > 0 ? g.mesa_stencil_seconds / frame.lights[li].seconds_stencil : 0.0);
-            for (const std::string &o : g.first_other) std::printf("  gl %zu other: %s\n", li, o.c_str());
+                        (unsigned long long)g.on_edge, g.max_edge_distance,
+                        (unsigned long long)g.depth_tie, (unsigned long long)g.other,
+                        1e3 * g.mesa_stencil_seconds, 1e3 * frame.lights[li].seconds_stencil,
+                        frame.lights[li].seconds_stencil > 0
+                            ? g.mesa_stencil_seconds / frame.lights[li].seconds_stencil
+                            : 0.0);
+            for (const std::string &o : g.first_other)
+                std::printf("  gl %zu other: %s\n", li, o.c_str());
         }
     }
     std::printf("images: %s/shaded.png stencil.png%s%s\n", args.out_dir.c_str(),
@@ -430,7 +457,8 @@ int render_main(int argc, char **argv) {
                 j.key("zfail"), j.value(v.zfail);
                 j.key("indices"), j.value((long long)v.indices.size());
                 j.key("silhouette_indices"), j.value(v.silhouette_indices);
-                j.key("indices_fnv1a64"), j.value(indices_fnv1a64(v.indices.data(), v.indices.size()));
+                j.key("indices_fnv1a64"),
+                    j.value(indices_fnv1a64(v.indices.data(), v.indices.size()));
                 j.end_object();
             }
             j.end_array();
@@ -443,7 +471,8 @@ int render_main(int argc, char **argv) {
                 j.key("shadowed"), j.value((unsigned long long)c.shadowed);
                 j.key("boundary"), j.value((unsigned long long)c.boundary);
                 j.key("mismatches"), j.value((unsigned long long)c.mismatches);
-                j.key("off_boundary_mismatches"), j.value((unsigned long long)c.off_boundary_mismatches);
+                j.key("off_boundary_mismatches"),
+                    j.value((unsigned long long)c.off_boundary_mismatches);
                 j.key("rays"), j.value((unsigned long long)truths[li].rays);
                 j.key("seconds"), j.value(truths[li].seconds);
                 j.end_object();
@@ -478,13 +507,16 @@ int render_main(int argc, char **argv) {
         j.end_object();
         const std::string &doc = j.str();
         FILE *f = args.json_path == "-" ? stdout : std::fopen(args.json_path.c_str(), "w");
-        if (!f || std::fwrite(doc.data(), 1, doc.size(), f) != doc.size() || (f != stdout && std::fclose(f) != 0)) {
-            std::fprintf(stderr, "shadowvol render: --json %s: cannot write\n", args.json_path.c_str());
+        if (!f || std::fwrite(doc.data(), 1, doc.size(), f) != doc.size() ||
+            (f != stdout && std::fclose(f) != 0)) {
+            std::fprintf(stderr, "shadowvol render: --json %s: cannot write\n",
+                         args.json_path.c_str());
             return kExitUsage;
         }
     }
     if (failed) {
-        std::printf("FAILED: a stencil pixel disagrees with the truth off a shadow boundary, or with Mesa off every edge and depth tie\n");
+        std::printf("FAILED: a stencil pixel disagrees with the truth off a shadow boundary, or "
+                    "with Mesa off every edge and depth tie\n");
         return kExitMismatch;
     }
     std::printf("PASSED: every mismatch against the truth lies on a shadow boundary%s\n",

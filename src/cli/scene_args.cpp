@@ -40,14 +40,17 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
         } else if (a.is("--time")) {
             const std::string t = a.value();
             const std::size_t c = t.find(':');
-            if (c == std::string::npos) usage_error("--time needs FROM:TO in seconds, not '" + quoted(t) + "'");
+            if (c == std::string::npos)
+                usage_error("--time needs FROM:TO in seconds, not '" + quoted(t) + "'");
             r.time_from = parse_number(t.substr(0, c), "--time");
             r.time_to = parse_number(t.substr(c + 1), "--time");
-            if (!(r.time_to >= r.time_from)) usage_error("--time " + quoted(t) + ": TO must not be before FROM");
+            if (!(r.time_to >= r.time_from))
+                usage_error("--time " + quoted(t) + ": TO must not be before FROM");
             r.has_time = true;
         } else if (a.is("--fps")) {
             r.fps = parse_number(a.value(), "--fps");
-            if (!(r.fps > 0 && r.fps <= 10000)) usage_error("--fps needs a number above 0 and at most 10000");
+            if (!(r.fps > 0 && r.fps <= 10000))
+                usage_error("--fps needs a number above 0 and at most 10000");
         } else if (a.is("--threads")) {
             r.threads = (int)a.integer(1, 256);
         } else if (a.is_flag("--full")) {

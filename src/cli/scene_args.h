@@ -17,14 +17,14 @@ namespace svcli {
 
 struct SceneArgs {
     sv::SequenceOptions seq;
-    int frames = 0;          /* 0: the default */
+    int frames = 0; /* 0: the default */
     bool has_time = false;
     double time_from = 0, time_to = 0;
     double fps = 8;
-    int threads = 0;         /* 0: every core */
-    bool full = false;       /* render with no shortcuts */
+    int threads = 0;   /* 0: every core */
+    bool full = false; /* render with no shortcuts */
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
-    bool check = true;       /* render the full frame beside and compare */
+    bool check = true; /* render the full frame beside and compare */
     bool truth = true;
     int width = 640, height = 512;
     std::string out_dir = "shadowvol-scene";

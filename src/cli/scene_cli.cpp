@@ -92,9 +92,18 @@ void sum_lights(const sv::render::Frame &f, FrameRow &r) {
  * each (light, surface) pair's difference goes to the first of its
  * decisions that applies, in the order they are made (reach, view, reuse,
  * culling, z-pass without caps, the directional dark cap). */
-enum Saving { kSavedReach, kSavedView, kSavedReuse, kSavedCulling, kSavedCaps, kSavedDarkCap, kSavings };
-const char *const kSavingNames[kSavings] = {"1 light reach", "2 view reach", "6 static reuse",
-                                            "3 culling", "4 caps for z-fail only", "5 directional dark cap"};
+enum Saving {
+    kSavedReach,
+    kSavedView,
+    kSavedReuse,
+    kSavedCulling,
+    kSavedCaps,
+    kSavedDarkCap,
+    kSavings
+};
+const char *const kSavingNames[kSavings] = {"1 light reach",          "2 view reach",
+                                            "6 static reuse",         "3 culling",
+                                            "4 caps for z-fail only", "5 directional dark cap"};
 struct Savings {
     int64_t indices[kSavings] = {};
     int decisions[kSavings] = {};
@@ -107,13 +116,20 @@ void attribute_savings(const sv::render::Frame &fast, const sv::render::Frame &f
             const int64_t diff = b[si].indices_built - a[si].indices_built;
             using sv::render::VolumeFate;
             int k;
-            if (a[si].fate == VolumeFate::out_of_reach) k = kSavedReach;
-            else if (a[si].fate == VolumeFate::out_of_view) k = kSavedView;
-            else if (a[si].fate == VolumeFate::reused) k = kSavedReuse;
-            else if (a[si].cull_bits) k = kSavedCulling;
-            else if (a[si].indices_drawn > 0 && !a[si].zfail) k = kSavedCaps;
-            else if (a[si].dark_cap_dropped) k = kSavedDarkCap;
-            else continue;
+            if (a[si].fate == VolumeFate::out_of_reach)
+                k = kSavedReach;
+            else if (a[si].fate == VolumeFate::out_of_view)
+                k = kSavedView;
+            else if (a[si].fate == VolumeFate::reused)
+                k = kSavedReuse;
+            else if (a[si].cull_bits)
+                k = kSavedCulling;
+            else if (a[si].indices_drawn > 0 && !a[si].zfail)
+                k = kSavedCaps;
+            else if (a[si].dark_cap_dropped)
+                k = kSavedDarkCap;
+            else
+                continue;
             s.indices[k] += diff;
             s.decisions[k]++;
         }
@@ -153,7 +169,8 @@ sv::render::Image contact_sheet(const std::vector<sv::render::Image> &tiles) {
     for (std::size_t k = 0; k < tiles.size(); k++) {
         const int ox = (int)(k % cols) * (tw + gap), oy = (int)(k / cols) * (th + gap);
         for (int y = 0; y < th; y++) {
-            std::memcpy(sheet.at(ox, oy + y), &tiles[k].rgb[(std::size_t)y * tw * 3], (std::size_t)tw * 3);
+            std::memcpy(sheet.at(ox, oy + y), &tiles[k].rgb[(std::size_t)y * tw * 3],
+                        (std::size_t)tw * 3);
         }
     }
     return sheet;
@@ -220,7 +237,8 @@ int scene_main(int argc, char **argv) {
             return 0;
         }
     } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol scene: %s\nTry 'shadowvol scene --help'.\n", e.message.c_str());
+        std::fprintf(stderr, "shadowvol scene: %s\nTry 'shadowvol scene --help'.\n",
+                     e.message.c_str());
         return kExitUsage;
     } catch (const sv::SceneError &e) {
         std::fprintf(stderr, "shadowvol scene: %s\n", e.what());
@@ -229,7 +247,8 @@ int scene_main(int argc, char **argv) {
     if (args.seq.file.empty()) args.seq.file = SV_DEMO_SCENE;
     if (!args.skinning.empty()) {
         args.seq.skinning = sv::skinning_kernel_by_name(args.skinning.c_str());
-        if (!args.seq.skinning || (args.seq.skinning->isa & sv_cpu_isa()) != args.seq.skinning->isa) {
+        if (!args.seq.skinning ||
+            (args.seq.skinning->isa & sv_cpu_isa()) != args.seq.skinning->isa) {
             std::fprintf(stderr, "shadowvol scene: --skinning %s: %s\n", args.skinning.c_str(),
                          args.seq.skinning ? "this CPU (or SV_ISA) does not run it"
                                            : "unknown (c_ref, sse2, avx2, avx512)");
@@ -258,7 +277,9 @@ int scene_main(int argc, char **argv) {
     if (args.has_time) {
         const int n = (int)std::floor((args.time_to - args.time_from) * args.fps + 1e-9) + 1;
         if (n > 10000) {
-            std::fprintf(stderr, "shadowvol scene: --time at --fps %g makes %d frames (at most 10000)\n", args.fps, n);
+            std::fprintf(stderr,
+                         "shadowvol scene: --time at --fps %g makes %d frames (at most 10000)\n",
+                         args.fps, n);
             return kExitUsage;
         }
         for (int k = 0; k < n; k++) times.push_back(args.time_from + k / args.fps);
@@ -267,7 +288,8 @@ int scene_main(int argc, char **argv) {
         for (int k = 0; k < n; k++) times.push_back(seq->start() + k / args.fps);
     }
     if (!make_dir(args.out_dir)) {
-        std::fprintf(stderr, "shadowvol scene: --out %s: cannot create the folder\n", args.out_dir.c_str());
+        std::fprintf(stderr, "shadowvol scene: --out %s: cannot create the folder\n",
+                     args.out_dir.c_str());
         return kExitUsage;
     }
     const int threads = args.threads ? args.threads : tbb::info::default_concurrency();
@@ -281,15 +303,17 @@ int scene_main(int argc, char **argv) {
     for (std::size_t li = 0; li < scene.lights.size(); li++) {
         std::printf("    %zu %s\n", li, scene.lights[li].describe().c_str());
     }
-    std::printf("frames: %zu at %g fps from %.3f s; %dx%d; %d thread(s); %s; TSC %.3f GHz\n", times.size(),
-                args.fps, times.front(), args.width, args.height, threads,
+    std::printf("frames: %zu at %g fps from %.3f s; %dx%d; %d thread(s); %s; TSC %.3f GHz\n",
+                times.size(), args.fps, times.front(), args.width, args.height, threads,
                 args.full ? "no shortcuts (--full)" : "shortcuts on", hz / 1e9);
-    std::printf("ticks in thousands (kt): skin and planes per frame; facing, culling, volume: work summed over "
+    std::printf("ticks in thousands (kt): skin and planes per frame; facing, culling, volume: work "
+                "summed over "
                 "threads; depth, stencil, shading, frame: wall\n\n");
-    std::printf("%5s %7s %5s | %5s %5s %5s %5s %4s %5s | %9s %9s %9s | %7s %7s %7s %7s %7s %7s %8s %8s %8s | %9s | %5s %6s\n",
-                "frame", "time", "moved", "built", "reuse", "reach", "view", "cull", "zfail", "idx.built",
-                "idx.drawn", "idx.full", "skin", "planes", "facing", "culling", "volume", "depth", "stencil",
-                "shading", "frame", "st.pixels", "=full", "truth");
+    std::printf("%5s %7s %5s | %5s %5s %5s %5s %4s %5s | %9s %9s %9s | %7s %7s %7s %7s %7s %7s %8s "
+                "%8s %8s | %9s | %5s %6s\n",
+                "frame", "time", "moved", "built", "reuse", "reach", "view", "cull", "zfail",
+                "idx.built", "idx.drawn", "idx.full", "skin", "planes", "facing", "culling",
+                "volume", "depth", "stencil", "shading", "frame", "st.pixels", "=full", "truth");
 
     sv::render::RenderOptions fast;
     fast.width = args.width;
@@ -312,7 +336,8 @@ int scene_main(int argc, char **argv) {
     /* Progress on stderr when it is a terminal (a log gets the table only). */
     const bool progress = isatty(2);
     for (std::size_t k = 0; k < times.size(); k++) {
-        if (progress) std::fprintf(stderr, "\rshadowvol scene: frame %zu of %zu", k + 1, times.size());
+        if (progress)
+            std::fprintf(stderr, "\rshadowvol scene: frame %zu of %zu", k + 1, times.size());
         FrameRow r;
         r.index = (int)k;
         r.time = times[k];
@@ -322,10 +347,12 @@ int scene_main(int argc, char **argv) {
             sv::validate_scene(seq->scene());
             f = sv::render::render_frame(scene, fast);
         } catch (const sv::SceneError &e) {
-            std::fprintf(stderr, "\nshadowvol scene: frame %zu (%.3f s): %s\n", k, times[k], e.what());
+            std::fprintf(stderr, "\nshadowvol scene: frame %zu (%.3f s): %s\n", k, times[k],
+                         e.what());
             return kExitUsage;
         } catch (const std::bad_alloc &) {
-            std::fprintf(stderr, "\nshadowvol scene: out of memory for a %dx%d frame\n", args.width, args.height);
+            std::fprintf(stderr, "\nshadowvol scene: out of memory for a %dx%d frame\n", args.width,
+                         args.height);
             return kExitUsage;
         }
         sum_lights(f, r);
@@ -354,18 +381,20 @@ int scene_main(int argc, char **argv) {
                 if (c.off_boundary_mismatches) {
                     const int p = c.first_off_boundary.empty() ? -1 : c.first_off_boundary[0];
                     char line[200];
-                    std::snprintf(line, sizeof line,
-                                  "frame %zu, light %zu: %llu stencil pixels disagree with the truth off a "
-                                  "shadow boundary, the first at (%d, %d)",
-                                  k, li, (unsigned long long)c.off_boundary_mismatches,
-                                  p < 0 ? -1 : p % args.width, p < 0 ? -1 : p / args.width);
+                    std::snprintf(
+                        line, sizeof line,
+                        "frame %zu, light %zu: %llu stencil pixels disagree with the truth off a "
+                        "shadow boundary, the first at (%d, %d)",
+                        k, li, (unsigned long long)c.off_boundary_mismatches,
+                        p < 0 ? -1 : p % args.width, p < 0 ? -1 : p / args.width);
                     truth_notes.push_back(line);
                     /* The picture of the disagreement, to look at. */
                     char tname[64];
                     std::snprintf(tname, sizeof tname, "/truth_%03zu_light%zu.png", k, li);
                     try {
-                        sv::render::write_png(args.out_dir + tname, sv::render::truth_image(t, f.lights[li].stencil,
-                                                                                             f.width, f.height));
+                        sv::render::write_png(args.out_dir + tname,
+                                              sv::render::truth_image(t, f.lights[li].stencil,
+                                                                      f.width, f.height));
                         truth_notes.back() += std::string(" (") + args.out_dir + tname + ")";
                     } catch (const std::exception &) {
                     }
@@ -385,15 +414,21 @@ int scene_main(int argc, char **argv) {
         }
         tiles.push_back(shrink(f.rgb, args.width, args.height, factor));
         if (progress) std::fprintf(stderr, "\r");
-        std::printf("%5zu %7.3f %5d | %5d %5d %5d %5d %4d %5d | %9lld %9lld %9s | %7.1f %7.1f %7.1f %7.1f %7.1f %7.1f %8.1f %8.1f %8.1f | %9llu | %5s %6s\n",
+        std::printf("%5zu %7.3f %5d | %5d %5d %5d %5d %4d %5d | %9lld %9lld %9s | %7.1f %7.1f "
+                    "%7.1f %7.1f %7.1f %7.1f %8.1f %8.1f %8.1f | %9llu | %5s %6s\n",
                     k, r.time, r.pose.surfaces_moved, r.volumes_built, r.reused, r.out_of_reach,
-                    r.out_of_view, r.culled, r.zfail, (long long)r.indices_built, (long long)r.indices_drawn,
-                    r.compared ? std::to_string(r.full_indices).c_str() : "-", kt(r.pose.ticks_skinning),
-                    kt(r.pose.ticks_planes), kt(r.ticks_facing), kt(r.ticks_culling), kt(r.ticks_volume),
-                    kt(r.ticks_depth), kt(r.ticks_stencil), kt(r.ticks_shading), kt(r.ticks_frame),
-                    (unsigned long long)r.stencil_pixels,
-                    !r.compared ? "-" : r.diff.identical() ? "yes" : "NO",
-                    !r.truth_done ? "-" : r.truth_off_boundary ? "FAIL" : "ok");
+                    r.out_of_view, r.culled, r.zfail, (long long)r.indices_built,
+                    (long long)r.indices_drawn,
+                    r.compared ? std::to_string(r.full_indices).c_str() : "-",
+                    kt(r.pose.ticks_skinning), kt(r.pose.ticks_planes), kt(r.ticks_facing),
+                    kt(r.ticks_culling), kt(r.ticks_volume), kt(r.ticks_depth), kt(r.ticks_stencil),
+                    kt(r.ticks_shading), kt(r.ticks_frame), (unsigned long long)r.stencil_pixels,
+                    !r.compared          ? "-"
+                    : r.diff.identical() ? "yes"
+                                         : "NO",
+                    !r.truth_done          ? "-"
+                    : r.truth_off_boundary ? "FAIL"
+                                           : "ok");
         std::fflush(stdout);
         rows.push_back(r);
     }
@@ -416,49 +451,62 @@ int scene_main(int argc, char **argv) {
         t.indices_built += r.indices_built, t.indices_drawn += r.indices_drawn;
         t.pose.ticks_skinning += r.pose.ticks_skinning, t.pose.ticks_planes += r.pose.ticks_planes;
         t.pose.planes_derived += r.pose.planes_derived;
-        t.ticks_facing += r.ticks_facing, t.ticks_culling += r.ticks_culling, t.ticks_volume += r.ticks_volume;
-        t.ticks_depth += r.ticks_depth, t.ticks_stencil += r.ticks_stencil, t.ticks_shading += r.ticks_shading;
+        t.ticks_facing += r.ticks_facing, t.ticks_culling += r.ticks_culling,
+            t.ticks_volume += r.ticks_volume;
+        t.ticks_depth += r.ticks_depth, t.ticks_stencil += r.ticks_stencil,
+            t.ticks_shading += r.ticks_shading;
         t.ticks_frame += r.ticks_frame, t.stencil_pixels += r.stencil_pixels;
-        full_ticks += r.ticks_full_frame, full_pixels += r.full_stencil_pixels, full_indices += r.full_indices;
+        full_ticks += r.ticks_full_frame, full_pixels += r.full_stencil_pixels,
+            full_indices += r.full_indices;
         t.truth_mismatches += r.truth_mismatches, t.truth_off_boundary += r.truth_off_boundary;
     }
     const double n = (double)rows.size();
-    std::printf("\ntotals over %zu frame(s): %d volumes built, %d reused, %d skipped out of reach, %d out of view; "
+    std::printf("\ntotals over %zu frame(s): %d volumes built, %d reused, %d skipped out of reach, "
+                "%d out of view; "
                 "culling ran on %d; %d drawn in z-fail; %d dark caps dropped\n",
-                rows.size(), t.volumes_built, t.reused, t.out_of_reach, t.out_of_view, t.culled, t.zfail,
-                t.dark_caps_dropped);
-    std::printf("per frame: %.2f ms (%.1f kt), skinning %.1f kt, planes %.1f kt (%.2f ticks per triangle over %lld "
+                rows.size(), t.volumes_built, t.reused, t.out_of_reach, t.out_of_view, t.culled,
+                t.zfail, t.dark_caps_dropped);
+    std::printf("per frame: %.2f ms (%.1f kt), skinning %.1f kt, planes %.1f kt (%.2f ticks per "
+                "triangle over %lld "
                 "triangles)\n",
                 ms(t.ticks_frame, hz) / n, kt(t.ticks_frame) / n, kt(t.pose.ticks_skinning) / n,
                 kt(t.pose.ticks_planes) / n,
-                t.pose.planes_derived ? (double)t.pose.ticks_planes / (double)t.pose.planes_derived : 0.0,
+                t.pose.planes_derived ? (double)t.pose.ticks_planes / (double)t.pose.planes_derived
+                                      : 0.0,
                 (long long)t.pose.planes_derived);
     if (args.check && !args.full) {
         bool all_same = true;
         for (const FrameRow &r : rows) all_same &= r.diff.identical();
-        std::printf("against the full frames: indices built %lld against %lld (%.1f%%), stencil pixels %llu "
-                    "against %llu (%.1f%%), frame %.2f ms against %.2f ms (%.2fx faster); pictures %s\n",
-                    (long long)t.indices_built, (long long)full_indices,
-                    full_indices ? 100.0 * (double)t.indices_built / (double)full_indices : 0.0,
-                    (unsigned long long)t.stencil_pixels, (unsigned long long)full_pixels,
-                    full_pixels ? 100.0 * (double)t.stencil_pixels / (double)full_pixels : 0.0,
-                    ms(t.ticks_frame, hz) / n, ms(full_ticks, hz) / n,
-                    t.ticks_frame ? (double)full_ticks / (double)t.ticks_frame : 0.0,
-                    all_same ? "identical (shaded bytes, and the shadow mask wherever the light reaches)"
-                             : "DIFFERENT");
-        std::printf("what each shortcut saved (indices the full frames built and these did not, each (light, "
+        std::printf(
+            "against the full frames: indices built %lld against %lld (%.1f%%), stencil pixels "
+            "%llu "
+            "against %llu (%.1f%%), frame %.2f ms against %.2f ms (%.2fx faster); pictures %s\n",
+            (long long)t.indices_built, (long long)full_indices,
+            full_indices ? 100.0 * (double)t.indices_built / (double)full_indices : 0.0,
+            (unsigned long long)t.stencil_pixels, (unsigned long long)full_pixels,
+            full_pixels ? 100.0 * (double)t.stencil_pixels / (double)full_pixels : 0.0,
+            ms(t.ticks_frame, hz) / n, ms(full_ticks, hz) / n,
+            t.ticks_frame ? (double)full_ticks / (double)t.ticks_frame : 0.0,
+            all_same ? "identical (shaded bytes, and the shadow mask wherever the light reaches)"
+                     : "DIFFERENT");
+        std::printf("what each shortcut saved (indices the full frames built and these did not, "
+                    "each (light, "
                     "surface) pair's\nto the first decision that applies):\n");
         for (int k = 0; k < kSavings; k++) {
-            std::printf("  %-24s %6d decisions %12lld indices (%.1f%% of the full frames')\n", kSavingNames[k],
-                        saved.decisions[k], (long long)saved.indices[k],
-                        full_indices ? 100.0 * (double)saved.indices[k] / (double)full_indices : 0.0);
+            std::printf("  %-24s %6d decisions %12lld indices (%.1f%% of the full frames')\n",
+                        kSavingNames[k], saved.decisions[k], (long long)saved.indices[k],
+                        full_indices ? 100.0 * (double)saved.indices[k] / (double)full_indices
+                                     : 0.0);
         }
         for (const FrameRow &r : rows) {
             if (r.diff.identical()) continue;
-            std::printf("  frame %d: %llu shaded bytes differ (first at pixel %llu), %llu mask pixels in reach "
+            std::printf("  frame %d: %llu shaded bytes differ (first at pixel %llu), %llu mask "
+                        "pixels in reach "
                         "(first at %llu)\n",
-                        r.index, (unsigned long long)r.diff.rgb_bytes, (unsigned long long)r.diff.first_rgb,
-                        (unsigned long long)r.diff.mask_in_reach, (unsigned long long)r.diff.first_mask);
+                        r.index, (unsigned long long)r.diff.rgb_bytes,
+                        (unsigned long long)r.diff.first_rgb,
+                        (unsigned long long)r.diff.mask_in_reach,
+                        (unsigned long long)r.diff.first_mask);
         }
     }
     if (args.truth) {
@@ -466,7 +514,8 @@ int scene_main(int argc, char **argv) {
                     (unsigned long long)t.truth_mismatches, t.truth_off_boundary ? "NO" : "yes");
         for (const std::string &n : truth_notes) std::printf("  %s\n", n.c_str());
     }
-    std::printf("images: %s/frame_000.png .. frame_%03zu.png, contact.png\n", args.out_dir.c_str(), rows.size() - 1);
+    std::printf("images: %s/frame_000.png .. frame_%03zu.png, contact.png\n", args.out_dir.c_str(),
+                rows.size() - 1);
 
     if (!args.json_path.empty()) {
         svbench::JsonWriter j;
@@ -515,13 +564,16 @@ int scene_main(int argc, char **argv) {
             j.key("stencil"), j.value((unsigned long long)r.ticks_stencil);
             j.key("shading"), j.value((unsigned long long)r.ticks_shading);
             j.key("frame"), j.value((unsigned long long)r.ticks_frame);
-            j.key("full_frame"), r.compared ? j.value((unsigned long long)r.ticks_full_frame) : j.null();
+            j.key("full_frame"),
+                r.compared ? j.value((unsigned long long)r.ticks_full_frame) : j.null();
             j.end_object();
             j.key("planes_derived"), j.value((long long)r.pose.planes_derived);
             j.key("stencil_pixels"), j.value((unsigned long long)r.stencil_pixels);
             j.key("identical_to_full"), r.compared ? j.value(r.diff.identical()) : j.null();
-            j.key("differing_bytes"), r.compared ? j.value((unsigned long long)r.diff.rgb_bytes) : j.null();
-            j.key("truth_off_boundary"), r.truth_done ? j.value((unsigned long long)r.truth_off_boundary) : j.null();
+            j.key("differing_bytes"),
+                r.compared ? j.value((unsigned long long)r.diff.rgb_bytes) : j.null();
+            j.key("truth_off_boundary"),
+                r.truth_done ? j.value((unsigned long long)r.truth_off_boundary) : j.null();
             j.end_object();
         }
         j.end_array();
@@ -541,22 +593,29 @@ int scene_main(int argc, char **argv) {
         j.end_object();
         FILE *fj = args.json_path == "-" ? stdout : std::fopen(args.json_path.c_str(), "w");
         if (!fj) {
-            std::fprintf(stderr, "shadowvol scene: --json %s: cannot write\n", args.json_path.c_str());
+            std::fprintf(stderr, "shadowvol scene: --json %s: cannot write\n",
+                         args.json_path.c_str());
             return kExitUsage;
         }
         const std::string &doc = j.str();
-        if (std::fwrite(doc.data(), 1, doc.size(), fj) != doc.size() || (fj != stdout && std::fclose(fj) != 0)) {
-            std::fprintf(stderr, "shadowvol scene: --json %s: cannot write\n", args.json_path.c_str());
+        if (std::fwrite(doc.data(), 1, doc.size(), fj) != doc.size() ||
+            (fj != stdout && std::fclose(fj) != 0)) {
+            std::fprintf(stderr, "shadowvol scene: --json %s: cannot write\n",
+                         args.json_path.c_str());
             return kExitUsage;
         }
     }
-    std::printf("%s\n", failed ? "FAILED: a frame differs from the full frame where the light reaches, or from the truth "
-                                 "off a shadow boundary"
-                               : args.check && !args.full && args.truth
-                                     ? "PASSED: every frame equals the full frame and agrees with the truth"
-                                 : args.check && !args.full ? "PASSED: every frame equals the full frame (truth not cast)"
-                                 : args.truth ? "PASSED: every frame agrees with the truth (not compared with a full frame)"
-                                              : "done (nothing checked: --no-check/--full and --no-truth)");
+    std::printf("%s\n",
+                failed ? "FAILED: a frame differs from the full frame where the light reaches, or "
+                         "from the truth "
+                         "off a shadow boundary"
+                : args.check && !args.full && args.truth
+                    ? "PASSED: every frame equals the full frame and agrees with the truth"
+                : args.check && !args.full
+                    ? "PASSED: every frame equals the full frame (truth not cast)"
+                : args.truth
+                    ? "PASSED: every frame agrees with the truth (not compared with a full frame)"
+                    : "done (nothing checked: --no-check/--full and --no-truth)");
     return failed ? kExitMismatch : 0;
 }
 

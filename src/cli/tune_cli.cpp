@@ -34,25 +34,26 @@
 namespace svcli {
 
 void tune_usage(FILE *out) {
-    std::fprintf(out,
-                 "usage: shadowvol tune [MODEL.glb|MODEL.gltf] [--class N]... [--wisdom FILE] [--dry-run]\n"
-                 "  Times every variant of every routine this CPU runs on a mesh of each size\n"
-                 "  class (0: under 4096 triangles, 1: under 65536, 2: under 524288, 3: larger),\n"
-                 "  checks every call against c_ref, and saves the fastest per routine and class\n"
-                 "  as this CPU's plans (sv_plan_for reads them; see docs/BENCHMARK.md).\n"
-                 "  Without MODEL a class is measured on the generated character at %d, %d,\n"
-                 "  %d and %d triangles; with MODEL on the model's largest surface in each\n"
-                 "  class it has (its own shape and silhouette share), and only those classes.\n"
-                 "  --class N       measure class N only (repeatable; default: all four, or\n"
-                 "                  those of MODEL's surfaces)\n"
-                 "  --wisdom FILE   the wisdom file (default: $SV_WISDOM, else\n"
-                 "                  $XDG_CACHE_HOME/shadowvol/wisdom, else ~/.cache/shadowvol/wisdom)\n"
-                 "  --dry-run       measure and print, save nothing\n"
-                 "exit status: 0 done, 1 a variant disagreed with c_ref, 2 bad arguments,\n"
-                 "3 the wisdom file could not be written, or MODEL could not be loaded or has\n"
-                 "no surface in the classes asked for\n",
-                 sv_size_class_triangles(0),
-                 sv_size_class_triangles(1), sv_size_class_triangles(2), sv_size_class_triangles(3));
+    std::fprintf(
+        out,
+        "usage: shadowvol tune [MODEL.glb|MODEL.gltf] [--class N]... [--wisdom FILE] [--dry-run]\n"
+        "  Times every variant of every routine this CPU runs on a mesh of each size\n"
+        "  class (0: under 4096 triangles, 1: under 65536, 2: under 524288, 3: larger),\n"
+        "  checks every call against c_ref, and saves the fastest per routine and class\n"
+        "  as this CPU's plans (sv_plan_for reads them; see docs/BENCHMARK.md).\n"
+        "  Without MODEL a class is measured on the generated character at %d, %d,\n"
+        "  %d and %d triangles; with MODEL on the model's largest surface in each\n"
+        "  class it has (its own shape and silhouette share), and only those classes.\n"
+        "  --class N       measure class N only (repeatable; default: all four, or\n"
+        "                  those of MODEL's surfaces)\n"
+        "  --wisdom FILE   the wisdom file (default: $SV_WISDOM, else\n"
+        "                  $XDG_CACHE_HOME/shadowvol/wisdom, else ~/.cache/shadowvol/wisdom)\n"
+        "  --dry-run       measure and print, save nothing\n"
+        "exit status: 0 done, 1 a variant disagreed with c_ref, 2 bad arguments,\n"
+        "3 the wisdom file could not be written, or MODEL could not be loaded or has\n"
+        "no surface in the classes asked for\n",
+        sv_size_class_triangles(0), sv_size_class_triangles(1), sv_size_class_triangles(2),
+        sv_size_class_triangles(3));
 }
 
 namespace {
@@ -60,7 +61,7 @@ namespace {
 /* A prepared surface as the planner measures it (positions as Vec4, in
  * POSITIONS, which must outlive the view). */
 sv_surface view_of(const sv::PreparedSurface &p, const std::vector<Vec4> &positions) {
-    return sv_surface{p.planes.data(), p.indices.data(), p.num_indices(), p.sil_edges.data(),
+    return sv_surface{p.planes.data(),   p.indices.data(), p.num_indices(),  p.sil_edges.data(),
                       p.num_sil_edges(), positions.data(), p.num_vertices(), sv::surface_bounds(p)};
 }
 
@@ -82,7 +83,8 @@ void print_class(int c, const std::string &measuredOn, const std::vector<sv_plan
             const bool is_static = std::string(x.variant) == stat;
             std::printf("%-22s %-14s %12.0f %9.2fx  %s%s\n", sv_routine_name((sv_routine)r),
                         x.variant, x.ticks, x.ticks > 0 ? stat_ticks / x.ticks : 0.0,
-                        chosen ? "<- planned" : "", is_static ? (chosen ? ", static" : "(static)") : "");
+                        chosen ? "<- planned" : "",
+                        is_static ? (chosen ? ", static" : "(static)") : "");
         }
     }
 }
@@ -113,7 +115,8 @@ int tune_main(int argc, char **argv) {
             }
         }
     } catch (const UsageError &e) {
-        std::fprintf(stderr, "shadowvol tune: %s\nTry 'shadowvol tune --help'.\n", e.message.c_str());
+        std::fprintf(stderr, "shadowvol tune: %s\nTry 'shadowvol tune --help'.\n",
+                     e.message.c_str());
         return 2;
     }
     /* With a model: per class, its largest surface there. */
@@ -124,7 +127,8 @@ int tune_main(int argc, char **argv) {
         for (const Surface &s : loaded.surfaces) {
             if (s.prepared.num_triangles() == 0) continue; /* nothing to time */
             const int c = sv_size_class(s.prepared.num_triangles());
-            if (!on[(size_t)c] || s.prepared.num_triangles() > on[(size_t)c]->prepared.num_triangles()) {
+            if (!on[(size_t)c] ||
+                s.prepared.num_triangles() > on[(size_t)c]->prepared.num_triangles()) {
                 on[(size_t)c] = &s;
             }
         }
@@ -135,7 +139,8 @@ int tune_main(int argc, char **argv) {
         }
         for (int c : classes) {
             if (!on[(size_t)c]) {
-                std::fprintf(stderr, "shadowvol tune: %s has no surface in class %d\n", model.c_str(), c);
+                std::fprintf(stderr, "shadowvol tune: %s has no surface in class %d\n",
+                             model.c_str(), c);
                 return 3;
             }
         }
@@ -150,12 +155,14 @@ int tune_main(int argc, char **argv) {
     char buf[1024];
     if (path.empty()) path = sv_wisdom_default_path(buf, sizeof buf);
     if (path.empty() && !dry) {
-        std::fprintf(stderr, "shadowvol tune: no wisdom file (set SV_WISDOM or HOME, or give --wisdom)\n");
+        std::fprintf(stderr,
+                     "shadowvol tune: no wisdom file (set SV_WISDOM or HOME, or give --wisdom)\n");
         return 3;
     }
     char key[256];
     std::printf("cpu       %s\n", sv_cpu_model_key(key, sizeof key));
-    std::printf("unit      median TSC ticks per call, 8 moving lights, each call checked against c_ref\n");
+    std::printf(
+        "unit      median TSC ticks per call, 8 moving lights, each call checked against c_ref\n");
     for (int c : classes) {
         std::vector<sv_plan_timing> t(256);
         std::string measuredOn;
@@ -172,13 +179,17 @@ int tune_main(int argc, char **argv) {
                          " triangles";
         }
         if (n == -2) { /* a prepared surface always meets the contracts */
-            std::fprintf(stderr, "shadowvol tune: class %d: the surface breaks a contract (a bug: "
-                                 "please report it)\n", c);
+            std::fprintf(stderr,
+                         "shadowvol tune: class %d: the surface breaks a contract (a bug: "
+                         "please report it)\n",
+                         c);
             return 1;
         }
         if (n < 0) {
-            std::fprintf(stderr, "shadowvol tune: class %d: a variant's result differed from c_ref's; "
-                                 "nothing saved (a bug: please report it)\n", c);
+            std::fprintf(stderr,
+                         "shadowvol tune: class %d: a variant's result differed from c_ref's; "
+                         "nothing saved (a bug: please report it)\n",
+                         c);
             return 1;
         }
         t.resize((size_t)std::min(n, (int)t.size()));

@@ -20,10 +20,13 @@ const char *sv_status_string(int status) {
     case SV_E_INDEX_RANGE: return "a triangle or vertex number is outside its array";
     case SV_E_ODD_VERTEX: return "a SilEdge vertex number is odd (they must be doubled)";
     case SV_E_CAPACITY: return "the output buffer is smaller than the documented bound";
-    case SV_E_OVERFLOW: return "more than INT_MAX indices (in the input, 3 * numTriangles, or in the output)";
+    case SV_E_OVERFLOW:
+        return "more than INT_MAX indices (in the input, 3 * numTriangles, or in the output)";
     case SV_E_CPU: return "this CPU lacks the variant's instruction set";
     case SV_E_FACING_SENTINEL: return "facing[numTriangles] (the dangling edges' byte) is not 1";
-    case SV_E_CULL_BITS: return "a cull byte has bit 7 set, which sse2_paper's CountFacingCull does not honour (erratum D-5)";
+    case SV_E_CULL_BITS:
+        return "a cull byte has bit 7 set, which sse2_paper's CountFacingCull does not honour "
+               "(erratum D-5)";
     default: return status >= 0 ? "ok" : "unknown error";
     }
 }
@@ -105,8 +108,8 @@ int sv_check_sil_edges(const SilEdge *edges, int numEdges, int numTriangles, int
     int i;
     for (i = 0; i < numEdges; i++) {
         const SilEdge *e = &edges[i];
-        if (e->p1 < 0 || e->p1 > numTriangles || e->p2 < 0 || e->p2 > numTriangles ||
-            e->v1 < 0 || e->v2 < 0) {
+        if (e->p1 < 0 || e->p1 > numTriangles || e->p2 < 0 || e->p2 > numTriangles || e->v1 < 0 ||
+            e->v2 < 0) {
             return SV_E_INDEX_RANGE;
         }
         if (numVerts >= 0 && (e->v1 / 2 >= numVerts || e->v2 / 2 >= numVerts)) {
@@ -171,8 +174,7 @@ int sv_create_cap_triangles_checked(const sv_variant *v, int *shadowIndices, siz
     if (numIndices > INT_MAX / 2) return SV_E_OVERFLOW;
     if (numVerts > (1 << 30)) return SV_E_INDEX_RANGE;
     if (numIndices > 0 && (!facing || !indices || !shadowIndices)) return SV_E_NULL;
-    if (!aligned(indices, v->align_indices) ||
-        !aligned(shadowIndices, v->align_shadow_indices)) {
+    if (!aligned(indices, v->align_indices) || !aligned(shadowIndices, v->align_shadow_indices)) {
         return SV_E_ALIGNMENT;
     }
     if (capacity < 2u * (size_t)numIndices) return SV_E_CAPACITY;
@@ -183,8 +185,8 @@ int sv_create_cap_triangles_checked(const sv_variant *v, int *shadowIndices, siz
 
 int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, size_t capacity,
                                     const int *indices, int numIndices, int numVerts,
-                                    const SilEdge *silEdges, int numSilEdges,
-                                    uint8_t *facing, const uint8_t *cullBits) {
+                                    const SilEdge *silEdges, int numSilEdges, uint8_t *facing,
+                                    const uint8_t *cullBits) {
     int s = check_variant(v);
     int numTriangles;
     if (s) return s;
@@ -198,8 +200,7 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
     if (!facing || ((numIndices > 0 || numSilEdges > 0) && !shadowIndices)) return SV_E_NULL;
     if ((numIndices > 0 && !indices) || (numSilEdges > 0 && !silEdges)) return SV_E_NULL;
     if (capacity < sv_shadow_volume_capacity(numIndices, numSilEdges)) return SV_E_CAPACITY;
-    if ((!cullBits && !aligned(facing, v->align_facing)) ||
-        !aligned(indices, v->align_indices) ||
+    if ((!cullBits && !aligned(facing, v->align_facing)) || !aligned(indices, v->align_indices) ||
         !aligned(shadowIndices, v->align_shadow_indices)) {
         return SV_E_ALIGNMENT;
     }
@@ -208,6 +209,6 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
     if ((s = sv_check_vertex_indices(indices, numIndices, numVerts))) return s;
     if ((s = sv_check_sil_edges(silEdges, numSilEdges, numTriangles, numVerts))) return s;
     if (cullBits && numTriangles > 0 && (s = check_cull_bits(v, cullBits, numVerts))) return s;
-    return sv_create_shadow_volume(v, shadowIndices, indices, numIndices, silEdges,
-                                   numSilEdges, facing, cullBits);
+    return sv_create_shadow_volume(v, shadowIndices, indices, numIndices, silEdges, numSilEdges,
+                                   facing, cullBits);
 }

@@ -63,7 +63,7 @@ static unsigned detect(void) {
         return isa;
     }
     const unsigned long long xcr0 = xgetbv0();
-    const int os_ymm = (xcr0 & 0x6) == 0x6;    /* SSE + AVX state */
+    const int os_ymm = (xcr0 & 0x6) == 0x6;   /* SSE + AVX state */
     const int os_zmm = (xcr0 & 0xE6) == 0xE6; /* + opmask, ZMM_Hi256, Hi16_ZMM */
     __cpuid_count(7, 0, a, b, c, d);
     const unsigned avx2 = (b >> 5) & 1, bmi1 = (b >> 3) & 1, bmi2 = (b >> 8) & 1;
@@ -97,8 +97,8 @@ static const struct {
     {"c", SV_ISA_NONE},
     {"sse2", SV_ISA_SSE2},
     {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2},
-    {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512 | SV_ISA_AVX512_VBMI |
-                   SV_ISA_AVX512_VBMI2},
+    {"avx512",
+     SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512 | SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2},
 };
 #define NUM_LEVELS (int)(sizeof levels / sizeof levels[0])
 #define NO_LIMIT (-1)
@@ -174,8 +174,8 @@ const char *sv_isa_level_name(void) {
     for (i = NUM_LEVELS - 1; i > 0; i--) {
         /* The highest level all of whose required bits are present (VBMI
          * and VBMI2 are extras, not required for "avx512"). */
-        const unsigned need =
-            levels[i].mask & ~(unsigned)(SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2);
+        const unsigned need = levels[i].mask &
+                              ~(unsigned)(SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2);
         if ((isa & need) == need) {
             return levels[i].name;
         }

@@ -11,7 +11,6 @@
 
 /* Appendix B's first half: bit i set when the surface box is entirely in
  * front of light plane i (src/core/ref/reference_facing_cull.c). */
-int sv_cull_front_bits(const Bounds *surfaceBounds,
-                       const Plane lightPlanes[SV_NUM_LIGHT_PLANES]);
+int sv_cull_front_bits(const Bounds *surfaceBounds, const Plane lightPlanes[SV_NUM_LIGHT_PLANES]);
 
 #endif

@@ -14,10 +14,10 @@
 
 #include <stdint.h>
 
-#define SV_MB1(m)                                                                        \
-    ((uint64_t)((m) & 1) | (uint64_t)((m) >> 1 & 1) << 8 | (uint64_t)((m) >> 2 & 1) << 16 | \
-     (uint64_t)((m) >> 3 & 1) << 24 | (uint64_t)((m) >> 4 & 1) << 32 |                    \
-     (uint64_t)((m) >> 5 & 1) << 40 | (uint64_t)((m) >> 6 & 1) << 48 |                    \
+#define SV_MB1(m)                                                                                  \
+    ((uint64_t)((m)&1) | (uint64_t)((m) >> 1 & 1) << 8 | (uint64_t)((m) >> 2 & 1) << 16 |          \
+     (uint64_t)((m) >> 3 & 1) << 24 | (uint64_t)((m) >> 4 & 1) << 32 |                             \
+     (uint64_t)((m) >> 5 & 1) << 40 | (uint64_t)((m) >> 6 & 1) << 48 |                             \
      (uint64_t)((m) >> 7 & 1) << 56)
 #define SV_MB4(m) SV_MB1(m), SV_MB1((m) + 1), SV_MB1((m) + 2), SV_MB1((m) + 3)
 #define SV_MB16(m) SV_MB4(m), SV_MB4((m) + 4), SV_MB4((m) + 8), SV_MB4((m) + 12)

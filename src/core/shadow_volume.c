@@ -8,9 +8,8 @@
  */
 #include "shadowvol.h"
 
-int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices,
-                            const int *indices, int numIndices,
-                            const SilEdge *silEdges, int numSilEdges,
+int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices, const int *indices,
+                            int numIndices, const SilEdge *silEdges, int numSilEdges,
                             uint8_t *facing, const uint8_t *cullBits) {
     int numShadowingTriangles, numSilhouetteIndices, numCapIndices;
     int numTriangles = numIndices / 3;
@@ -22,8 +21,8 @@ int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices,
         /* count the number of shadowing triangles and make all triangles
          * that are outside the light frustum "facing" so they won't cast
          * shadows */
-        numShadowingTriangles =
-            numTriangles - variant->count_facing_cull(facing, numTriangles, indices, cullBits);
+        numShadowingTriangles = numTriangles -
+                                variant->count_facing_cull(facing, numTriangles, indices, cullBits);
     }
 
     if (!numShadowingTriangles) {
@@ -33,12 +32,12 @@ int sv_create_shadow_volume(const sv_variant *variant, int *shadowIndices,
     }
 
     /* create triangles along silhouette planes */
-    numSilhouetteIndices =
-        variant->create_sil_triangles(shadowIndices, facing, silEdges, numSilEdges);
+    numSilhouetteIndices = variant->create_sil_triangles(shadowIndices, facing, silEdges,
+                                                         numSilEdges);
 
     /* put some triangles on the model and some on the distant projection */
-    numCapIndices = variant->create_cap_triangles(shadowIndices + numSilhouetteIndices,
-                                                  facing, indices, numIndices);
+    numCapIndices = variant->create_cap_triangles(shadowIndices + numSilhouetteIndices, facing,
+                                                  indices, numIndices);
 
     return numSilhouetteIndices + numCapIndices;
 }

@@ -18,15 +18,13 @@
 static const sv_variant variants[] = {
     {"c_ref", SV_ISA_NONE, sv_count_facing_c_ref, sv_count_facing_cull_c_ref,
      sv_create_sil_triangles_c_ref, sv_create_cap_triangles_c_ref, 1, 1, 1},
-    {"c_branchless", SV_ISA_NONE, sv_count_facing_c_branchless,
-     sv_count_facing_cull_c_branchless, sv_create_sil_triangles_c_branchless,
-     sv_create_cap_triangles_c_branchless, 1, 1, 1},
+    {"c_branchless", SV_ISA_NONE, sv_count_facing_c_branchless, sv_count_facing_cull_c_branchless,
+     sv_create_sil_triangles_c_branchless, sv_create_cap_triangles_c_branchless, 1, 1, 1},
 #if defined(SV_HAVE_ASM_SSE2)
     /* Alignments from the listings: movdqa on facing (App. C) and on
      * indices (App. F); the output pointer kept as ptr / 8 (App. E, F). */
-    {"sse2_paper", SV_ISA_SSE2, sv_count_facing_sse2_paper,
-     sv_count_facing_cull_sse2_paper, sv_create_sil_triangles_sse2_paper,
-     sv_create_cap_triangles_sse2_paper, 16, 16, 8},
+    {"sse2_paper", SV_ISA_SSE2, sv_count_facing_sse2_paper, sv_count_facing_cull_sse2_paper,
+     sv_create_sil_triangles_sse2_paper, sv_create_cap_triangles_sse2_paper, 16, 16, 8},
 #endif
 #if defined(SV_HAVE_ASM_AVX2)
     /* x86-64-v3, no alignment: unaligned 32-byte loads, left-packing by
@@ -39,8 +37,8 @@ static const sv_variant variants[] = {
      * bits looked up in registers (sil), a list of the non-facing
      * triangles (cull), masked tails; no alignment needed anywhere. */
     {"avx512", SV_ISA_AVX512 | SV_ISA_AVX2 | SV_ISA_SSE2, sv_count_facing_avx512,
-     sv_count_facing_cull_avx512, sv_create_sil_triangles_avx512,
-     sv_create_cap_triangles_avx512, 1, 1, 1},
+     sv_count_facing_cull_avx512, sv_create_sil_triangles_avx512, sv_create_cap_triangles_avx512, 1,
+     1, 1},
     /* The AVX-512 kernels, with CountFacingCull looking the cull bytes up
      * in registers by vpermi2b (AVX512_VBMI: Ice Lake, Zen 4 and later). */
     {"avx512vbmi", SV_ISA_AVX512_VBMI | SV_ISA_AVX512 | SV_ISA_AVX2 | SV_ISA_SSE2,

@@ -153,8 +153,8 @@ void Loader::check_sparse_ranges(const Accessor &a, const std::string &who) cons
 
 /* Writes a sparse accessor's values over the base values (WRITE false:
  * only the checks of the ranges). */
-void Loader::apply_sparse(const Accessor &a, const std::string &who,
-                          std::vector<double> &values, bool write) const {
+void Loader::apply_sparse(const Accessor &a, const std::string &who, std::vector<double> &values,
+                          bool write) const {
     const std::string sparse_who = who + " (sparse)";
     const int sparse_count = a.sparse.count;
     if (sparse_count < 1 || std::size_t(sparse_count) > a.count) {
@@ -173,12 +173,14 @@ void Loader::apply_sparse(const Accessor &a, const std::string &who,
     const std::size_t components = components_in(a.type);
     const std::size_t value_size = components * component_size(a.componentType);
     std::size_t index_stride, value_stride;
-    const unsigned char *index_bytes =
-        element_span(a.sparse.indices.bufferView, std::size_t(a.sparse.indices.byteOffset), count,
-                     component_size(index_type), false, sparse_who + " indices", &index_stride);
-    const unsigned char *value_bytes =
-        element_span(a.sparse.values.bufferView, std::size_t(a.sparse.values.byteOffset), count,
-                     value_size, false, sparse_who + " values", &value_stride);
+    const unsigned char *index_bytes = element_span(a.sparse.indices.bufferView,
+                                                    std::size_t(a.sparse.indices.byteOffset), count,
+                                                    component_size(index_type), false,
+                                                    sparse_who + " indices", &index_stride);
+    const unsigned char *value_bytes = element_span(a.sparse.values.bufferView,
+                                                    std::size_t(a.sparse.values.byteOffset), count,
+                                                    value_size, false, sparse_who + " values",
+                                                    &value_stride);
     if (!write) {
         return;
     }
@@ -192,8 +194,9 @@ void Loader::apply_sparse(const Accessor &a, const std::string &who,
         }
         const std::size_t element = static_cast<std::size_t>(target);
         for (std::size_t c = 0; c < components; c++) {
-            values[element * components + c] = read_component(
-                value_bytes + i * value_stride + c * csize, a.componentType, a.normalized);
+            values[element * components + c] = read_component(value_bytes + i * value_stride +
+                                                                  c * csize,
+                                                              a.componentType, a.normalized);
         }
     }
 }
@@ -255,8 +258,8 @@ std::vector<double> Loader::decode(int index, const AccessorFormat &format,
         for (std::size_t e = 0; e < a.count; e++) {
             const unsigned char *element = first + e * stride;
             for (std::size_t c = 0; c < components; c++) {
-                values[e * components + c] =
-                    read_component(element + c * csize, a.componentType, a.normalized);
+                values[e * components + c] = read_component(element + c * csize, a.componentType,
+                                                            a.normalized);
             }
         }
     }

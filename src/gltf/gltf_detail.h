@@ -73,10 +73,10 @@ struct ComponentRule {
 };
 
 struct AccessorFormat {
-    int type;                               /* TINYGLTF_TYPE_* */
-    std::array<ComponentRule, 3> allowed;   /* the first num_allowed count */
+    int type;                             /* TINYGLTF_TYPE_* */
+    std::array<ComponentRule, 3> allowed; /* the first num_allowed count */
     int num_allowed;
-    const char *expected;                   /* for the message */
+    const char *expected; /* for the message */
 };
 
 constexpr int kU8 = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
@@ -85,19 +85,23 @@ constexpr int kU32 = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 constexpr int kF32 = TINYGLTF_COMPONENT_TYPE_FLOAT;
 
 const AccessorFormat kPositionFormat = {
-    TINYGLTF_TYPE_VEC3, {{{kF32, false}}}, 1,
+    TINYGLTF_TYPE_VEC3,
+    {{{kF32, false}}},
+    1,
     "FLOAT VEC3 (quantized positions, KHR_mesh_quantization, are not supported)"};
-const AccessorFormat kIndexFormat = {
-    TINYGLTF_TYPE_SCALAR, {{{kU8, false}, {kU16, false}, {kU32, false}}}, 3,
-    "SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"};
-const AccessorFormat kJointsFormat = {
-    TINYGLTF_TYPE_VEC4, {{{kU8, false}, {kU16, false}}}, 2,
-    "VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT"};
-const AccessorFormat kWeightsFormat = {
-    TINYGLTF_TYPE_VEC4, {{{kF32, false}, {kU8, true}, {kU16, true}}}, 3,
-    "VEC4 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT"};
-const AccessorFormat kInverseBindFormat = {
-    TINYGLTF_TYPE_MAT4, {{{kF32, false}}}, 1, "MAT4 FLOAT"};
+const AccessorFormat kIndexFormat = {TINYGLTF_TYPE_SCALAR,
+                                     {{{kU8, false}, {kU16, false}, {kU32, false}}},
+                                     3,
+                                     "SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"};
+const AccessorFormat kJointsFormat = {TINYGLTF_TYPE_VEC4,
+                                      {{{kU8, false}, {kU16, false}}},
+                                      2,
+                                      "VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT"};
+const AccessorFormat kWeightsFormat = {TINYGLTF_TYPE_VEC4,
+                                       {{{kF32, false}, {kU8, true}, {kU16, true}}},
+                                       3,
+                                       "VEC4 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT"};
+const AccessorFormat kInverseBindFormat = {TINYGLTF_TYPE_MAT4, {{{kF32, false}}}, 1, "MAT4 FLOAT"};
 
 // --------------------------------------------- file level (gltf_file.cpp) --
 
@@ -117,8 +121,8 @@ struct Instance {
 /* A surface before placement: every triangle primitive of one mesh
  * appended, positions still in mesh space. */
 struct MeshGeometry {
-    std::vector<float> positions;         /* xyz per vertex, mesh space */
-    std::vector<uint32_t> indices;        /* triangles, surface numbering */
+    std::vector<float> positions;  /* xyz per vertex, mesh space */
+    std::vector<uint32_t> indices; /* triangles, surface numbering */
     /* For messages: the first surface vertex of each appended primitive,
      * with that primitive's index in the mesh. */
     std::vector<std::pair<std::size_t, int>> primitive_starts;

@@ -93,8 +93,8 @@ uint32_t check_glb_layout(const std::string &path, const std::vector<unsigned ch
                           std::vector<std::string> &notes) {
     const std::size_t size = bytes.size();
     if (size < 12) {
-        fail_file(path, "truncated GLB: the header needs 12 bytes, the file has " +
-                            std::to_string(size));
+        fail_file(path,
+                  "truncated GLB: the header needs 12 bytes, the file has " + std::to_string(size));
     }
     const uint32_t version = read_u32le(bytes.data() + 4);
     const uint32_t length = read_u32le(bytes.data() + 8);
@@ -172,8 +172,7 @@ std::string trimmed(std::string s) {
 
 /* For options.external_files = false: no file exists. */
 bool no_file_exists(const std::string &, void *) { return false; }
-bool no_file_read(std::vector<unsigned char> *, std::string *err, const std::string &name,
-                  void *) {
+bool no_file_read(std::vector<unsigned char> *, std::string *err, const std::string &name, void *) {
     if (err) *err += "external file " + name + " refused (external files are off)\n";
     return false;
 }

@@ -40,9 +40,7 @@ Mat4 multiply(const Mat4 &a, const Mat4 &b) {
     return r;
 }
 
-bool is_affine(const Mat4 &m) {
-    return m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0;
-}
+bool is_affine(const Mat4 &m) { return m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0; }
 
 bool all_finite(const double *v, std::size_t n) {
     for (std::size_t i = 0; i < n; i++) {

@@ -49,8 +49,8 @@ using Mat4 = std::array<double, 16>;
  * and lines skipped with a note, strips and fans converted, morph targets
  * noted and ignored), positions in mesh space. */
 struct MeshData {
-    std::vector<float> positions;   /* xyz per vertex */
-    std::vector<uint32_t> indices;  /* 3 per triangle, < vertex count */
+    std::vector<float> positions;  /* xyz per vertex */
+    std::vector<uint32_t> indices; /* 3 per triangle, < vertex count */
     int primitives = 0;
     /* Skinned only (skin >= 0): influence sets used by some primitive (1:
      * JOINTS_0/WEIGHTS_0 only, 2: also JOINTS_1/WEIGHTS_1), and 8 joints
@@ -84,8 +84,8 @@ public:
     void note(const std::string &line); /* once per distinct line */
     [[noreturn]] void fail(const std::string &problem) const;
 
-    std::string node_label(int node) const;  /* "node 3 'name'" */
-    std::string mesh_label(int mesh) const;  /* "mesh 0 'name'" */
+    std::string node_label(int node) const; /* "node 3 'name'" */
+    std::string mesh_label(int mesh) const; /* "mesh 0 'name'" */
 
     /* Validates the node graph as load_gltf does (mesh and skin indices,
      * children, one parent, no cycle, matrix or TRS well formed and finite,

@@ -177,7 +177,7 @@ std::size_t saturating_add(std::size_t a, std::size_t b) {
  * store or place geometry in a way this loader does not read. */
 bool is_geometry_neutral_extension(const std::string &name) {
     static const char *const kPrefixes[] = {"KHR_materials_", "KHR_texture_", "EXT_texture_",
-                                            "MSFT_texture_", "KHR_lights_", "KHR_technique",
+                                            "MSFT_texture_",  "KHR_lights_",  "KHR_technique",
                                             "EXT_lights_"};
     for (const char *prefix : kPrefixes) {
         if (name.compare(0, std::strlen(prefix), prefix) == 0) {
@@ -251,8 +251,9 @@ void Loader::check_sizes(const std::vector<Instance> &instances) const {
                     continue;
                 }
                 const auto position = prim.attributes.find("POSITION");
-                const std::size_t pv =
-                    position == prim.attributes.end() ? 0 : count_of(position->second);
+                const std::size_t pv = position == prim.attributes.end()
+                                           ? 0
+                                           : count_of(position->second);
                 const std::size_t corners = prim.indices >= 0 ? count_of(prim.indices) : pv;
                 v = saturating_add(v, pv);
                 t = saturating_add(t, mode == TINYGLTF_MODE_TRIANGLES ? corners / 3
@@ -271,8 +272,8 @@ void Loader::check_sizes(const std::vector<Instance> &instances) const {
         const double gb =
             (kBytesPerTriangle * double(triangles) + kBytesPerVertex * double(vertices)) / 1e9;
         char estimate[96];
-        std::snprintf(estimate, sizeof estimate, "about %.1f GB and %.0f s to load and prepare",
-                      gb, kSecondsPerTriangle * double(triangles));
+        std::snprintf(estimate, sizeof estimate, "about %.1f GB and %.0f s to load and prepare", gb,
+                      kSecondsPerTriangle * double(triangles));
         fail("the scene asks for " + std::to_string(triangles) + " triangles and " +
              std::to_string(vertices) + " vertices in " + std::to_string(instances.size()) +
              " mesh instance(s) (" + estimate + "), more than the limit of " +
@@ -338,9 +339,10 @@ std::string printable_text(const std::string &s, std::size_t max_bytes) {
         }
         /* A well-formed UTF-8 sequence (RFC 3629: no overlong form, no
          * surrogate, at most U+10FFFF), copied whole; else one escaped byte. */
-        std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3
-                          : c >= 0xF0 && c <= 0xF4                          ? 4
-                                                                            : 0;
+        std::size_t len = c >= 0xC2 && c <= 0xDF   ? 2
+                          : c >= 0xE0 && c <= 0xEF ? 3
+                          : c >= 0xF0 && c <= 0xF4 ? 4
+                                                   : 0;
         bool ok = len > 0 && i + len <= n;
         for (std::size_t k = 1; ok && k < len; k++) {
             ok = (p[i + k] & 0xC0) == 0x80;
@@ -377,9 +379,8 @@ GltfModel load_gltf_memory(const unsigned char *bytes, std::size_t size, const s
                            const GltfLoadOptions &options) {
     GltfModel out;
     out.path = name;
-    const tinygltf::Model gltf =
-        parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size), options.external_files,
-                   out.notes);
+    const tinygltf::Model gltf = parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size),
+                                            options.external_files, out.notes);
     Loader(name, gltf, options, out).run();
     return out;
 }

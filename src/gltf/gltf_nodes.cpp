@@ -98,8 +98,8 @@ void Loader::compute_world_matrices() {
         }
         for (int child : node.children) {
             if (child < 0 || child >= num_nodes) {
-                fail(node_label(n) + ": child node " + std::to_string(child) +
-                     " does not exist (" + std::to_string(num_nodes) + " nodes)");
+                fail(node_label(n) + ": child node " + std::to_string(child) + " does not exist (" +
+                     std::to_string(num_nodes) + " nodes)");
             }
             if (child == n) {
                 fail(node_label(n) + " is its own child (a cycle)");
@@ -193,8 +193,7 @@ std::vector<int> Loader::scene_roots() const {
             fail(who + " is listed twice");
         }
         if (parent_[n] != -1) {
-            fail(who + " is not a root (it is a child of node " + std::to_string(parent_[n]) +
-                 ")");
+            fail(who + " is not a root (it is a child of node " + std::to_string(parent_[n]) + ")");
         }
         listed[n] = true;
     }
@@ -216,11 +215,11 @@ std::vector<Instance> Loader::select_instances() const {
             std::string names;
             for (std::size_t m = 0; m < gltf_.meshes.size(); m++) {
                 const std::string &name = gltf_.meshes[m].name;
-                names += (m ? ", " : "") + (name.empty() ? "mesh#" + std::to_string(m)
-                                                         : quoted(name));
+                names += (m ? ", " : "") +
+                         (name.empty() ? "mesh#" + std::to_string(m) : quoted(name));
             }
-            fail("no mesh named " + quoted(options_.mesh_name) + "; the meshes are: " +
-                 (names.empty() ? std::string("(none)") : names));
+            fail("no mesh named " + quoted(options_.mesh_name) +
+                 "; the meshes are: " + (names.empty() ? std::string("(none)") : names));
         }
     }
 

@@ -31,16 +31,19 @@ struct Reader::Impl {
 Reader::Reader(const std::string &path) : impl_(new Impl) {
     impl_->path = path;
     impl_->out.path = path;
-    impl_->model = parse_gltf(path, read_file(path), impl_->options.external_files, impl_->out.notes);
+    impl_->model = parse_gltf(path, read_file(path), impl_->options.external_files,
+                              impl_->out.notes);
     impl_->loader.reset(new Loader(impl_->path, impl_->model, impl_->options, impl_->out));
     impl_->loader->check_required_extensions();
 }
 
-Reader::Reader(const unsigned char *bytes, std::size_t size, const std::string &name) : impl_(new Impl) {
+Reader::Reader(const unsigned char *bytes, std::size_t size, const std::string &name)
+    : impl_(new Impl) {
     impl_->path = name;
     impl_->out.path = name;
     impl_->options.external_files = false;
-    impl_->model = parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size), false, impl_->out.notes);
+    impl_->model = parse_gltf(name, std::vector<unsigned char>(bytes, bytes + size), false,
+                              impl_->out.notes);
     impl_->loader.reset(new Loader(impl_->path, impl_->model, impl_->options, impl_->out));
     impl_->loader->check_required_extensions();
 }
@@ -109,8 +112,7 @@ MeshData Reader::mesh(int mesh, int skin) {
         loader.append_primitive(mesh, static_cast<int>(p), skin >= 0, g);
         if (skin >= 0 && g.primitives > primitives_before) {
             const auto &attributes = m.primitives[p].attributes;
-            d.influence_sets = std::max(d.influence_sets,
-                                        attributes.count("JOINTS_1") ? 2 : 1);
+            d.influence_sets = std::max(d.influence_sets, attributes.count("JOINTS_1") ? 2 : 1);
         }
     }
     if (skin >= 0 && !g.indices.empty()) {

@@ -161,8 +161,9 @@ void Loader::append_skin_attributes(int mesh, int primitive, std::size_t vertice
             return;
         }
         if (has_joints != has_weights) {
-            fail(label + ": " + (has_joints ? joints_name + " without " + weights_name
-                                            : weights_name + " without " + joints_name));
+            fail(label + ": " +
+                 (has_joints ? joints_name + " without " + weights_name
+                             : weights_name + " without " + joints_name));
         }
         if (set >= kMaxInfluenceSets) {
             fail(label + ": " + joints_name + ": more than " + std::to_string(kMaxInfluences) +
@@ -205,8 +206,8 @@ void Loader::append_primitive(int mesh, int primitive, bool skinned, MeshGeometr
     if (position_it == prim.attributes.end()) {
         fail(label + " has no POSITION attribute");
     }
-    const std::vector<double> positions =
-        decode(position_it->second, kPositionFormat, label + " POSITION");
+    const std::vector<double> positions = decode(position_it->second, kPositionFormat,
+                                                 label + " POSITION");
     const std::size_t vertices = positions.size() / 3;
     const std::size_t base = g.num_vertices();
     /* (64-bit arithmetic: on 32-bit x86 size_t holds no 2^32.) */
@@ -223,8 +224,7 @@ void Loader::append_primitive(int mesh, int primitive, bool skinned, MeshGeometr
 
     std::vector<uint32_t> corners;
     if (prim.indices >= 0) {
-        const std::vector<double> indices =
-            decode(prim.indices, kIndexFormat, label + " indices");
+        const std::vector<double> indices = decode(prim.indices, kIndexFormat, label + " indices");
         corners.reserve(indices.size());
         for (std::size_t i = 0; i < indices.size(); i++) {
             if (!(indices[i] < double(vertices))) {
@@ -365,8 +365,7 @@ void Loader::check_skin_weights(int mesh, int skin, const MeshGeometry &g) {
     }
 }
 
-void Loader::place_skinned(int mesh, int skin, const MeshGeometry &g,
-                           GltfSurface &surface) const {
+void Loader::place_skinned(int mesh, int skin, const MeshGeometry &g, GltfSurface &surface) const {
     const std::vector<Mat4> joints = joint_matrices(skin);
     const std::vector<uint32_t> first = first_vertex_at_same_position(g.positions);
     std::vector<bool> mirrors(g.num_vertices(), false); /* meaningful at first[v] == v */

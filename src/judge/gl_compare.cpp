@@ -31,7 +31,8 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
     for (std::size_t i : diff) {
         const FaceProximity ours_p = face_proximity(tris, f, i, f.target.depth[i]);
         double gap_ulps = ours_p.gap_ulps;
-        if (i < their_depth.size()) gap_ulps = std::min(gap_ulps, face_proximity(tris, f, i, their_depth[i]).gap_ulps);
+        if (i < their_depth.size())
+            gap_ulps = std::min(gap_ulps, face_proximity(tris, f, i, their_depth[i]).gap_ulps);
         const double nearest = ours_p.nearest_edge;
         const bool tie = gap_ulps <= kDepthTieUlps;
         const uint8_t c = tie ? 2 : nearest <= kEdgeDistance ? 1 : 3;
@@ -39,7 +40,9 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
         g.cls[i] = c;
         if (c == 3 && g.first_other.size() < 8) {
             char b[160];
-            std::snprintf(b, sizeof b, "pixel (%zu, %zu): nearest volume edge %.4f px, nearest volume depth %.0f float ulps away",
+            std::snprintf(b, sizeof b,
+                          "pixel (%zu, %zu): nearest volume edge %.4f px, nearest volume depth "
+                          "%.0f float ulps away",
                           i % (std::size_t)f.width, i / (std::size_t)f.width, nearest, gap_ulps);
             g.first_other.push_back(b);
         }
@@ -51,7 +54,8 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
 std::vector<GlComparison> compare_with_mesa(const Scene &scene, const Frame &f,
                                             std::string *renderer, std::string *note) {
     std::string why;
-    const std::unique_ptr<gl::MesaContext> ctx = gl::MesaContext::create(f.width, f.height, 1, &why);
+    const std::unique_ptr<gl::MesaContext> ctx = gl::MesaContext::create(f.width, f.height, 1,
+                                                                         &why);
     if (!ctx) {
         *note = "no Mesa GL context (" + why + "): the comparison with OpenGL was skipped";
         return {};
@@ -89,7 +93,8 @@ std::vector<GlComparison> compare_with_mesa(const Scene &scene, const Frame &f,
          * over a millisecond with nothing to draw). */
         gl::MesaStencilResult r = ctx->run(job);
         const gl::MesaStencilResult again = ctx->run(job);
-        if (again.stencil != r.stencil) throw std::runtime_error("Mesa drew a different stencil the second time");
+        if (again.stencil != r.stencil)
+            throw std::runtime_error("Mesa drew a different stencil the second time");
         r.stencil_pass_seconds = std::min(r.stencil_pass_seconds, again.stencil_pass_seconds);
         r.depth_pass_seconds = std::min(r.depth_pass_seconds, again.depth_pass_seconds);
         GlComparison g = classify_differences(scene, f, (int)li, lf.stencil, r.stencil, r.depth);

@@ -29,7 +29,8 @@ struct GlComparison {
     std::vector<uint8_t> cls; /* per pixel: 0 equal, 1 on an edge, 2 depth tie, 3 other */
     uint64_t differing = 0, on_edge = 0, depth_tie = 0, other = 0;
     double max_edge_distance = 0; /* pixels, over the "on an edge" ones */
-    std::vector<std::string> first_other; /* where the first "other" ones are, and how far from a tie or an edge */
+    std::vector<std::string>
+        first_other; /* where the first "other" ones are, and how far from a tie or an edge */
     double mesa_depth_seconds = 0, mesa_stencil_seconds = 0;
     std::vector<uint8_t> mesa_stencil; /* row 0 = top */
 };

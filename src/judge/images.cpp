@@ -47,12 +47,18 @@ Image stencil_image(const std::vector<uint8_t> &stencil, const Image &shaded) {
     Image out(shaded.width, shaded.height);
     for (std::size_t i = 0; i < stencil.size(); i++) {
         const uint8_t s = stencil[i];
-        if (s == 0) dim_copy(shaded, out, i, 3);
-        else if (s >= 128) put(out, i, 220, 60, 220);
-        else if (s == 1) put(out, i, 60, 110, 255);
-        else if (s == 2) put(out, i, 60, 200, 80);
-        else if (s == 3) put(out, i, 230, 210, 60);
-        else put(out, i, 230, 60, 50);
+        if (s == 0)
+            dim_copy(shaded, out, i, 3);
+        else if (s >= 128)
+            put(out, i, 220, 60, 220);
+        else if (s == 1)
+            put(out, i, 60, 110, 255);
+        else if (s == 2)
+            put(out, i, 60, 200, 80);
+        else if (s == 3)
+            put(out, i, 230, 210, 60);
+        else
+            put(out, i, 230, 60, 50);
     }
     return out;
 }

@@ -208,8 +208,7 @@ private:
 
 void OsMesaContext::check(const char *call) const {
     GLenum e = gl_.glGetError();
-    if (e == GL_NO_ERROR)
-        return;
+    if (e == GL_NO_ERROR) return;
     std::string msg = std::string("OpenGL error ") + gl_error_name(e) + " after " + call;
     /* Drain the rest, so the next run starts clean. */
     for (int i = 0; i < 16 && gl_.glGetError() != GL_NO_ERROR; ++i) {
@@ -243,15 +242,15 @@ GLuint OsMesaContext::compile(GLenum type, const char *source, const char *what)
         char log[2048] = {};
         gl_.glGetShaderInfoLog(s, sizeof log, nullptr, log);
         gl_.glDeleteShader(s);
-        throw std::runtime_error(std::string("Mesa judge: compiling the ") + what + " shader: " + log);
+        throw std::runtime_error(std::string("Mesa judge: compiling the ") + what +
+                                 " shader: " + log);
     }
     return s;
 }
 
 bool OsMesaContext::init(int width, int height, std::string *why_not) {
     auto fail = [&](const std::string &why) {
-        if (why_not)
-            *why_not = why;
+        if (why_not) *why_not = why;
         return false;
     };
     if (width <= 0 || height <= 0)
@@ -274,8 +273,7 @@ bool OsMesaContext::init(int width, int height, std::string *why_not) {
                            5,
                            0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
-    if (!ctx_)
-        return fail("OSMesaCreateContextAttribs (GL 4.5 core, 8-bit stencil) failed");
+    if (!ctx_) return fail("OSMesaCreateContextAttribs (GL 4.5 core, 8-bit stencil) failed");
     colour_.assign(4, 0);
     try {
         make_current();
@@ -293,8 +291,7 @@ bool OsMesaContext::init(int width, int height, std::string *why_not) {
     }
     SV_GL_FUNCTIONS(SV_GL_LOAD)
 #undef SV_GL_LOAD
-    if (missing)
-        return fail("OSMesaGetProcAddress found no" + missing_names);
+    if (missing) return fail("OSMesaGetProcAddress found no" + missing_names);
 
     /* From here on the context exists: a failure is the judge's own bug
      * (or a Mesa that breaks it), thrown, never reported as "no context" --
@@ -378,17 +375,13 @@ bool OsMesaContext::init(int width, int height, std::string *why_not) {
 }
 
 void OsMesaContext::destroy() {
-    if (!ctx_)
-        return;
+    if (!ctx_) return;
     /* Objects die with the context; deleting them first keeps a context
      * that shares nothing from holding them any longer than it lives. */
     if (OSMesaMakeCurrent(ctx_, colour_.data(), GL_UNSIGNED_BYTE, 1, 1) && gl_.glDeleteProgram) {
-        if (program_)
-            gl_.glDeleteProgram(program_);
-        if (depth_stencil_rb_)
-            gl_.glDeleteRenderbuffers(1, &depth_stencil_rb_);
-        if (fbo_)
-            gl_.glDeleteFramebuffers(1, &fbo_);
+        if (program_) gl_.glDeleteProgram(program_);
+        if (depth_stencil_rb_) gl_.glDeleteRenderbuffers(1, &depth_stencil_rb_);
+        if (fbo_) gl_.glDeleteFramebuffers(1, &fbo_);
         while (gl_.glGetError() != GL_NO_ERROR) {
         }
     }
@@ -423,10 +416,8 @@ void check_indices(const int *indices, int num_indices, int num_vertices, const 
 }
 
 void check_vertices(const void *p, int n, const std::string &who) {
-    if (n < 0)
-        bad_job(who + ": vertex count " + std::to_string(n) + " is negative");
-    if (n > 0 && !p)
-        bad_job(who + ": vertices are null with a count of " + std::to_string(n));
+    if (n < 0) bad_job(who + ": vertex count " + std::to_string(n) + " is negative");
+    if (n > 0 && !p) bad_job(who + ": vertices are null with a count of " + std::to_string(n));
 }
 
 void validate(const MesaStencilJob &job, int width, int height) {
@@ -435,10 +426,9 @@ void validate(const MesaStencilJob &job, int width, int height) {
                 " differs from the context's " + std::to_string(width) + "x" +
                 std::to_string(height));
     for (double m : job.view_proj)
-        if (!std::isfinite(m))
-            bad_job("view_proj has a non-finite element");
-    if (!std::isfinite(job.light.x) || !std::isfinite(job.light.y) ||
-        !std::isfinite(job.light.z) || !std::isfinite(job.light.w))
+        if (!std::isfinite(m)) bad_job("view_proj has a non-finite element");
+    if (!std::isfinite(job.light.x) || !std::isfinite(job.light.y) || !std::isfinite(job.light.z) ||
+        !std::isfinite(job.light.w))
         bad_job("the light has a non-finite coordinate");
     for (size_t r = 0; r < job.receivers.size(); ++r) {
         const MesaMesh &m = job.receivers[r];
@@ -531,8 +521,7 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
     std::vector<Draw> receiver_draws, volume_draws;
 
     for (const MesaMesh &m : job.receivers) {
-        if (m.num_indices == 0)
-            continue;
+        if (m.num_indices == 0) continue;
         GLuint vao = 0, bufs[2] = {0, 0};
         SV_GL(glGenVertexArrays(1, &vao));
         objects.arrays.push_back(vao);
@@ -547,9 +536,10 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
         SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr));
         SV_GL(glEnableVertexAttribArray(0));
         SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, bufs[1]));
-        SV_GL(glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                           static_cast<GLsizeiptr>(sizeof(int) * static_cast<size_t>(m.num_indices)),
-                           m.indices, GL_STATIC_DRAW));
+        SV_GL(
+            glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                         static_cast<GLsizeiptr>(sizeof(int) * static_cast<size_t>(m.num_indices)),
+                         m.indices, GL_STATIC_DRAW));
         receiver_draws.push_back({vao, m.num_indices, 0, false});
     }
 
@@ -564,8 +554,7 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
         objects.buffers.push_back(index_buffer);
         std::map<std::pair<const Vec4 *, int>, GLuint> vaos;
         for (const MesaVolume &v : job.volumes) {
-            if (v.num_indices == 0)
-                continue;
+            if (v.num_indices == 0) continue;
             auto key = std::make_pair(v.shadow_vertices, v.num_shadow_vertices);
             auto it = vaos.find(key);
             if (it == vaos.end()) {
@@ -577,8 +566,8 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
                 SV_GL(glBindVertexArray(vao));
                 SV_GL(glBindBuffer(GL_ARRAY_BUFFER, vbo));
                 SV_GL(glBufferData(GL_ARRAY_BUFFER,
-                                   static_cast<GLsizeiptr>(sizeof(Vec4) *
-                                                           static_cast<size_t>(v.num_shadow_vertices)),
+                                   static_cast<GLsizeiptr>(
+                                       sizeof(Vec4) * static_cast<size_t>(v.num_shadow_vertices)),
                                    v.shadow_vertices, GL_STATIC_DRAW));
                 SV_GL(glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Vec4), nullptr));
                 SV_GL(glEnableVertexAttribArray(0));
@@ -601,8 +590,7 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
 
     /* The matrix in float, column-major as given. */
     float vp[16];
-    for (int i = 0; i < 16; ++i)
-        vp[i] = static_cast<float>(job.view_proj[i]);
+    for (int i = 0; i < 16; ++i) vp[i] = static_cast<float>(job.view_proj[i]);
     SV_GL(glUseProgram(program_));
     SV_GL(glUniformMatrix4fv(vp_location_, 1, GL_FALSE, vp));
     SV_GL(glUniform4f(light_location_, job.light.x, job.light.y, job.light.z, job.light.w));
@@ -685,16 +673,14 @@ std::unique_ptr<MesaContext> MesaContext::create(int width, int height, int thre
             /* llvmpipe, not softpipe or a GPU driver: its rules are what
              * the tests pin down. */
             setenv("GALLIUM_DRIVER", "llvmpipe", 1);
-            if (threads > 0)
-                setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 1);
+            if (threads > 0) setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 1);
             const char *env = getenv("LP_NUM_THREADS");
             g_lp_threads = env ? std::atoi(env) : 0;
             g_env_set = true;
         }
     }
     auto ctx = std::make_unique<OsMesaContext>();
-    if (!ctx->init(width, height, why_not))
-        return nullptr;
+    if (!ctx->init(width, height, why_not)) return nullptr;
     return ctx;
 }
 

@@ -65,8 +65,8 @@ struct MesaStencilJob {
 };
 
 struct MesaStencilResult {
-    std::vector<uint8_t> stencil; /* width * height, row 0 = top */
-    std::vector<float> depth;     /* window depth in [0, 1] after the pre-pass, row 0 = top */
+    std::vector<uint8_t> stencil;    /* width * height, row 0 = top */
+    std::vector<float> depth;        /* window depth in [0, 1] after the pre-pass, row 0 = top */
     double depth_pass_seconds = 0;   /* glFinish to glFinish */
     double stencil_pass_seconds = 0; /* the volumes only, glFinish to glFinish */
 };

@@ -10,8 +10,7 @@
 namespace sv::gl {
 
 std::unique_ptr<MesaContext> MesaContext::create(int, int, int, std::string *why_not) {
-    if (why_not)
-        *why_not = "built without OSMesa: install libosmesa6-dev";
+    if (why_not) *why_not = "built without OSMesa: install libosmesa6-dev";
     return nullptr;
 }
 

@@ -49,8 +49,8 @@ inline double ray_hit(const RayTriangles &rt, uint32_t t, const Point3 &p, const
 }
 
 /* Does P + s R, s in (s_min, s_max), cross a triangle other than SKIP? */
-bool blocked(const RayTriangles &rt, const Point3 &p, const Point3 &r, double s_min,
-             double s_max, uint32_t skip) {
+bool blocked(const RayTriangles &rt, const Point3 &p, const Point3 &r, double s_min, double s_max,
+             uint32_t skip) {
     bool hit = false;
     rt.for_each_candidate(p, r, s_max, [&](uint32_t t) {
         if (t == skip) return true;
@@ -71,7 +71,8 @@ TruthCaster::TruthCaster(const Scene &scene) : scene_(scene), rays_(new SceneRay
             return Point3{p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]};
         };
         for (int t = 0; t < p.num_triangles(); t++) {
-            rays_->tris.add(pt(p.indices[3 * t]), pt(p.indices[3 * t + 1]), pt(p.indices[3 * t + 2]));
+            rays_->tris.add(pt(p.indices[3 * t]), pt(p.indices[3 * t + 1]),
+                            pt(p.indices[3 * t + 2]));
         }
         size = std::max({size, s.hi.x - s.lo.x, s.hi.y - s.lo.y, s.hi.z - s.lo.z});
     }
@@ -81,11 +82,13 @@ TruthCaster::TruthCaster(const Scene &scene) : scene_(scene), rays_(new SceneRay
 TruthCaster::~TruthCaster() = default;
 
 uint8_t TruthCaster::light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                                 const LightFrame &lf, int si, int t, const Vec3d &P, uint64_t *rays) const {
+                                 const LightFrame &lf, int si, int t, const Vec3d &P,
+                                 uint64_t *rays) const {
     const Vec4 &L = lf.shadow_light;
     const Plane &pl = scene_.surfaces[(std::size_t)si].prepared.planes[(std::size_t)t];
     const Vec3d nrm{pl.a, pl.b, pl.c};
-    if (!facing[(std::size_t)si][(std::size_t)t] || dot(nrm, sub(f.camera.eye, P)) <= 0) return kTruthDark;
+    if (!facing[(std::size_t)si][(std::size_t)t] || dot(nrm, sub(f.camera.eye, P)) <= 0)
+        return kTruthDark;
     /* Beyond the range or outside the cone the light gives nothing: dark,
      * whatever lies between (and the frame's shortcuts may leave another
      * stencil there: frame.h). */
@@ -155,7 +158,8 @@ uint8_t TruthCaster::classify_stored_depth(const Frame &f,
     if (!(den > 0)) return kTruthNone;
     const double dist = (2.0 - kInfiniteFarEpsilon) * f.camera.near_distance / den;
     const Vec3d d = camera_ray(f, x + 0.5, y + 0.5);
-    const Vec3d P{f.camera.eye.x + dist * d.x, f.camera.eye.y + dist * d.y, f.camera.eye.z + dist * d.z};
+    const Vec3d P{f.camera.eye.x + dist * d.x, f.camera.eye.y + dist * d.y,
+                  f.camera.eye.z + dist * d.z};
     int si, t;
     f.decode_id(id, si, t);
     uint64_t rays = 0;
@@ -169,43 +173,42 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
     uint64_t ties = 0;
     std::vector<raster::Rasterizer::WindowTriangle> faces;
     bool faces_ready = false;
-    Comparison result = compare_with_stencil(truth, f.lights[(std::size_t)light].stencil, f.width, f.height,
-                                [&](int x, int y) {
-                                    /* A frame with this many unexplained
+    Comparison result = compare_with_stencil(
+        truth, f.lights[(std::size_t)light].stencil, f.width, f.height, [&](int x, int y) {
+            /* A frame with this many unexplained
                                      * mismatches fails anyway. */
-                                    if (++looked_at > kMaxRefined) return false;
-                                    /* The point the depth test used: the
+            if (++looked_at > kMaxRefined) return false;
+            /* The point the depth test used: the
                                      * camera ray at the stored depth. For a
                                      * receiver seen edge-on, the depth of
                                      * its snapped triangle can lie well off
                                      * the exact one. */
-                                    const std::size_t px = (std::size_t)y * f.width + x;
-                                    const uint8_t at_depth = classify_stored_depth(f, facing, lf, x, y);
-                                    if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[px] == kTruthLit)) {
-                                        return true;
-                                    }
-                                    bool lit = false, shadow = false;
-                                    for (int j = 0; j < 7; j++) {
-                                        for (int i = 0; i < 7; i++) {
-                                            const uint8_t c = classify_point(
-                                                f, facing, lf, x - 1 + (i + 0.5) * 3 / 7.0,
-                                                y - 1 + (j + 0.5) * 3 / 7.0);
-                                            if (c == kTruthNone) continue;
-                                            (c == kTruthLit ? lit : shadow) = true;
-                                            if (lit && shadow) return true;
-                                        }
-                                    }
-                                    /* A volume face through the receiver. */
-                                    if (!faces_ready) {
-                                        faces = drawn_volume_triangles(scene_, f, light);
-                                        faces_ready = true;
-                                    }
-                                    if (face_proximity(faces, f, px, f.target.depth[px]).gap_ulps <= kDepthTieUlps) {
-                                        ties++;
-                                        return true;
-                                    }
-                                    return false;
-                                });
+            const std::size_t px = (std::size_t)y * f.width + x;
+            const uint8_t at_depth = classify_stored_depth(f, facing, lf, x, y);
+            if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[px] == kTruthLit)) {
+                return true;
+            }
+            bool lit = false, shadow = false;
+            for (int j = 0; j < 7; j++) {
+                for (int i = 0; i < 7; i++) {
+                    const uint8_t c = classify_point(f, facing, lf, x - 1 + (i + 0.5) * 3 / 7.0,
+                                                     y - 1 + (j + 0.5) * 3 / 7.0);
+                    if (c == kTruthNone) continue;
+                    (c == kTruthLit ? lit : shadow) = true;
+                    if (lit && shadow) return true;
+                }
+            }
+            /* A volume face through the receiver. */
+            if (!faces_ready) {
+                faces = drawn_volume_triangles(scene_, f, light);
+                faces_ready = true;
+            }
+            if (face_proximity(faces, f, px, f.target.depth[px]).gap_ulps <= kDepthTieUlps) {
+                ties++;
+                return true;
+            }
+            return false;
+        });
     result.depth_tie_mismatches = ties;
     return result;
 }
@@ -258,9 +261,8 @@ bool on_boundary(const Truth &truth, int width, int height, int x, int y) {
     return false;
 }
 
-Comparison compare_with_stencil(const Truth &truth, const std::vector<uint8_t> &stencil,
-                                int width, int height,
-                                const std::function<bool(int x, int y)> &refine) {
+Comparison compare_with_stencil(const Truth &truth, const std::vector<uint8_t> &stencil, int width,
+                                int height, const std::function<bool(int x, int y)> &refine) {
     Comparison c;
     for (int y = 0; y < height; y++) {
         for (int x = 0; x < width; x++) {

@@ -71,13 +71,14 @@ struct Truth {
 };
 
 struct Comparison {
-    uint64_t compared = 0;           /* pixels of class lit or shadowed */
-    uint64_t lit = 0, shadowed = 0;  /* by the truth */
-    uint64_t boundary = 0;           /* compared pixels on a boundary */
-    uint64_t mismatches = 0;         /* stencil says otherwise */
+    uint64_t compared = 0;          /* pixels of class lit or shadowed */
+    uint64_t lit = 0, shadowed = 0; /* by the truth */
+    uint64_t boundary = 0;          /* compared pixels on a boundary */
+    uint64_t mismatches = 0;        /* stencil says otherwise */
     uint64_t boundary_mismatches = 0;
     uint64_t off_boundary_mismatches = 0;
-    uint64_t subpixel_boundary_mismatches = 0; /* of boundary_mismatches: found by the closer look */
+    uint64_t subpixel_boundary_mismatches =
+        0; /* of boundary_mismatches: found by the closer look */
     /* Of boundary_mismatches: a drawn volume face passes through the
      * receiver at the pixel (within kDepthTieUlps of its stored depth, see
      * volume_faces.h): the stencil was decided by a depth tie, the light
@@ -103,8 +104,7 @@ private:
     const Scene &scene_;
     std::unique_ptr<SceneRays> rays_;
     uint8_t light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
-                        const LightFrame &lf, int si, int t, const Vec3d &P,
-                        uint64_t *rays) const;
+                        const LightFrame &lf, int si, int t, const Vec3d &P, uint64_t *rays) const;
     std::vector<std::vector<uint8_t>> facing_bytes(const Vec4 &L) const;
     uint8_t classify_point(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
                            const LightFrame &lf, double x, double y) const;
@@ -114,9 +114,8 @@ private:
 
 /* Truth against a stencil (0 = lit), by the nine centres only; REFINE,
  * when given, is asked about each mismatch they do not explain. */
-Comparison compare_with_stencil(const Truth &truth, const std::vector<uint8_t> &stencil,
-                                int width, int height,
-                                const std::function<bool(int x, int y)> &refine = {});
+Comparison compare_with_stencil(const Truth &truth, const std::vector<uint8_t> &stencil, int width,
+                                int height, const std::function<bool(int x, int y)> &refine = {});
 
 /* Pixels of class lit/shadowed on which a boundary lies (see above). */
 bool on_boundary(const Truth &truth, int width, int height, int x, int y);

@@ -88,13 +88,9 @@ template <class F> std::string shortest(F v) {
 
 } // namespace
 
-std::string json_number(double v) {
-    return shortest(v);
-}
+std::string json_number(double v) { return shortest(v); }
 
-std::string json_number(float v) {
-    return shortest(v);
-}
+std::string json_number(float v) { return shortest(v); }
 
 void JsonWriter::member_break() {
     Level &l = stack_.back();

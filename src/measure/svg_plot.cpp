@@ -42,12 +42,12 @@ namespace {
 /* Geometry, in SVG user units (pixels at 100%). */
 constexpr double kWidth = 960;
 constexpr double kMargin = 16;
-constexpr double kPlotLeft = 72;    /* room for the y tick labels */
-constexpr double kPlotRight = 730;  /* the legend is to the right */
+constexpr double kPlotLeft = 72;   /* room for the y tick labels */
+constexpr double kPlotRight = 730; /* the legend is to the right */
 constexpr double kPlotHeight = 250;
-constexpr double kTitleGap = 30;    /* panel title above the plot */
-constexpr double kAxisGap = 44;     /* x tick labels and x label below */
-constexpr double kLine = 15;        /* caption and note line height */
+constexpr double kTitleGap = 30; /* panel title above the plot */
+constexpr double kAxisGap = 44;  /* x tick labels and x label below */
+constexpr double kLine = 15;     /* caption and note line height */
 constexpr double kPanelGap = 18;
 constexpr double kMarkerSize = 4;
 
@@ -59,8 +59,8 @@ using detail::num;
 /* One axis' mapping from data to pixels. */
 struct Scale {
     bool log = false;
-    double lo = 0, hi = 1;     /* data range */
-    double p0 = 0, p1 = 1;     /* pixels of lo and hi */
+    double lo = 0, hi = 1; /* data range */
+    double p0 = 0, p1 = 1; /* pixels of lo and hi */
     double operator()(double v) const {
         const double t = log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
                              : (v - lo) / (hi - lo);
@@ -106,9 +106,7 @@ std::string marker(int k, double x, double y, const char *colour, bool filled,
     std::string fill = filled ? colour : "#ffffff";
     std::string s;
     switch (k % kNumShapes) {
-    case 0:
-        s = "<circle cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" + num(r) + "\"";
-        break;
+    case 0: s = "<circle cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" + num(r) + "\""; break;
     case 1:
         s = "<rect x=\"" + num(x - r) + "\" y=\"" + num(y - r) + "\" width=\"" + num(2 * r) +
             "\" height=\"" + num(2 * r) + "\"";
@@ -132,7 +130,10 @@ std::string marker(int k, double x, double y, const char *colour, bool filled,
         return s + "/>";
     }
     return s + "><title>" + xml_escape(tooltip) + "</title></" +
-           (k % kNumShapes == 0 ? "circle" : k % kNumShapes == 1 ? "rect" : "path") + ">";
+           (k % kNumShapes == 0   ? "circle"
+            : k % kNumShapes == 1 ? "rect"
+                                  : "path") +
+           ">";
 }
 
 std::string text(double x, double y, const std::string &t, const char *extra = "") {
@@ -147,9 +148,7 @@ void check_point(const Point &p, const Panel &panel) {
     }
 }
 
-int style_of(const Series &s, size_t position) {
-    return s.style >= 0 ? s.style : (int)position;
-}
+int style_of(const Series &s, size_t position) { return s.style >= 0 ? s.style : (int)position; }
 
 /* The panel at vertical offset TOP; returns its height. */
 double render_panel(std::string &out, const Panel &p, double top, const Document &d) {
@@ -216,8 +215,8 @@ double render_panel(std::string &out, const Panel &p, double top, const Document
             }
             const double px = x(v);
             out += "<line x1=\"" + num(px) + "\" y1=\"" + num(plotTop) + "\" x2=\"" + num(px) +
-                   "\" y2=\"" + num(plotBottom) + "\" class=\"" +
-                   (m == 1 ? "major" : "minor") + "\"/>\n";
+                   "\" y2=\"" + num(plotBottom) + "\" class=\"" + (m == 1 ? "major" : "minor") +
+                   "\"/>\n";
             if (m == 1) {
                 out += text(px, plotBottom + 16, si(v), " text-anchor=\"middle\"") + "\n";
             }
@@ -314,8 +313,8 @@ double render_panel(std::string &out, const Panel &p, double top, const Document
     }
     if (!p.series.empty()) {
         ly += 6;
-        out += marker(0, lx + 14, ly, "#555555", true, "") +
-               text(lx + 36, ly + 4, d.lineKey) + "\n";
+        out += marker(0, lx + 14, ly, "#555555", true, "") + text(lx + 36, ly + 4, d.lineKey) +
+               "\n";
         if (!d.looseKey.empty()) {
             ly += 18;
             out += marker(0, lx + 14, ly, "#555555", false, "") +
@@ -333,10 +332,11 @@ double render_panel(std::string &out, const Panel &p, double top, const Document
     for (const VMarker *m : beyond) {
         ly += 16;
         const bool right = m->x > x.hi;
-        out += "<g class=\"vmarker\"" + attr("data-label", m->label) +
-               attr("data-x", num(m->x)) + "><line x1=\"" + num(lx) + "\" y1=\"" + num(ly) +
-               "\" x2=\"" + num(lx + 28) + "\" y2=\"" + num(ly) + "\"/>" +
-               text(lx + 36, ly + 4, m->label + " at " + si(m->x) + (right ? " \u2192" : " \u2190")) +
+        out += "<g class=\"vmarker\"" + attr("data-label", m->label) + attr("data-x", num(m->x)) +
+               "><line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 28) +
+               "\" y2=\"" + num(ly) + "\"/>" +
+               text(lx + 36, ly + 4,
+                    m->label + " at " + si(m->x) + (right ? " \u2192" : " \u2190")) +
                "</g>\n";
     }
     out += "</g>\n";
@@ -351,9 +351,7 @@ double render_panel(std::string &out, const Panel &p, double top, const Document
 }
 
 /* Appends the UTF-8 encoding of U+FFFD. */
-void replacement(std::string &out) {
-    out += "\xef\xbf\xbd";
-}
+void replacement(std::string &out) { out += "\xef\xbf\xbd"; }
 
 } // namespace
 

@@ -34,11 +34,11 @@ struct Point {
 };
 
 struct Series {
-    std::string name;          /* legend; data-series */
-    int style = -1;            /* colour and marker shape: the same number gives
+    std::string name;         /* legend; data-series */
+    int style = -1;           /* colour and marker shape: the same number gives
                                   the same look in every panel; -1: by position */
-    std::vector<Point> line;   /* joined, in x order, filled markers */
-    std::vector<Point> loose;  /* markers only, hollow */
+    std::vector<Point> line;  /* joined, in x order, filled markers */
+    std::vector<Point> loose; /* markers only, hollow */
 };
 
 /* A vertical line at X (a cache size, in the x axis's unit). One outside
@@ -50,7 +50,7 @@ struct VMarker {
 };
 
 struct Panel {
-    std::string id;    /* data-id: what a script looks the panel up by */
+    std::string id; /* data-id: what a script looks the panel up by */
     std::string title;
     std::string xLabel, yLabel;
     std::vector<Series> series;
@@ -61,8 +61,8 @@ struct Panel {
 struct Document {
     std::string title;
     std::vector<std::string> notes; /* lines under the title */
-    std::string lineKey;  /* what the joined, filled markers are */
-    std::string looseKey; /* what the hollow markers are ("" when none) */
+    std::string lineKey;            /* what the joined, filled markers are */
+    std::string looseKey;           /* what the hollow markers are ("" when none) */
     std::vector<Panel> panels;
 };
 

@@ -26,9 +26,9 @@ namespace {
 
 constexpr double kWidth = 960, kHeight = 620;
 constexpr double kLeft = 90, kRight = 220, kTop = 70, kBottom = 110; /* margins */
-constexpr double kZeroRow = 36;   /* height of the y = 0 row under the plot */
-constexpr double kLabelH = 13;    /* label line height */
-constexpr double kCharW = 6.6;    /* approximate width of a 11px character */
+constexpr double kZeroRow = 36; /* height of the y = 0 row under the plot */
+constexpr double kLabelH = 13;  /* label line height */
+constexpr double kCharW = 6.6;  /* approximate width of a 11px character */
 
 using detail::num;
 
@@ -41,14 +41,13 @@ std::string decade_label(int k) {
 
 struct Box {
     double x0, y0, x1, y1;
-    bool overlaps(const Box &o) const {
-        return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
-    }
+    bool overlaps(const Box &o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
 };
 
 } // namespace
 
-std::string render_loglog_scatter(const std::vector<ScatterPoint> &points, const ScatterText &text) {
+std::string render_loglog_scatter(const std::vector<ScatterPoint> &points,
+                                  const ScatterText &text) {
     std::vector<ScatterPoint> pts;
     int dropped = 0;
     for (const ScatterPoint &p : points) {
@@ -120,8 +119,8 @@ std::string render_loglog_scatter(const std::vector<ScatterPoint> &points, const
         s += "<text x=\"" + num(kLeft - 8) + "\" y=\"" + num(py(std::pow(10.0, k)) + 4) +
              "\" text-anchor=\"end\">" + decade_label(k) + "</text>\n";
     }
-    s += "<text x=\"" + num(kLeft - 8) + "\" y=\"" + num(py(0) + 4) +
-         "\" text-anchor=\"end\">" + xml_escape(text.zero_label) + "</text>\n";
+    s += "<text x=\"" + num(kLeft - 8) + "\" y=\"" + num(py(0) + 4) + "\" text-anchor=\"end\">" +
+         xml_escape(text.zero_label) + "</text>\n";
     s += "<text x=\"" + num(kLeft + pw / 2) + "\" y=\"" + num(kTop + ph + kZeroRow + 38) +
          "\" text-anchor=\"middle\" font-size=\"12\">" + xml_escape(text.x_label) + "</text>\n";
     s += "<text transform=\"translate(24," + num(kTop + ph / 2) +
@@ -169,8 +168,7 @@ std::string render_loglog_scatter(const std::vector<ScatterPoint> &points, const
             s += "<line x1=\"" + num(px(p.x)) + "\" y1=\"" + num(py(p.y)) + "\" x2=\"" + num(x) +
                  "\" y2=\"" + num(y - 4) + "\" stroke=\"#999\" stroke-width=\"0.5\"/>\n";
         }
-        s += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(p.label) +
-             "</text>\n";
+        s += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(p.label) + "</text>\n";
     }
 
     /* Legend. */

@@ -23,13 +23,9 @@ static bool extended_edx_bit(unsigned leaf, unsigned bit) {
     return (d >> bit) & 1u;
 }
 
-bool cpu_has_rdtscp() {
-    return extended_edx_bit(0x80000001u, 27);
-}
+bool cpu_has_rdtscp() { return extended_edx_bit(0x80000001u, 27); }
 
-bool cpu_has_invariant_tsc() {
-    return extended_edx_bit(0x80000007u, 8);
-}
+bool cpu_has_invariant_tsc() { return extended_edx_bit(0x80000007u, 8); }
 
 const char *timer_name(TimerKind kind) {
     switch (kind) {
@@ -49,9 +45,7 @@ const char *timer_sequence(TimerKind kind) {
     return "?";
 }
 
-TimerKind timer_auto() {
-    return cpu_has_rdtscp() ? TimerKind::rdtscp : TimerKind::cpuid;
-}
+TimerKind timer_auto() { return cpu_has_rdtscp() ? TimerKind::rdtscp : TimerKind::cpuid; }
 
 template <class Timer> static Overhead overhead_with(int tries) {
     std::vector<uint64_t> t((size_t)tries);

@@ -87,8 +87,8 @@ PreparedSurface prepare_surface(const float *positions, std::size_t num_vertices
                            " is not a multiple of 3");
     }
     if (num_vertices > (std::size_t)INT_MAX) {
-        throw PrepareError("too many vertices: " + std::to_string(num_vertices) +
-                           " (at most " + std::to_string(INT_MAX) + ")");
+        throw PrepareError("too many vertices: " + std::to_string(num_vertices) + " (at most " +
+                           std::to_string(INT_MAX) + ")");
     }
     if (num_indices > (std::size_t)INT_MAX) {
         throw PrepareError("too many indices: " + std::to_string(num_indices));
@@ -254,7 +254,8 @@ PreparedSurface prepare_surface(const float *positions, std::size_t num_vertices
 
     if (sv_shadow_volume_capacity(s.num_indices(), s.num_sil_edges()) > (std::size_t)INT_MAX) {
         throw PrepareError("mesh too large: its shadow volume could need more than INT_MAX "
-                           "indices (" + std::to_string(nt) + " triangles, " +
+                           "indices (" +
+                           std::to_string(nt) + " triangles, " +
                            std::to_string(s.sil_edges.size()) + " SilEdges)");
     }
     return s;

@@ -64,7 +64,8 @@ int sv_shadow_volume_for_light(const sv_plan *plan, const sv_surface *surface, c
 
     if (!plan) plan = sv_plan_for(numTriangles, SV_PLAN_ESTIMATE);
     sv_variant k = plan->kernels;
-    if (!aligned_to(s->indices, k.align_indices) || !aligned_to(shadowIndices, k.align_shadow_indices)) {
+    if (!aligned_to(s->indices, k.align_indices) ||
+        !aligned_to(shadowIndices, k.align_shadow_indices)) {
         const sv_variant *alt = unaligned_stand_in(facing, s->indices, shadowIndices);
         k.create_sil_triangles = alt->create_sil_triangles;
         k.create_cap_triangles = alt->create_cap_triangles;
@@ -94,6 +95,6 @@ int sv_shadow_volume_for_light(const sv_plan *plan, const sv_surface *surface, c
     if (numFacing == numTriangles) return 0; /* nothing casts */
 
     const int numSil = k.create_sil_triangles(shadowIndices, facing, s->silEdges, s->numSilEdges);
-    return numSil + k.create_cap_triangles(shadowIndices + numSil, facing, s->indices,
-                                           s->numIndices);
+    return numSil +
+           k.create_cap_triangles(shadowIndices + numSil, facing, s->indices, s->numIndices);
 }

@@ -37,9 +37,9 @@
 
 namespace {
 
-const char *const kRoutineNames[SV_NUM_ROUTINES] = {
-    "calculate_facing",  "calculate_cull_bits",  "count_facing",
-    "count_facing_cull", "create_sil_triangles", "create_cap_triangles"};
+const char *const kRoutineNames[SV_NUM_ROUTINES] = {"calculate_facing",     "calculate_cull_bits",
+                                                    "count_facing",         "count_facing_cull",
+                                                    "create_sil_triangles", "create_cap_triangles"};
 
 constexpr int kClassLimit[SV_NUM_SIZE_CLASSES - 1] = {4096, 65536, 524288};
 /* The generated character subdivided n x n (1344 n^2 triangles), n = 1, 4,
@@ -106,7 +106,8 @@ sv_plan make_plan(int sizeClass, const char *source, const char *const names[SV_
         p.ticks[r] = ticks ? ticks[r] : 0;
     }
     const sv_facing_variant *fa = sv_facing_variant_by_name(p.variant[SV_ROUTINE_CALCULATE_FACING]);
-    const sv_facing_variant *fb = sv_facing_variant_by_name(p.variant[SV_ROUTINE_CALCULATE_CULL_BITS]);
+    const sv_facing_variant *fb = sv_facing_variant_by_name(
+        p.variant[SV_ROUTINE_CALCULATE_CULL_BITS]);
     p.calculate_facing = fa->calculate_facing;
     p.calculate_facing_count = fa->calculate_facing_count;
     p.calculate_cull_bits = fb->calculate_cull_bits;
@@ -174,7 +175,7 @@ std::array<Plane, SV_NUM_LIGHT_PLANES> light_box(const Mesh &m, const Vec4 &ligh
     auto box = [&](double h) {
         const float x = light.x, y = light.y, z = light.z, hf = (float)h;
         return std::array<Plane, SV_NUM_LIGHT_PLANES>{
-            Plane{1, 0, 0, -(x - hf)}, Plane{-1, 0, 0, x + hf}, Plane{0, 1, 0, -(y - hf)},
+            Plane{1, 0, 0, -(x - hf)}, Plane{-1, 0, 0, x + hf},   Plane{0, 1, 0, -(y - hf)},
             Plane{0, -1, 0, y + hf},   Plane{0, 0, 1, -(z - hf)}, Plane{0, 0, -1, z + hf}};
     };
     const int nv = m.s.num_vertices(), nt = m.s.num_triangles();
@@ -187,7 +188,8 @@ std::array<Plane, SV_NUM_LIGHT_PLANES> light_box(const Mesh &m, const Vec4 &ligh
         }
         int n = 0;
         const int *i = m.s.indices.data();
-        for (int t = 0; t < nt; t++, i += 3) n += (bits[(size_t)i[0]] & bits[(size_t)i[1]] & bits[(size_t)i[2]]) != 0;
+        for (int t = 0; t < nt; t++, i += 3)
+            n += (bits[(size_t)i[0]] & bits[(size_t)i[1]] & bits[(size_t)i[2]]) != 0;
         return n;
     };
     /* The light is 2r from the centre: a half size of 4r holds the mesh. */
@@ -305,8 +307,9 @@ struct Measurer {
             x.count_cull = sv_count_facing_cull_c_ref(x.culled_facing.data(), (int)nt,
                                                       m.s.indices.data(), x.cull.data());
             x.sil.resize(6 * (size_t)m.s.num_sil_edges() + 1);
-            x.sil.resize((size_t)sv_create_sil_triangles_c_ref(
-                x.sil.data(), x.facing.data(), m.s.sil_edges.data(), m.s.num_sil_edges()));
+            x.sil.resize((size_t)sv_create_sil_triangles_c_ref(x.sil.data(), x.facing.data(),
+                                                               m.s.sil_edges.data(),
+                                                               m.s.num_sil_edges()));
             x.cap.resize(2 * (size_t)m.s.num_indices() + 1);
             x.cap.resize((size_t)sv_create_cap_triangles_c_ref(x.cap.data(), x.facing.data(),
                                                                m.s.indices.data(),
@@ -407,16 +410,18 @@ struct Measurer {
         uint8_t *fa = facing_aligned.data();
         switch (r) {
         case SV_ROUTINE_COUNT_FACING:
-            return time([=](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
-                        [=](int l) { return v.count_facing(fa, nt) == ref[(size_t)l].count; });
+            return time(
+                [=](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
+                [=](int l) { return v.count_facing(fa, nt) == ref[(size_t)l].count; });
         case SV_ROUTINE_COUNT_FACING_CULL:
-            return time([=](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
-                        [=](int l) {
-                            const Reference &x = ref[(size_t)l];
-                            return v.count_facing_cull(fa, nt, m.s.indices.data(), x.cull.data()) ==
-                                       x.count_cull &&
-                                   std::memcmp(fa, x.culled_facing.data(), (size_t)nt) == 0;
-                        });
+            return time(
+                [=](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
+                [=](int l) {
+                    const Reference &x = ref[(size_t)l];
+                    return v.count_facing_cull(fa, nt, m.s.indices.data(), x.cull.data()) ==
+                               x.count_cull &&
+                           std::memcmp(fa, x.culled_facing.data(), (size_t)nt) == 0;
+                });
         case SV_ROUTINE_CREATE_SIL_TRIANGLES:
             return time([](int) {},
                         [=](int l) {
@@ -425,17 +430,19 @@ struct Measurer {
                                                                  m.s.sil_edges.data(),
                                                                  m.s.num_sil_edges());
                             return n == (int)x.sil.size() &&
-                                   std::memcmp(out.data(), x.sil.data(), sizeof(int) * x.sil.size()) == 0;
+                                   std::memcmp(out.data(), x.sil.data(),
+                                               sizeof(int) * x.sil.size()) == 0;
                         });
         case SV_ROUTINE_CREATE_CAP_TRIANGLES:
-            return time([=](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
-                        [=](int l) {
-                            const Reference &x = ref[(size_t)l];
-                            const int n = v.create_cap_triangles(out.data(), fa, m.s.indices.data(),
-                                                                 m.s.num_indices());
-                            return n == (int)x.cap.size() &&
-                                   std::memcmp(out.data(), x.cap.data(), sizeof(int) * x.cap.size()) == 0;
-                        });
+            return time(
+                [=](int l) { std::memcpy(fa, ref[(size_t)l].facing.data(), (size_t)nt + 1); },
+                [=](int l) {
+                    const Reference &x = ref[(size_t)l];
+                    const int n = v.create_cap_triangles(out.data(), fa, m.s.indices.data(),
+                                                         m.s.num_indices());
+                    return n == (int)x.cap.size() &&
+                           std::memcmp(out.data(), x.cap.data(), sizeof(int) * x.cap.size()) == 0;
+                });
         default: return -1;
         }
     }
@@ -507,7 +514,8 @@ int measure_mesh(const Mesh &m, int sizeClass, sv_plan_timing *timings, int maxT
     for (const Timed &t : timed) {
         record(t.routine, t.name, meas.figure(t.task));
         if (best[t.routine] == t.name) task_of[t.routine][0] = t.task;
-        if (std::strcmp(t.name, sv_static_variant_name(t.routine)) == 0) task_of[t.routine][1] = t.task;
+        if (std::strcmp(t.name, sv_static_variant_name(t.routine)) == 0)
+            task_of[t.routine][1] = t.task;
     }
     /* The static choice stays unless beaten by more than the margin, and
      * beaten round by round: in at least kWinRounds of every 5 rounds the
@@ -525,7 +533,8 @@ int measure_mesh(const Mesh &m, int sizeClass, sv_plan_timing *timings, int maxT
             const std::vector<double> b = meas.round_medians(task_of[r][0]);
             const std::vector<double> st = meas.round_medians(task_of[r][1]);
             size_t wins = 0;
-            for (size_t k = 0; k < b.size() && k < st.size(); k++) wins += b[k] * kStaticMargin < st[k];
+            for (size_t k = 0; k < b.size() && k < st.size(); k++)
+                wins += b[k] * kStaticMargin < st[k];
             displaces = 5 * wins >= (size_t)kWinRounds * b.size();
         }
         if (!displaces) best[r] = sv_static_variant_name((sv_routine)r), best_ticks[r] = t;
@@ -553,8 +562,8 @@ int sv_plan_measure_surface(const sv_surface *surface, sv_plan_timing *timings, 
     if (!surface) return kBadSurface;
     const sv_surface &v = *surface;
     if (v.numIndices < 3 || v.numIndices % 3 != 0 || v.numSilEdges < 0 || v.numVerts <= 0 ||
-        v.numVerts > (1 << 30) || 6ll * v.numSilEdges + 2ll * v.numIndices > INT_MAX ||
-        !v.planes || !v.indices || !v.positions || (v.numSilEdges > 0 && !v.silEdges)) {
+        v.numVerts > (1 << 30) || 6ll * v.numSilEdges + 2ll * v.numIndices > INT_MAX || !v.planes ||
+        !v.indices || !v.positions || (v.numSilEdges > 0 && !v.silEdges)) {
         return kBadSurface;
     }
     const int nt = v.numIndices / 3;
@@ -564,7 +573,8 @@ int sv_plan_measure_surface(const sv_surface *surface, sv_plan_timing *timings, 
     }
     for (int t = 0; t < nt; t++) {
         const Plane &q = v.planes[t];
-        if (!std::isfinite(q.a) || !std::isfinite(q.b) || !std::isfinite(q.c) || !std::isfinite(q.d)) {
+        if (!std::isfinite(q.a) || !std::isfinite(q.b) || !std::isfinite(q.c) ||
+            !std::isfinite(q.d)) {
             return kBadSurface;
         }
     }

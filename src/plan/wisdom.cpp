@@ -140,7 +140,8 @@ int sv_wisdom_save(const char *path) {
     Sections all;
     std::vector<std::string> order;
     struct stat st;
-    if (stat(path, &st) == 0 && !parse(path, all, order)) return -1; /* never clobber a file we cannot read */
+    if (stat(path, &st) == 0 && !parse(path, all, order))
+        return -1; /* never clobber a file we cannot read */
     const std::string cpu = this_cpu();
     if (!all.count(cpu)) order.push_back(cpu);
     auto &mine = all[cpu];

@@ -21,9 +21,7 @@ static inline const float *sv_planes_corner(const float *positions, int index) {
 
 /* sqrtf without errno handling (and without libm): the correctly rounded
  * square root, sqrtss, as sqrtps computes it lane by lane. */
-static inline float sv_planes_sqrt(float x) {
-    return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)));
-}
+static inline float sv_planes_sqrt(float x) { return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))); }
 
 static inline Plane sv_plane_one(const float *positions, const int *tri) {
     const float *p0 = sv_planes_corner(positions, tri[0]);

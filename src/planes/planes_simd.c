@@ -65,32 +65,32 @@ static inline __m128 load3_sse2(const float *p) {
 }
 
 /* Rows (x, y, z, .) of four structures -> their x, y, z columns. */
-#define TRANSPOSE3_SSE2(r0, r1, r2, r3, X, Y, Z)                        \
-    do {                                                                \
-        const __m128 t0_ = _mm_unpacklo_ps(r0, r1);                     \
-        const __m128 t1_ = _mm_unpacklo_ps(r2, r3);                     \
-        const __m128 t2_ = _mm_unpackhi_ps(r0, r1);                     \
-        const __m128 t3_ = _mm_unpackhi_ps(r2, r3);                     \
-        (X) = _mm_movelh_ps(t0_, t1_);                                  \
-        (Y) = _mm_movehl_ps(t1_, t0_);                                  \
-        (Z) = _mm_movelh_ps(t2_, t3_);                                  \
+#define TRANSPOSE3_SSE2(r0, r1, r2, r3, X, Y, Z)                                                   \
+    do {                                                                                           \
+        const __m128 t0_ = _mm_unpacklo_ps(r0, r1);                                                \
+        const __m128 t1_ = _mm_unpacklo_ps(r2, r3);                                                \
+        const __m128 t2_ = _mm_unpackhi_ps(r0, r1);                                                \
+        const __m128 t3_ = _mm_unpackhi_ps(r2, r3);                                                \
+        (X) = _mm_movelh_ps(t0_, t1_);                                                             \
+        (Y) = _mm_movehl_ps(t1_, t0_);                                                             \
+        (Z) = _mm_movelh_ps(t2_, t3_);                                                             \
     } while (0)
 
 /* The columns of p0, e1 and e2 of triangles T .. T+3. */
-#define LOAD_TRI4_SSE2(positions, ix)                                                       \
-    __m128 px, py, pz, ax, ay, az, bx, by, bz;                                              \
-    do {                                                                                    \
-        __m128 r0_[4], r1_[4], r2_[4];                                                      \
-        for (int i_ = 0; i_ < 4; i_++) {                                                    \
-            r0_[i_] = load3_sse2(sv_planes_corner(positions, (ix)[3 * i_]));                \
-            r1_[i_] = _mm_sub_ps(load3_sse2(sv_planes_corner(positions, (ix)[3 * i_ + 1])), \
-                                 r0_[i_]);                                                  \
-            r2_[i_] = _mm_sub_ps(load3_sse2(sv_planes_corner(positions, (ix)[3 * i_ + 2])), \
-                                 r0_[i_]);                                                  \
-        }                                                                                   \
-        TRANSPOSE3_SSE2(r0_[0], r0_[1], r0_[2], r0_[3], px, py, pz);                        \
-        TRANSPOSE3_SSE2(r1_[0], r1_[1], r1_[2], r1_[3], ax, ay, az);                        \
-        TRANSPOSE3_SSE2(r2_[0], r2_[1], r2_[2], r2_[3], bx, by, bz);                        \
+#define LOAD_TRI4_SSE2(positions, ix)                                                              \
+    __m128 px, py, pz, ax, ay, az, bx, by, bz;                                                     \
+    do {                                                                                           \
+        __m128 r0_[4], r1_[4], r2_[4];                                                             \
+        for (int i_ = 0; i_ < 4; i_++) {                                                           \
+            r0_[i_] = load3_sse2(sv_planes_corner(positions, (ix)[3 * i_]));                       \
+            r1_[i_] = _mm_sub_ps(load3_sse2(sv_planes_corner(positions, (ix)[3 * i_ + 1])),        \
+                                 r0_[i_]);                                                         \
+            r2_[i_] = _mm_sub_ps(load3_sse2(sv_planes_corner(positions, (ix)[3 * i_ + 2])),        \
+                                 r0_[i_]);                                                         \
+        }                                                                                          \
+        TRANSPOSE3_SSE2(r0_[0], r0_[1], r0_[2], r0_[3], px, py, pz);                               \
+        TRANSPOSE3_SSE2(r1_[0], r1_[1], r1_[2], r1_[3], ax, ay, az);                               \
+        TRANSPOSE3_SSE2(r2_[0], r2_[1], r2_[2], r2_[3], bx, by, bz);                               \
     } while (0)
 
 void sv_derive_planes_sse2(const float *positions, const int *indices, int numTriangles,
@@ -110,8 +110,7 @@ void sv_derive_planes_sse2(const float *positions, const int *indices, int numTr
             _mm_and_ps(_mm_cmpgt_ps(len2, zero), _mm_cmplt_ps(len2, inf)));
         const __m128 inv = _mm_div_ps(one, _mm_sqrt_ps(len2));
         __m128 a = _mm_mul_ps(nx, inv), b = _mm_mul_ps(ny, inv), c = _mm_mul_ps(nz, inv);
-        __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(a, px), _mm_mul_ps(b, py)),
-                              _mm_mul_ps(c, pz));
+        __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(a, px), _mm_mul_ps(b, py)), _mm_mul_ps(c, pz));
         d = _mm_xor_ps(d, sign);
         _MM_TRANSPOSE4_PS(a, b, c, d);
         _mm_storeu_ps(&planes[t].a, a);
@@ -169,60 +168,60 @@ SV_TARGET_AVX2 static inline __m256 row2_avx2(const float *positions, int ia, in
 }
 
 /* Rows q0, q2 (x,y,z,0) and q1, q3 (0,x,y,z), in each lane -> columns. */
-#define TRANSPOSE3_AVX2(q0, q1, q2, q3, X, Y, Z)                                   \
-    do {                                                                           \
-        const __m256 xz01_ = _mm256_blend_ps(q0, q1, 0xAA); /* x0 x1 z0 z1 */      \
-        const __m256 xz23_ = _mm256_blend_ps(q2, q3, 0xAA);                        \
-        const __m256 y01_ = _mm256_blend_ps(q0, q1, 0x44); /* x0 y0 y1 0 */        \
-        const __m256 y23_ = _mm256_blend_ps(q2, q3, 0x44);                         \
-        (X) = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));            \
-        (Z) = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));            \
-        (Y) = _mm256_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));              \
+#define TRANSPOSE3_AVX2(q0, q1, q2, q3, X, Y, Z)                                                   \
+    do {                                                                                           \
+        const __m256 xz01_ = _mm256_blend_ps(q0, q1, 0xAA); /* x0 x1 z0 z1 */                      \
+        const __m256 xz23_ = _mm256_blend_ps(q2, q3, 0xAA);                                        \
+        const __m256 y01_ = _mm256_blend_ps(q0, q1, 0x44); /* x0 y0 y1 0 */                        \
+        const __m256 y23_ = _mm256_blend_ps(q2, q3, 0x44);                                         \
+        (X) = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));                            \
+        (Z) = _mm256_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));                            \
+        (Y) = _mm256_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));                              \
     } while (0)
 
 /* Row r of the step holds triangles TA(r) (low lane) and TB(r) (high). */
-#define LOAD_TRI8_AVX2(positions, ix, TA, TB)                                            \
-    __m256 px, py, pz, ax, ay, az, bx, by, bz;                                           \
-    do {                                                                                 \
-        __m256 r0_[4], r1_[4], r2_[4];                                                   \
-        for (int r_ = 0; r_ < 4; r_++) {                                                 \
-            const int *ta_ = (ix) + 3 * (TA(r_)), *tb_ = (ix) + 3 * (TB(r_));            \
-            const int s_ = r_ & 1;                                                       \
-            r0_[r_] = row2_avx2(positions, ta_[0], tb_[0], s_);                          \
-            r1_[r_] = _mm256_sub_ps(row2_avx2(positions, ta_[1], tb_[1], s_), r0_[r_]);  \
-            r2_[r_] = _mm256_sub_ps(row2_avx2(positions, ta_[2], tb_[2], s_), r0_[r_]);  \
-        }                                                                                \
-        TRANSPOSE3_AVX2(r0_[0], r0_[1], r0_[2], r0_[3], px, py, pz);                     \
-        TRANSPOSE3_AVX2(r1_[0], r1_[1], r1_[2], r1_[3], ax, ay, az);                     \
-        TRANSPOSE3_AVX2(r2_[0], r2_[1], r2_[2], r2_[3], bx, by, bz);                     \
+#define LOAD_TRI8_AVX2(positions, ix, TA, TB)                                                      \
+    __m256 px, py, pz, ax, ay, az, bx, by, bz;                                                     \
+    do {                                                                                           \
+        __m256 r0_[4], r1_[4], r2_[4];                                                             \
+        for (int r_ = 0; r_ < 4; r_++) {                                                           \
+            const int *ta_ = (ix) + 3 * (TA(r_)), *tb_ = (ix) + 3 * (TB(r_));                      \
+            const int s_ = r_ & 1;                                                                 \
+            r0_[r_] = row2_avx2(positions, ta_[0], tb_[0], s_);                                    \
+            r1_[r_] = _mm256_sub_ps(row2_avx2(positions, ta_[1], tb_[1], s_), r0_[r_]);            \
+            r2_[r_] = _mm256_sub_ps(row2_avx2(positions, ta_[2], tb_[2], s_), r0_[r_]);            \
+        }                                                                                          \
+        TRANSPOSE3_AVX2(r0_[0], r0_[1], r0_[2], r0_[3], px, py, pz);                               \
+        TRANSPOSE3_AVX2(r1_[0], r1_[1], r1_[2], r1_[3], ax, ay, az);                               \
+        TRANSPOSE3_AVX2(r2_[0], r2_[1], r2_[2], r2_[3], bx, by, bz);                               \
     } while (0)
 
-#define PAIR_A(r) (2 * (r))     /* derive: rows of consecutive planes */
+#define PAIR_A(r) (2 * (r)) /* derive: rows of consecutive planes */
 #define PAIR_B(r) (2 * (r) + 1)
-#define SPLIT_A(r) (r)          /* facing: lanes in triangle order */
+#define SPLIT_A(r) (r) /* facing: lanes in triangle order */
 #define SPLIT_B(r) ((r) + 4)
 
 /* The plane columns of the step (see the reference's order). */
-#define PLANES_AVX2(a, b, c, d, ok)                                                        \
-    __m256 a, b, c, d;                                                                     \
-    unsigned ok; /* NOLINT(bugprone-macro-parentheses): a name this declares */            \
-    do {                                                                                   \
-        const __m256 nx_ = _mm256_sub_ps(_mm256_mul_ps(ay, bz), _mm256_mul_ps(az, by));    \
-        const __m256 ny_ = _mm256_sub_ps(_mm256_mul_ps(az, bx), _mm256_mul_ps(ax, bz));    \
-        const __m256 nz_ = _mm256_sub_ps(_mm256_mul_ps(ax, by), _mm256_mul_ps(ay, bx));    \
-        const __m256 len2_ = _mm256_add_ps(                                                \
-            _mm256_add_ps(_mm256_mul_ps(nx_, nx_), _mm256_mul_ps(ny_, ny_)),               \
-            _mm256_mul_ps(nz_, nz_));                                                      \
-        (ok) = (unsigned)_mm256_movemask_ps(                                               \
-            _mm256_and_ps(_mm256_cmp_ps(len2_, _mm256_setzero_ps(), _CMP_GT_OQ),           \
-                          _mm256_cmp_ps(len2_, _mm256_set1_ps(INFINITY), _CMP_LT_OQ)));    \
-        const __m256 inv_ = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(len2_));    \
-        (a) = _mm256_mul_ps(nx_, inv_);                                                    \
-        (b) = _mm256_mul_ps(ny_, inv_);                                                    \
-        (c) = _mm256_mul_ps(nz_, inv_);                                                    \
-        (d) = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, px), _mm256_mul_ps(b, py)),     \
-                          _mm256_mul_ps(c, pz));                                           \
-        (d) = _mm256_xor_ps(d, _mm256_set1_ps(-0.0f));                                     \
+#define PLANES_AVX2(a, b, c, d, ok)                                                                \
+    __m256 a, b, c, d;                                                                             \
+    unsigned ok; /* NOLINT(bugprone-macro-parentheses): a name this declares */                    \
+    do {                                                                                           \
+        const __m256 nx_ = _mm256_sub_ps(_mm256_mul_ps(ay, bz), _mm256_mul_ps(az, by));            \
+        const __m256 ny_ = _mm256_sub_ps(_mm256_mul_ps(az, bx), _mm256_mul_ps(ax, bz));            \
+        const __m256 nz_ = _mm256_sub_ps(_mm256_mul_ps(ax, by), _mm256_mul_ps(ay, bx));            \
+        const __m256 len2_ = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx_, nx_),                  \
+                                                         _mm256_mul_ps(ny_, ny_)),                 \
+                                           _mm256_mul_ps(nz_, nz_));                               \
+        (ok) = (unsigned)_mm256_movemask_ps(                                                       \
+            _mm256_and_ps(_mm256_cmp_ps(len2_, _mm256_setzero_ps(), _CMP_GT_OQ),                   \
+                          _mm256_cmp_ps(len2_, _mm256_set1_ps(INFINITY), _CMP_LT_OQ)));            \
+        const __m256 inv_ = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(len2_));            \
+        (a) = _mm256_mul_ps(nx_, inv_);                                                            \
+        (b) = _mm256_mul_ps(ny_, inv_);                                                            \
+        (c) = _mm256_mul_ps(nz_, inv_);                                                            \
+        (d) = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, px), _mm256_mul_ps(b, py)),             \
+                            _mm256_mul_ps(c, pz));                                                 \
+        (d) = _mm256_xor_ps(d, _mm256_set1_ps(-0.0f));                                             \
     } while (0)
 
 /* Plane columns a..d in lane order (0 2 4 6 | 1 3 5 7) -> planes T..T+7. */
@@ -288,15 +287,15 @@ SV_TARGET_AVX2 static inline __m256 row2_shifted_avx2(const float *positions, in
 }
 
 /* Rows (., x, y, z) of four structures, per lane -> their x, y, z columns. */
-#define TRANSPOSE3_SHIFTED_AVX2(r0, r1, r2, r3, X, Y, Z)                    \
-    do {                                                                   \
-        const __m256 t0_ = _mm256_unpacklo_ps(r0, r1); /* . . x0 x1 */     \
-        const __m256 t1_ = _mm256_unpacklo_ps(r2, r3);                     \
-        const __m256 t2_ = _mm256_unpackhi_ps(r0, r1); /* y0 y1 z0 z1 */   \
-        const __m256 t3_ = _mm256_unpackhi_ps(r2, r3);                     \
-        (X) = _mm256_shuffle_ps(t0_, t1_, _MM_SHUFFLE(3, 2, 3, 2));        \
-        (Y) = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(1, 0, 1, 0));        \
-        (Z) = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(3, 2, 3, 2));        \
+#define TRANSPOSE3_SHIFTED_AVX2(r0, r1, r2, r3, X, Y, Z)                                           \
+    do {                                                                                           \
+        const __m256 t0_ = _mm256_unpacklo_ps(r0, r1); /* . . x0 x1 */                             \
+        const __m256 t1_ = _mm256_unpacklo_ps(r2, r3);                                             \
+        const __m256 t2_ = _mm256_unpackhi_ps(r0, r1); /* y0 y1 z0 z1 */                           \
+        const __m256 t3_ = _mm256_unpackhi_ps(r2, r3);                                             \
+        (X) = _mm256_shuffle_ps(t0_, t1_, _MM_SHUFFLE(3, 2, 3, 2));                                \
+        (Y) = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(1, 0, 1, 0));                                \
+        (Z) = _mm256_shuffle_ps(t2_, t3_, _MM_SHUFFLE(3, 2, 3, 2));                                \
     } while (0)
 
 SV_TARGET_AVX2 static inline __m256 inv_len_avx2(__m256 len2) {
@@ -365,9 +364,9 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *ind
             const __m256 a = _mm256_mul_ps(buf[s].nx, inv);
             const __m256 b = _mm256_mul_ps(buf[s].ny, inv);
             const __m256 c = _mm256_mul_ps(buf[s].nz, inv);
-            __m256 d = _mm256_add_ps(
-                _mm256_add_ps(_mm256_mul_ps(a, buf[s].px), _mm256_mul_ps(b, buf[s].py)),
-                _mm256_mul_ps(c, buf[s].pz));
+            __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, buf[s].px),
+                                                   _mm256_mul_ps(b, buf[s].py)),
+                                     _mm256_mul_ps(c, buf[s].pz));
             d = _mm256_xor_ps(d, _mm256_set1_ps(-0.0f));
             store_planes8_pairs(planes + t + 8 * s, a, b, c, d);
         }
@@ -385,19 +384,19 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *ind
     for (; t < numTriangles; t++) planes[t] = sv_plane_one(positions, indices + 3 * t);
 }
 
-#define FACING_AVX2(m)                                                                        \
-    unsigned m;                                                                               \
-    do {                                                                                      \
-        const __m256 nx_ = _mm256_sub_ps(_mm256_mul_ps(ay, bz), _mm256_mul_ps(az, by));       \
-        const __m256 ny_ = _mm256_sub_ps(_mm256_mul_ps(az, bx), _mm256_mul_ps(ax, bz));       \
-        const __m256 nz_ = _mm256_sub_ps(_mm256_mul_ps(ax, by), _mm256_mul_ps(ay, bx));       \
-        const __m256 vx_ = _mm256_sub_ps(lx, _mm256_mul_ps(px, lw));                          \
-        const __m256 vy_ = _mm256_sub_ps(ly, _mm256_mul_ps(py, lw));                          \
-        const __m256 vz_ = _mm256_sub_ps(lz, _mm256_mul_ps(pz, lw));                          \
-        const __m256 s_ = _mm256_add_ps(                                                      \
-            _mm256_add_ps(_mm256_mul_ps(nx_, vx_), _mm256_mul_ps(ny_, vy_)),                  \
-            _mm256_mul_ps(nz_, vz_));                                                         \
-        (m) = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s_, _mm256_setzero_ps(), _CMP_GT_OQ)); \
+#define FACING_AVX2(m)                                                                             \
+    unsigned m;                                                                                    \
+    do {                                                                                           \
+        const __m256 nx_ = _mm256_sub_ps(_mm256_mul_ps(ay, bz), _mm256_mul_ps(az, by));            \
+        const __m256 ny_ = _mm256_sub_ps(_mm256_mul_ps(az, bx), _mm256_mul_ps(ax, bz));            \
+        const __m256 nz_ = _mm256_sub_ps(_mm256_mul_ps(ax, by), _mm256_mul_ps(ay, bx));            \
+        const __m256 vx_ = _mm256_sub_ps(lx, _mm256_mul_ps(px, lw));                               \
+        const __m256 vy_ = _mm256_sub_ps(ly, _mm256_mul_ps(py, lw));                               \
+        const __m256 vz_ = _mm256_sub_ps(lz, _mm256_mul_ps(pz, lw));                               \
+        const __m256 s_ = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx_, vx_),                     \
+                                                      _mm256_mul_ps(ny_, vy_)),                    \
+                                        _mm256_mul_ps(nz_, vz_));                                  \
+        (m) = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(s_, _mm256_setzero_ps(), _CMP_GT_OQ));    \
     } while (0)
 
 SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const int *indices,
@@ -424,8 +423,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const 
  * (three loads): element j is index 3j + K, in register (3j+K)/8 at
  * (3j+K)%8; a blend picks, per position, the one register whose element
  * there belongs to corner K, and vpermd puts them in triangle order. */
-SV_TARGET_AVX2 static inline void corners8(const int *ix, __m256i *c0, __m256i *c1,
-                                           __m256i *c2) {
+SV_TARGET_AVX2 static inline void corners8(const int *ix, __m256i *c0, __m256i *c1, __m256i *c2) {
     const __m256i A = _mm256_loadu_si256((const __m256i *)(const void *)ix);
     const __m256i B = _mm256_loadu_si256((const __m256i *)(const void *)(ix + 8));
     const __m256i C = _mm256_loadu_si256((const __m256i *)(const void *)(ix + 16));
@@ -437,23 +435,23 @@ SV_TARGET_AVX2 static inline void corners8(const int *ix, __m256i *c0, __m256i *
     *c2 = _mm256_permutevar8x32_epi32(m2, _mm256_setr_epi32(2, 5, 0, 3, 6, 1, 4, 7));
 }
 
-#define LOAD_TRI8_GATHER(positions, ix)                                               \
-    __m256 px, py, pz, ax, ay, az, bx, by, bz;                                        \
-    do {                                                                              \
-        __m256i c0_, c1_, c2_;                                                        \
-        corners8(ix, &c0_, &c1_, &c2_);                                               \
-        c0_ = _mm256_add_epi32(c0_, _mm256_add_epi32(c0_, c0_)); /* 3 * index */      \
-        c1_ = _mm256_add_epi32(c1_, _mm256_add_epi32(c1_, c1_));                      \
-        c2_ = _mm256_add_epi32(c2_, _mm256_add_epi32(c2_, c2_));                      \
-        px = _mm256_i32gather_ps(positions, c0_, 4);                                  \
-        py = _mm256_i32gather_ps((positions) + 1, c0_, 4);                            \
-        pz = _mm256_i32gather_ps((positions) + 2, c0_, 4);                            \
-        ax = _mm256_sub_ps(_mm256_i32gather_ps(positions, c1_, 4), px);               \
-        ay = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 1, c1_, 4), py);         \
-        az = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 2, c1_, 4), pz);         \
-        bx = _mm256_sub_ps(_mm256_i32gather_ps(positions, c2_, 4), px);               \
-        by = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 1, c2_, 4), py);         \
-        bz = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 2, c2_, 4), pz);         \
+#define LOAD_TRI8_GATHER(positions, ix)                                                            \
+    __m256 px, py, pz, ax, ay, az, bx, by, bz;                                                     \
+    do {                                                                                           \
+        __m256i c0_, c1_, c2_;                                                                     \
+        corners8(ix, &c0_, &c1_, &c2_);                                                            \
+        c0_ = _mm256_add_epi32(c0_, _mm256_add_epi32(c0_, c0_)); /* 3 * index */                   \
+        c1_ = _mm256_add_epi32(c1_, _mm256_add_epi32(c1_, c1_));                                   \
+        c2_ = _mm256_add_epi32(c2_, _mm256_add_epi32(c2_, c2_));                                   \
+        px = _mm256_i32gather_ps(positions, c0_, 4);                                               \
+        py = _mm256_i32gather_ps((positions) + 1, c0_, 4);                                         \
+        pz = _mm256_i32gather_ps((positions) + 2, c0_, 4);                                         \
+        ax = _mm256_sub_ps(_mm256_i32gather_ps(positions, c1_, 4), px);                            \
+        ay = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 1, c1_, 4), py);                      \
+        az = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 2, c1_, 4), pz);                      \
+        bx = _mm256_sub_ps(_mm256_i32gather_ps(positions, c2_, 4), px);                            \
+        by = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 1, c2_, 4), py);                      \
+        bz = _mm256_sub_ps(_mm256_i32gather_ps((positions) + 2, c2_, 4), pz);                      \
     } while (0)
 
 /* The gathers index with 32-bit 3 * index: vertex numbers must be below
@@ -472,13 +470,12 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2_gather(const float *positions, const i
                 if (!(ok & (1u << l))) planes[t + l] = sv_plane_one(positions, ix + 3 * l);
         }
     }
-    for (; t < numTriangles; t++)
-        planes[t] = sv_plane_one(positions, indices + 3 * t);
+    for (; t < numTriangles; t++) planes[t] = sv_plane_one(positions, indices + 3 * t);
 }
 
-SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions,
-                                                         const int *indices, int numTriangles,
-                                                         const Vec4 *light, uint8_t *facing) {
+SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions, const int *indices,
+                                                         int numTriangles, const Vec4 *light,
+                                                         uint8_t *facing) {
     if (numTriangles < 0) return;
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
@@ -506,43 +503,43 @@ SV_TARGET_AVX512 static inline __m128 load_row_512(const float *positions, int i
 /* Corner K rows of triangles T(0) .. T(3), one per 128-bit lane. */
 SV_TARGET_AVX512 static inline __m512 row4_512(const float *positions, const int *ix, int k,
                                                const int tri[4], int shift) {
-    const __m256 lo = _mm256_insertf128_ps(
-        _mm256_castps128_ps256(load_row_512(positions, ix[3 * tri[0] + k], shift)),
-        load_row_512(positions, ix[3 * tri[1] + k], shift), 1);
-    const __m256 hi = _mm256_insertf128_ps(
-        _mm256_castps128_ps256(load_row_512(positions, ix[3 * tri[2] + k], shift)),
-        load_row_512(positions, ix[3 * tri[3] + k], shift), 1);
+    const __m256 lo = _mm256_insertf128_ps(_mm256_castps128_ps256(
+                                               load_row_512(positions, ix[3 * tri[0] + k], shift)),
+                                           load_row_512(positions, ix[3 * tri[1] + k], shift), 1);
+    const __m256 hi = _mm256_insertf128_ps(_mm256_castps128_ps256(
+                                               load_row_512(positions, ix[3 * tri[2] + k], shift)),
+                                           load_row_512(positions, ix[3 * tri[3] + k], shift), 1);
     return _mm512_insertf32x8(_mm512_castps256_ps512(lo), hi, 1);
 }
 
-#define TRANSPOSE3_512(q0, q1, q2, q3, X, Y, Z)                                 \
-    do {                                                                        \
-        const __m512 xz01_ = _mm512_mask_blend_ps(0xAAAA, q0, q1);              \
-        const __m512 xz23_ = _mm512_mask_blend_ps(0xAAAA, q2, q3);              \
-        const __m512 y01_ = _mm512_mask_blend_ps(0x4444, q0, q1);               \
-        const __m512 y23_ = _mm512_mask_blend_ps(0x4444, q2, q3);               \
-        (X) = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));         \
-        (Z) = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));         \
-        (Y) = _mm512_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));           \
+#define TRANSPOSE3_512(q0, q1, q2, q3, X, Y, Z)                                                    \
+    do {                                                                                           \
+        const __m512 xz01_ = _mm512_mask_blend_ps(0xAAAA, q0, q1);                                 \
+        const __m512 xz23_ = _mm512_mask_blend_ps(0xAAAA, q2, q3);                                 \
+        const __m512 y01_ = _mm512_mask_blend_ps(0x4444, q0, q1);                                  \
+        const __m512 y23_ = _mm512_mask_blend_ps(0x4444, q2, q3);                                  \
+        (X) = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(1, 0, 1, 0));                            \
+        (Z) = _mm512_shuffle_ps(xz01_, xz23_, _MM_SHUFFLE(3, 2, 3, 2));                            \
+        (Y) = _mm512_shuffle_ps(y01_, y23_, _MM_SHUFFLE(2, 1, 2, 1));                              \
     } while (0)
 
 /* ORDER 0: row r, lane L = triangle 4r + L (rows of consecutive planes);
  * ORDER 1: triangle r + 4L (columns in triangle order). */
-#define LOAD_TRI16_512(positions, ix, ORDER)                                                \
-    __m512 px, py, pz, ax, ay, az, bx, by, bz;                                              \
-    do {                                                                                    \
-        __m512 r0_[4], r1_[4], r2_[4];                                                      \
-        for (int r_ = 0; r_ < 4; r_++) {                                                    \
-            int tri_[4];                                                                    \
-            for (int L_ = 0; L_ < 4; L_++) tri_[L_] = (ORDER) ? r_ + 4 * L_ : 4 * r_ + L_;  \
-            const int s_ = r_ & 1;                                                          \
-            r0_[r_] = row4_512(positions, ix, 0, tri_, s_);                                 \
-            r1_[r_] = _mm512_sub_ps(row4_512(positions, ix, 1, tri_, s_), r0_[r_]);         \
-            r2_[r_] = _mm512_sub_ps(row4_512(positions, ix, 2, tri_, s_), r0_[r_]);         \
-        }                                                                                   \
-        TRANSPOSE3_512(r0_[0], r0_[1], r0_[2], r0_[3], px, py, pz);                         \
-        TRANSPOSE3_512(r1_[0], r1_[1], r1_[2], r1_[3], ax, ay, az);                         \
-        TRANSPOSE3_512(r2_[0], r2_[1], r2_[2], r2_[3], bx, by, bz);                         \
+#define LOAD_TRI16_512(positions, ix, ORDER)                                                       \
+    __m512 px, py, pz, ax, ay, az, bx, by, bz;                                                     \
+    do {                                                                                           \
+        __m512 r0_[4], r1_[4], r2_[4];                                                             \
+        for (int r_ = 0; r_ < 4; r_++) {                                                           \
+            int tri_[4];                                                                           \
+            for (int L_ = 0; L_ < 4; L_++) tri_[L_] = (ORDER) ? r_ + 4 * L_ : 4 * r_ + L_;         \
+            const int s_ = r_ & 1;                                                                 \
+            r0_[r_] = row4_512(positions, ix, 0, tri_, s_);                                        \
+            r1_[r_] = _mm512_sub_ps(row4_512(positions, ix, 1, tri_, s_), r0_[r_]);                \
+            r2_[r_] = _mm512_sub_ps(row4_512(positions, ix, 2, tri_, s_), r0_[r_]);                \
+        }                                                                                          \
+        TRANSPOSE3_512(r0_[0], r0_[1], r0_[2], r0_[3], px, py, pz);                                \
+        TRANSPOSE3_512(r1_[0], r1_[1], r1_[2], r1_[3], ax, ay, az);                                \
+        TRANSPOSE3_512(r2_[0], r2_[1], r2_[2], r2_[3], bx, by, bz);                                \
     } while (0)
 
 SV_TARGET_AVX512 void sv_derive_planes_avx512(const float *positions, const int *indices,
@@ -554,11 +551,12 @@ SV_TARGET_AVX512 void sv_derive_planes_avx512(const float *positions, const int 
         const __m512 nx = _mm512_sub_ps(_mm512_mul_ps(ay, bz), _mm512_mul_ps(az, by));
         const __m512 ny = _mm512_sub_ps(_mm512_mul_ps(az, bx), _mm512_mul_ps(ax, bz));
         const __m512 nz = _mm512_sub_ps(_mm512_mul_ps(ax, by), _mm512_mul_ps(ay, bx));
-        const __m512 len2 = _mm512_add_ps(
-            _mm512_add_ps(_mm512_mul_ps(nx, nx), _mm512_mul_ps(ny, ny)), _mm512_mul_ps(nz, nz));
-        const unsigned ok =
-            (unsigned)(_mm512_cmp_ps_mask(len2, _mm512_setzero_ps(), _CMP_GT_OQ) &
-                       _mm512_cmp_ps_mask(len2, _mm512_set1_ps(INFINITY), _CMP_LT_OQ));
+        const __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(nx, nx),
+                                                        _mm512_mul_ps(ny, ny)),
+                                          _mm512_mul_ps(nz, nz));
+        const unsigned ok = (unsigned)(_mm512_cmp_ps_mask(len2, _mm512_setzero_ps(), _CMP_GT_OQ) &
+                                       _mm512_cmp_ps_mask(len2, _mm512_set1_ps(INFINITY),
+                                                          _CMP_LT_OQ));
         const __m512 inv = _mm512_div_ps(_mm512_set1_ps(1.0f), _mm512_sqrt_ps(len2));
         const __m512 a = _mm512_mul_ps(nx, inv), b = _mm512_mul_ps(ny, inv);
         const __m512 c = _mm512_mul_ps(nz, inv);
@@ -579,8 +577,8 @@ SV_TARGET_AVX512 void sv_derive_planes_avx512(const float *positions, const int 
             }
         }
     }
-    if (t < numTriangles) sv_derive_planes_avx2(positions, indices + 3 * t, numTriangles - t,
-                                                planes + t);
+    if (t < numTriangles)
+        sv_derive_planes_avx2(positions, indices + 3 * t, numTriangles - t, planes + t);
 }
 
 SV_TARGET_AVX512 void sv_facing_from_positions_avx512(const float *positions, const int *indices,
@@ -599,8 +597,8 @@ SV_TARGET_AVX512 void sv_facing_from_positions_avx512(const float *positions, co
         const __m512 vx = _mm512_sub_ps(lx, _mm512_mul_ps(px, lw));
         const __m512 vy = _mm512_sub_ps(ly, _mm512_mul_ps(py, lw));
         const __m512 vz = _mm512_sub_ps(lz, _mm512_mul_ps(pz, lw));
-        const __m512 s = _mm512_add_ps(
-            _mm512_add_ps(_mm512_mul_ps(nx, vx), _mm512_mul_ps(ny, vy)), _mm512_mul_ps(nz, vz));
+        const __m512 s = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(nx, vx), _mm512_mul_ps(ny, vy)),
+                                       _mm512_mul_ps(nz, vz));
         const __mmask16 m = _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_GT_OQ);
         _mm_storeu_si128((__m128i *)(void *)(facing + t), _mm_maskz_mov_epi8(m, _mm_set1_epi8(1)));
     }

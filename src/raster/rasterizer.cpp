@@ -26,10 +26,10 @@ constexpr int kMaxPolygon = 3 + 5; /* a triangle cut by 5 planes */
 /* Signed distance to clip plane P (>= 0 inside). */
 inline double plane_distance(int p, const ClipVertex &v) {
     switch (p) {
-    case 0: return v.z + v.w; /* near */
-    case 1: return v.x + v.w; /* left */
-    case 2: return v.w - v.x; /* right */
-    case 3: return v.y + v.w; /* bottom */
+    case 0: return v.z + v.w;  /* near */
+    case 1: return v.x + v.w;  /* left */
+    case 2: return v.w - v.x;  /* right */
+    case 3: return v.y + v.w;  /* bottom */
     default: return v.w - v.y; /* top */
     }
 }
@@ -157,7 +157,8 @@ constexpr int kPrefetchRows = 6;
 inline void prefetch_ahead(const float *depth, uint8_t *stencil, int width, int height, int y,
                            int x) {
     if (y + kPrefetchRows >= height) return;
-    const std::size_t i = (std::size_t)(y + kPrefetchRows) * (std::size_t)width + (std::size_t)(x & ~15);
+    const std::size_t i = (std::size_t)(y + kPrefetchRows) * (std::size_t)width +
+                          (std::size_t)(x & ~15);
     __builtin_prefetch(depth + i);
     if (stencil) __builtin_prefetch(stencil + i, 1);
 }
@@ -212,8 +213,8 @@ void Target::clear_stencil() { std::fill(stencil.begin(), stencil.end(), 0); }
 
 Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
 
-void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
-                       PassCounters &c, std::vector<SetupTriangle> &out) const {
+void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
+                       std::vector<SetupTriangle> &out) const {
     c.triangles++;
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
     int n = 3;
@@ -248,7 +249,8 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
     bool drew = false;
     for (int k = 1; k + 1 < n; k++) {
         Snapped t[3] = {s[0], s[k], s[k + 1]};
-        const int64_t a2 = (t[1].X - t[0].X) * (t[2].Y - t[0].Y) - (t[2].X - t[0].X) * (t[1].Y - t[0].Y);
+        const int64_t a2 = (t[1].X - t[0].X) * (t[2].Y - t[0].Y) -
+                           (t[2].X - t[0].X) * (t[1].Y - t[0].Y);
         if (a2 == 0) continue;
         /* Counter-clockwise with y up is clockwise with y down: a2 < 0. */
         const bool front = a2 < 0;
@@ -265,8 +267,10 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
             st.step_x[e] = -ey * (int64_t)kSubPixel;
             st.step_y[e] = ex * (int64_t)kSubPixel;
         }
-        const int64_t min_x = std::min({t[0].X, t[1].X, t[2].X}), max_x = std::max({t[0].X, t[1].X, t[2].X});
-        const int64_t min_y = std::min({t[0].Y, t[1].Y, t[2].Y}), max_y = std::max({t[0].Y, t[1].Y, t[2].Y});
+        const int64_t min_x = std::min({t[0].X, t[1].X, t[2].X}),
+                      max_x = std::max({t[0].X, t[1].X, t[2].X});
+        const int64_t min_y = std::min({t[0].Y, t[1].Y, t[2].Y}),
+                      max_y = std::max({t[0].Y, t[1].Y, t[2].Y});
         const int64_t sub = (int64_t)kSubPixel, half = sub / 2;
         st.x_first = (int)std::max<int64_t>(0, floor_div(min_x - half + sub - 1, sub));
         st.x_last = (int)std::min<int64_t>(width - 1, floor_div(max_x - half, sub));
@@ -342,8 +346,7 @@ void Rasterizer::walk_rows(const SetupTriangle &tri, RowBand band, Emit &&emit) 
     }
 }
 
-void Rasterizer::walk_depth(const SetupTriangle &tri, Target &t, RowBand band,
-                            RowCounts &r) const {
+void Rasterizer::walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &r) const {
     walk_rows(tri, band, [&](const RowSpan &span, int y) {
         const std::size_t row = (std::size_t)y * (std::size_t)t.width;
         prefetch_ahead(t.depth.data(), nullptr, t.width, t.height, y, span.x_begin);
@@ -407,13 +410,14 @@ void Rasterizer::draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode
     setup(v, t.width, t.height, 0, c, pieces);
     RowCounts r;
     for (const SetupTriangle &p : pieces) {
-        walk_stencil(p, t.depth.data(), t.stencil.data(), t.width, t.height, {0, t.height}, mode, r);
+        walk_stencil(p, t.depth.data(), t.stencil.data(), t.width, t.height, {0, t.height}, mode,
+                     r);
     }
     add_stencil_counts(r, c);
 }
 
 Rasterizer::PlaneCoefficients Rasterizer::depth_plane(const ClipVertex v[3], int width,
-                                                     int height) const {
+                                                      int height) const {
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
     const int n = clip_polygon(poly, 3);
     Snapped s[kMaxPolygon];
@@ -423,8 +427,7 @@ Rasterizer::PlaneCoefficients Rasterizer::depth_plane(const ClipVertex v[3], int
 }
 
 std::vector<Rasterizer::WindowTriangle> Rasterizer::window_triangles(const ClipVertex v[3],
-                                                                     int width,
-                                                                     int height) const {
+                                                                     int width, int height) const {
     /* The same clipping and snapping as rasterize(), kept as pixels. */
     std::vector<WindowTriangle> out;
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
@@ -439,7 +442,8 @@ std::vector<Rasterizer::WindowTriangle> Rasterizer::window_triangles(const ClipV
             w.y[i] = (double)t[i]->Y / kSubPixel;
             w.z[i] = t[i]->z;
         }
-        const double a2 = (w.x[1] - w.x[0]) * (w.y[2] - w.y[0]) - (w.x[2] - w.x[0]) * (w.y[1] - w.y[0]);
+        const double a2 = (w.x[1] - w.x[0]) * (w.y[2] - w.y[0]) -
+                          (w.x[2] - w.x[0]) * (w.y[1] - w.y[0]);
         if (a2 == 0) continue;
         w.front = a2 < 0;
         out.push_back(w);

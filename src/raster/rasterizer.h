@@ -51,9 +51,9 @@ struct ClipVertex {
  * (stencil pass) changed hands. Bytes count one read per test and one
  * write per written pixel, per buffer. */
 struct PassCounters {
-    uint64_t triangles = 0;          /* submitted */
-    uint64_t triangles_clipped = 0;  /* crossed a clip plane and were cut */
-    uint64_t triangles_outside = 0;  /* wholly outside the view volume */
+    uint64_t triangles = 0;            /* submitted */
+    uint64_t triangles_clipped = 0;    /* crossed a clip plane and were cut */
+    uint64_t triangles_outside = 0;    /* wholly outside the view volume */
     uint64_t triangles_degenerate = 0; /* zero area after snapping */
     uint64_t pixels_tested = 0;
     uint64_t pixels_written = 0;
@@ -113,9 +113,9 @@ enum class StencilMode { zpass, zfail };
 struct SetupTriangle {
     int64_t e_origin[3]; /* edge functions at pixel (0, 0)'s centre, biased */
     int64_t step_x[3], step_y[3];
-    double x0, y0, z0, a, b; /* depth plane (pixels) */
+    double x0, y0, z0, a, b;              /* depth plane (pixels) */
     int x_first, x_last, y_first, y_last; /* pixel bounds, inclusive */
-    int32_t id;  /* depth pass: the id to write */
+    int32_t id;                           /* depth pass: the id to write */
     bool front;
 };
 
@@ -137,8 +137,7 @@ public:
     /* Stencil pass, depth read only. zpass: front faces +1, back faces -1
      * (mod 256) where the depth test passes; zfail: back faces +1, front
      * faces -1 where it fails. */
-    void draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode,
-                      PassCounters &c) const;
+    void draw_stencil(Target &t, const ClipVertex v[3], StencilMode mode, PassCounters &c) const;
 
     /* Set-up of one input triangle: clipping, snapping, edge functions and
      * the depth plane; appends 0 to 6 pieces to OUT (none when it is

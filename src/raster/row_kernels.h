@@ -55,8 +55,8 @@ constexpr int kFrameSlack = 64;
 /* Row pointers (the row's pixel 0). */
 struct RowBuffers {
     float *depth;
-    int32_t *ids;      /* depth pass only */
-    uint8_t *stencil;  /* stencil passes only */
+    int32_t *ids;     /* depth pass only */
+    uint8_t *stencil; /* stencil passes only */
 };
 
 struct RowCounts {

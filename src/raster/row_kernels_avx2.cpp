@@ -110,7 +110,8 @@ SV_TARGET_AVX2 void depth_avx2(const RowSpan &s, const RowBuffers &buf, int32_t 
             /* A whole aligned vector even where the span covers part of
              * the block (kFrameSlack). */
             const __m256 d = _mm256_loadu_ps(buf.depth + x);
-            const unsigned less = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(z, d, _CMP_LT_OQ)) & cov;
+            const unsigned less = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(z, d, _CMP_LT_OQ)) &
+                                  cov;
             if (less) {
                 const __m256i m = lane_mask(less);
                 _mm256_maskstore_ps(buf.depth + x, m, z);
@@ -126,7 +127,8 @@ SV_TARGET_AVX2 void depth_avx2(const RowSpan &s, const RowBuffers &buf, int32_t 
 }
 
 template <bool kFail>
-SV_TARGET_AVX2 void stencil_avx2(const RowSpan &s, const RowBuffers &buf, uint8_t delta, RowCounts &n) {
+SV_TARGET_AVX2 void stencil_avx2(const RowSpan &s, const RowBuffers &buf, uint8_t delta,
+                                 RowCounts &n) {
     /* Local counts: a stencil byte store may alias *n, a local cannot. */
     uint64_t tested = 0, written = 0;
     if (s.x_end - s.x_begin <= kShortSpan) {
@@ -150,8 +152,10 @@ SV_TARGET_AVX2 void stencil_avx2(const RowSpan &s, const RowBuffers &buf, uint8_
                  * pdep: microcoded and slow on AMD cores before Zen 3.)
                  * The 8 bytes all lie in the span. */
                 const __m256i m = lane_mask(upd);
-                const __m128i m16 = _mm_packs_epi32(_mm256_castsi256_si128(m), _mm256_extracti128_si256(m, 1));
-                const __m128i inc = _mm_and_si128(_mm_packs_epi16(m16, m16), _mm_set1_epi8((char)delta));
+                const __m128i m16 = _mm_packs_epi32(_mm256_castsi256_si128(m),
+                                                    _mm256_extracti128_si256(m, 1));
+                const __m128i inc = _mm_and_si128(_mm_packs_epi16(m16, m16),
+                                                  _mm_set1_epi8((char)delta));
                 const __m128i st = _mm_loadl_epi64((const __m128i *)(buf.stencil + x));
                 _mm_storel_epi64((__m128i *)(buf.stencil + x), _mm_add_epi8(st, inc));
             } else {

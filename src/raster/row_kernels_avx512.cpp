@@ -56,8 +56,8 @@ SV_TARGET_AVX512 inline void setup(const RowSpan &s, Block16 &b) {
 SV_TARGET_AVX512 inline __mmask16 covered(const Block16 &b, __mmask16 tail) {
     const __m512i lo = _mm512_or_si512(_mm512_or_si512(b.e_lo[0], b.e_lo[1]), b.e_lo[2]);
     const __m512i hi = _mm512_or_si512(_mm512_or_si512(b.e_hi[0], b.e_hi[1]), b.e_hi[2]);
-    const __mmask16 negative =
-        (__mmask16)(_mm512_movepi64_mask(lo) | ((unsigned)_mm512_movepi64_mask(hi) << 8));
+    const __mmask16 negative = (__mmask16)(_mm512_movepi64_mask(lo) |
+                                           ((unsigned)_mm512_movepi64_mask(hi) << 8));
     return (__mmask16)(~negative & tail);
 }
 
@@ -67,8 +67,8 @@ SV_TARGET_AVX512 inline __m512 depth16(const Block16 &b, int x) {
     const __m512d dx_hi = _mm512_sub_pd(_mm512_add_pd(_mm512_add_pd(xb, b.lane_hi), b.half), b.x0);
     const __m512d z_lo = _mm512_add_pd(b.zrow, _mm512_mul_pd(b.dzdx, dx_lo));
     const __m512d z_hi = _mm512_add_pd(b.zrow, _mm512_mul_pd(b.dzdx, dx_hi));
-    return _mm512_insertf32x8(_mm512_zextps256_ps512(_mm512_cvtpd_ps(z_lo)),
-                              _mm512_cvtpd_ps(z_hi), 1);
+    return _mm512_insertf32x8(_mm512_zextps256_ps512(_mm512_cvtpd_ps(z_lo)), _mm512_cvtpd_ps(z_hi),
+                              1);
 }
 
 SV_TARGET_AVX512 inline void advance(Block16 &b) {
@@ -95,7 +95,8 @@ inline RowSpan aligned(const RowSpan &s) {
     return a;
 }
 
-SV_TARGET_AVX512 void depth_avx512(const RowSpan &s, const RowBuffers &buf, int32_t id, RowCounts &n) {
+SV_TARGET_AVX512 void depth_avx512(const RowSpan &s, const RowBuffers &buf, int32_t id,
+                                   RowCounts &n) {
     /* Local counts: a stencil byte store may alias *n, a local cannot. */
     uint64_t tested = 0, written = 0;
     if (s.x_end - s.x_begin <= kShortSpan) return kRowKernelsC.depth(s, buf, id, n);
@@ -120,7 +121,8 @@ SV_TARGET_AVX512 void depth_avx512(const RowSpan &s, const RowBuffers &buf, int3
 }
 
 template <bool kFail>
-SV_TARGET_AVX512 void stencil_avx512(const RowSpan &s, const RowBuffers &buf, uint8_t delta, RowCounts &n) {
+SV_TARGET_AVX512 void stencil_avx512(const RowSpan &s, const RowBuffers &buf, uint8_t delta,
+                                     RowCounts &n) {
     /* Local counts: a stencil byte store may alias *n, a local cannot. */
     uint64_t tested = 0, written = 0;
     if (s.x_end - s.x_begin <= kShortSpan) {
@@ -158,7 +160,7 @@ SV_TARGET_AVX512 void stencil_avx512(const RowSpan &s, const RowBuffers &buf, ui
 
 } // namespace
 
-const RowKernels kRowKernelsAvx512 = {"avx512", SV_ISA_AVX512, depth_avx512,
-                                      stencil_avx512<false>, stencil_avx512<true>};
+const RowKernels kRowKernelsAvx512 = {"avx512", SV_ISA_AVX512, depth_avx512, stencil_avx512<false>,
+                                      stencil_avx512<true>};
 
 } // namespace sv::raster

@@ -40,7 +40,8 @@ inline void depth_c(const RowSpan &s, const RowBuffers &b, int32_t id, RowCounts
     n.written += written;
 }
 
-template <bool kFail> inline void stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowCounts &n) {
+template <bool kFail>
+inline void stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowCounts &n) {
     /* Local counts: a stencil byte store may alias *n, a local cannot. */
     uint64_t tested = 0, written = 0;
     int64_t e0 = s.e[0], e1 = s.e[1], e2 = s.e[2];

@@ -43,7 +43,8 @@ DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
     std::vector<Chunk> chunks;
     for (int si = 0; si < num_surfaces; si++) {
         const int n = scene.surfaces[(std::size_t)si].prepared.num_triangles();
-        for (int t = 0; t < n; t += kSetupChunk) chunks.push_back({si, t, std::min(n, t + kSetupChunk)});
+        for (int t = 0; t < n; t += kSetupChunk)
+            chunks.push_back({si, t, std::min(n, t + kSetupChunk)});
     }
     BinnedTriangles bt;
     bt.chunks.resize(chunks.size());
@@ -67,7 +68,8 @@ DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
     parallel(num_bands, [&](int b) {
         const raster::RowBand band = band_rows(b, height);
         for (const auto &[c, i] : bt.bands[(std::size_t)b]) {
-            rast.walk_depth(bt.chunks[(std::size_t)c][(std::size_t)i], target, band, rc[(std::size_t)b]);
+            rast.walk_depth(bt.chunks[(std::size_t)c][(std::size_t)i], target, band,
+                            rc[(std::size_t)b]);
         }
     });
     for (const auto &r : rc) raster::Rasterizer::add_depth_counts(r, result.counters);

@@ -55,11 +55,12 @@ raster::ClipVertex to_clip(const Mat4d &view_proj, double x, double y, double z,
     return {c[0], c[1], c[2], c[3]};
 }
 
-raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p, int sv_index,
-                                         const Vec4 &L) {
+raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p,
+                                         int sv_index, const Vec4 &L) {
     const Vec3d q = vertex(p, sv_index >> 1);
-    return (sv_index & 1) ? to_clip(view_proj, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0)
-                          : to_clip(view_proj, q.x, q.y, q.z, 1.0);
+    return (sv_index & 1)
+               ? to_clip(view_proj, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0)
+               : to_clip(view_proj, q.x, q.y, q.z, 1.0);
 }
 
 Vec3d camera_ray(const Frame &f, double x, double y) {
@@ -67,8 +68,7 @@ Vec3d camera_ray(const Frame &f, double x, double y) {
     return add(f.ray_forward, add(mul(f.ray_right, nx), mul(f.ray_up, ny)));
 }
 
-Vec3d visible_point(const Frame &f, const Scene &scene, int surface, int triangle, int px,
-                    int py) {
+Vec3d visible_point(const Frame &f, const Scene &scene, int surface, int triangle, int px, int py) {
     const Vec3d dir = camera_ray(f, px + 0.5, py + 0.5);
     const PreparedSurface &p = scene.surfaces[surface].prepared;
     const int *tri = &p.indices[3 * triangle];
@@ -164,11 +164,13 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         }
         /* The target's own stencil holds the last light's, as before. */
         if (!f.lights.empty()) {
-            std::copy(f.lights.back().stencil.begin(), f.lights.back().stencil.end(), f.target.stencil.begin());
+            std::copy(f.lights.back().stencil.begin(), f.lights.back().stencil.end(),
+                      f.target.stencil.begin());
         }
 
         const uint64_t k0 = ticks();
-        ShadingResult shaded = shading_pass(scene, f, lit_facing(scene, f.lights, cache), opt.ambient);
+        ShadingResult shaded = shading_pass(scene, f, lit_facing(scene, f.lights, cache),
+                                            opt.ambient);
         f.rgb = std::move(shaded.rgb);
         f.ticks_shading = ticks() - k0;
     });

@@ -71,20 +71,20 @@ struct Shortcuts {
  * show the proof (shortcuts against --full, pixel for pixel) catches a
  * test that is too tight. Never set outside tests. */
 struct ShortcutFaults {
-    double light_reach_scale = 1;  /* < 1: ranges and cones shrunk in test 1 */
+    double light_reach_scale = 1;         /* < 1: ranges and cones shrunk in test 1 */
     bool view_reach_no_extrusion = false; /* test 2 with the box alone, not its shadow */
-    bool cull_inside_planes = false; /* test 3's light volume shrunk to half */
-    bool zpass_always = false;     /* test 4 always says z-pass */
-    bool drop_dark_cap_always = false; /* test 5 for point lights too */
-    bool reuse_ignores_motion = false; /* test 6 reuses after a surface moved */
+    bool cull_inside_planes = false;      /* test 3's light volume shrunk to half */
+    bool zpass_always = false;            /* test 4 always says z-pass */
+    bool drop_dark_cap_always = false;    /* test 5 for point lights too */
+    bool reuse_ignores_motion = false;    /* test 6 reuses after a surface moved */
 };
 
 enum class VolumeFate : uint8_t {
-    built,          /* built this frame */
-    reused,         /* taken from the cache: surface and light unchanged */
-    out_of_reach,   /* shortcut 1 */
-    out_of_view,    /* shortcut 2 */
-    no_shadow,      /* built, but no triangle casts */
+    built,        /* built this frame */
+    reused,       /* taken from the cache: surface and light unchanged */
+    out_of_reach, /* shortcut 1 */
+    out_of_view,  /* shortcut 2 */
+    no_shadow,    /* built, but no triangle casts */
 };
 const char *fate_name(VolumeFate f);
 
@@ -92,11 +92,11 @@ const char *fate_name(VolumeFate f);
 struct VolumeDecision {
     int surface = 0;
     VolumeFate fate = VolumeFate::built;
-    bool straddles = false;     /* the box straddles the light volume */
-    bool cull_bits = false;     /* the culling routine ran (or its result was reused) */
-    bool zfail = false;         /* drawn in z-fail with caps */
+    bool straddles = false; /* the box straddles the light volume */
+    bool cull_bits = false; /* the culling routine ran (or its result was reused) */
+    bool zfail = false;     /* drawn in z-fail with caps */
     bool dark_cap_dropped = false;
-    int64_t indices_built = 0;  /* written by the routines this frame (0 when reused) */
+    int64_t indices_built = 0; /* written by the routines this frame (0 when reused) */
     int64_t indices_drawn = 0;
 };
 
@@ -130,7 +130,7 @@ struct RenderOptions {
     /* Worker threads (oneTBB): 0 = every core; 1 = none. The pictures and
      * counts are the same at every count. */
     int threads = 1;
-    VolumeCache *cache = nullptr; /* shortcut 6 needs one */
+    VolumeCache *cache = nullptr;                /* shortcut 6 needs one */
     const raster::RowKernels *kernels = nullptr; /* nullptr: the best this CPU runs */
     const sv_variant *variant = nullptr;         /* nullptr: sv_best_variant() */
     const sv_facing_variant *facing = nullptr;   /* nullptr: sv_best_facing_variant() */
@@ -156,13 +156,13 @@ struct Volume {
 struct LightFrame {
     SceneLight light;
     Vec4 shadow_light{};
-    std::vector<Volume> volumes;  /* surfaces that cast (a volume with indices) */
+    std::vector<Volume> volumes;           /* surfaces that cast (a volume with indices) */
     std::vector<VolumeDecision> decisions; /* one per surface */
     int zfail_volumes = 0;
     int built = 0, reused = 0, out_of_reach = 0, out_of_view = 0, culled = 0;
-    int64_t indices = 0;          /* in all volumes */
+    int64_t indices = 0; /* in all volumes */
     int64_t drawn_indices = 0;
-    int64_t built_indices = 0;    /* written by the routines this frame */
+    int64_t built_indices = 0; /* written by the routines this frame */
     /* Work (summed over threads) in the facing, culling and volume
      * routines; wall ticks of the stencil pass. */
     uint64_t ticks_facing = 0, ticks_culling = 0, ticks_volume = 0, ticks_stencil = 0;
@@ -175,10 +175,10 @@ struct Frame {
     int width = 0, height = 0;
     Camera camera;
     Mat4d view_proj;
-    std::string kernels;          /* row kernels used */
-    std::string variant;          /* the library's kernels used */
-    std::string stencil_method;   /* the stencil pass's method (stencil_method.h) */
-    raster::Target target;        /* depth and ids after the depth pass */
+    std::string kernels;        /* row kernels used */
+    std::string variant;        /* the library's kernels used */
+    std::string stencil_method; /* the stencil pass's method (stencil_method.h) */
+    raster::Target target;      /* depth and ids after the depth pass */
     raster::PassCounters depth_counters;
     uint64_t ticks_depth = 0;
     double seconds_depth = 0;
@@ -187,7 +187,7 @@ struct Frame {
     uint64_t ticks_total = 0;   /* wall ticks of render_frame */
     int threads = 1;            /* worker threads used */
     std::vector<LightFrame> lights;
-    std::vector<uint8_t> rgb;     /* shaded image, 3 bytes per pixel, row 0 = top */
+    std::vector<uint8_t> rgb; /* shaded image, 3 bytes per pixel, row 0 = top */
     /* The camera ray through pixel centre (px, py):
      * ray_forward + nx * ray_right + ny * ray_up, nx and ny in [-1, 1]. */
     Vec3d ray_forward, ray_right, ray_up;
@@ -234,8 +234,7 @@ Vec3d camera_ray(const Frame &f, double x, double y);
 
 /* The world point seen through the centre of pixel (px, py) on triangle
  * T of surface S (the camera ray meets the triangle's plane), in double. */
-Vec3d visible_point(const Frame &f, const Scene &scene, int surface, int triangle, int px,
-                    int py);
+Vec3d visible_point(const Frame &f, const Scene &scene, int surface, int triangle, int px, int py);
 
 } // namespace sv::render
 

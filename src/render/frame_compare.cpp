@@ -19,7 +19,8 @@ bool pixel_in_light_reach(const Frame &f, const Scene &scene, int light, std::si
     const SceneSurface &s = scene.surfaces[(std::size_t)si];
     const SceneLight &l = scene.lights[(std::size_t)light];
     if (!light_reaches_box(l, s.lo, s.hi)) return false;
-    const auto row = (int)(pixel / (std::size_t)f.width), column = (int)(pixel % (std::size_t)f.width);
+    const auto row = (int)(pixel / (std::size_t)f.width),
+               column = (int)(pixel % (std::size_t)f.width);
     return point_in_light_reach(l, visible_point(f, scene, si, t, column, row));
 }
 

@@ -29,9 +29,12 @@ inline int band_count(int height) { return (height + kBandRows - 1) / kBandRows;
 
 /* Runs BODY(i) for i in [0, n) on the current arena's threads. */
 template <class Body> void parallel(int n, Body &&body) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int> &r) {
-        for (int i = r.begin(); i != r.end(); i++) body(i);
-    }, tbb::simple_partitioner());
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, n, 1),
+        [&](const tbb::blocked_range<int> &r) {
+            for (int i = r.begin(); i != r.end(); i++) body(i);
+        },
+        tbb::simple_partitioner());
 }
 
 /* Triangles set up in chunks (in parallel), then binned to bands in

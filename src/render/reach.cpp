@@ -49,9 +49,11 @@ bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d 
     std::array<double, 4> pts[16];
     int n = 0;
     for (int i = 0; i < 8; i++) {
-        const double x = (i & 1) ? hi.x : lo.x, y = (i & 2) ? hi.y : lo.y, z = (i & 4) ? hi.z : lo.z;
+        const double x = (i & 1) ? hi.x : lo.x, y = (i & 2) ? hi.y : lo.y,
+                     z = (i & 4) ? hi.z : lo.z;
         pts[n++] = view_proj.apply(x, y, z, 1.0);
-        if (with_extrusion) pts[n++] = view_proj.apply(x * L.w - L.x, y * L.w - L.y, z * L.w - L.z, 0.0);
+        if (with_extrusion)
+            pts[n++] = view_proj.apply(x * L.w - L.x, y * L.w - L.y, z * L.w - L.z, 0.0);
     }
     for (int p = 0; p < 5; p++) {
         bool all_out = true;
@@ -64,7 +66,8 @@ bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d 
                                       : q[3] - q[1];
             /* A margin for the rounding of the transform: the rasteriser
              * transforms each vertex on its own. */
-            const double scale = std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + std::fabs(q[3]);
+            const double scale = std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) +
+                                 std::fabs(q[3]);
             all_out = d < -1e-9 * scale;
         }
         if (all_out) return false;
@@ -148,8 +151,8 @@ bool near_plane_may_be_shadowed(const Camera &camera, double aspect, const Scene
     const bool directional = light.kind == LightKind::directional;
     const Vec3d towards = directional ? mul(light.direction, -1.0) : Vec3d{};
     /* The light's side of the near plane, and a point inside the hull. */
-    const double light_side =
-        directional ? dot(towards, b.f) : dot(sub(light.position, centre), b.f);
+    const double light_side = directional ? dot(towards, b.f)
+                                          : dot(sub(light.position, centre), b.f);
     const double scale = camera.near_distance + std::sqrt(hh * hh + hw * hw);
     if (std::fabs(light_side) <= 1e-9 * scale) return true; /* the hull is flat: be safe */
     const Vec3d inside = directional ? add(centre, mul(towards, scale))
@@ -161,7 +164,8 @@ bool near_plane_may_be_shadowed(const Camera &camera, double aspect, const Scene
     int np = 0;
     for (int i = 0; i < 4; i++) {
         const Vec3d &p = c[i], &q = c[(i + 1) % 4];
-        const Vec3d n = directional ? cross(sub(q, p), towards) : cross(sub(q, p), sub(light.position, p));
+        const Vec3d n = directional ? cross(sub(q, p), towards)
+                                    : cross(sub(q, p), sub(light.position, p));
         Pl pl{n, -dot(n, p)};
         if (dot(pl.n, inside) + pl.d < 0) pl = {mul(n, -1.0), dot(n, p)};
         planes[np++] = pl;

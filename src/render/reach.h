@@ -19,8 +19,7 @@ namespace sv::render {
  * it (with or without shortcuts: the test is part of the lighting model,
  * as Doom 3's light-surface interactions are), and shortcut 1 builds no
  * volume for it: its shadow lies wholly beyond the range or the cone. */
-bool light_reaches_box(const SceneLight &light, const Vec3d &lo, const Vec3d &hi,
-                       double scale = 1);
+bool light_reaches_box(const SceneLight &light, const Vec3d &lo, const Vec3d &hi, double scale = 1);
 
 /* Can the shadow volume of a surface in box [lo, hi] have a fragment in
  * view (shortcut 2)? False when the box's eight corners and their eight
@@ -28,8 +27,8 @@ bool light_reaches_box(const SceneLight &light, const Vec3d &lo, const Vec3d &hi
  * lie outside one of the five clip planes the rasteriser clips against:
  * every vertex of the volume is a non-negative combination of them, so
  * every triangle of it is then dropped whole. */
-bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d &hi,
-                           const Vec4 &L, bool with_extrusion = true);
+bool shadow_may_reach_view(const Mat4d &view_proj, const Vec3d &lo, const Vec3d &hi, const Vec4 &L,
+                           bool with_extrusion = true);
 
 /* The light volume of appendix B as six planes pointing into it: a point
  * light's range as a cube, a spot light's cone as a square pyramid (its

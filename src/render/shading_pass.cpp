@@ -98,7 +98,8 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
                 const int32_t id = f.target.ids[i];
                 if (id < 0) {
                     const double sky = 0.30 + 0.25 * (1.0 - (double)py / height);
-                    out[0] = to_display8(sky * 0.55), out[1] = to_display8(sky * 0.65), out[2] = to_display8(sky);
+                    out[0] = to_display8(sky * 0.55), out[1] = to_display8(sky * 0.65),
+                    out[2] = to_display8(sky);
                     continue;
                 }
                 int si, t;

@@ -33,7 +33,8 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     std::vector<Chunk> chunks;
     for (int vi = 0; vi < (int)volumes.size(); vi++) {
         const int n = volumes[(std::size_t)vi].drawn_indices() / 3;
-        for (int t = 0; t < n; t += kSetupChunk) chunks.push_back({vi, t, std::min(n, t + kSetupChunk)});
+        for (int t = 0; t < n; t += kSetupChunk)
+            chunks.push_back({vi, t, std::min(n, t + kSetupChunk)});
     }
     /* The double-length buffers through the paper's vertex program
      * (the even vertices are the receivers' own, already done). */
@@ -64,8 +65,9 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     });
     for (std::size_t c = 0; c < chunks.size(); c++) {
         result.counters.add(cc[c]);
-        bt.chunk_mode.push_back(volumes[(std::size_t)chunks[c].volume].zfail ? raster::StencilMode::zfail
-                                                                              : raster::StencilMode::zpass);
+        bt.chunk_mode.push_back(volumes[(std::size_t)chunks[c].volume].zfail
+                                    ? raster::StencilMode::zfail
+                                    : raster::StencilMode::zpass);
     }
     bt.bin(height);
     const int num_bands = band_count(height);
@@ -74,8 +76,8 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
         const raster::RowBand band = band_rows(b, height);
         for (const auto &[c, i] : bt.bands[(std::size_t)b]) {
             rast.walk_stencil(bt.chunks[(std::size_t)c][(std::size_t)i], in.target->depth.data(),
-                              result.stencil.data(), width, height, band, bt.chunk_mode[(std::size_t)c],
-                              rc[(std::size_t)b]);
+                              result.stencil.data(), width, height, band,
+                              bt.chunk_mode[(std::size_t)c], rc[(std::size_t)b]);
         }
     });
     for (const auto &r : rc) raster::Rasterizer::add_stencil_counts(r, result.counters);

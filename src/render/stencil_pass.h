@@ -24,16 +24,16 @@ struct StencilPassInputs {
     const Scene *scene = nullptr;
     const ClipVertices *receivers = nullptr; /* the depth pass's clip vertices */
     const std::vector<Volume> *volumes = nullptr;
-    Vec4 light{};                            /* the volumes' light (w = 0: directional) */
+    Vec4 light{}; /* the volumes' light (w = 0: directional) */
     Mat4d view_proj;
     const raster::Rasterizer *rast = nullptr;
-    const raster::Target *target = nullptr;  /* its depth, after the depth pass */
+    const raster::Target *target = nullptr; /* its depth, after the depth pass */
 };
 
 struct StencilPassResult {
     std::vector<uint8_t> stencil; /* target-sized, row 0 = top */
     raster::PassCounters counters;
-    uint64_t ticks = 0;           /* wall TSC ticks */
+    uint64_t ticks = 0; /* wall TSC ticks */
     double seconds = 0;
 };
 

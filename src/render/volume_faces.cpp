@@ -36,7 +36,9 @@ std::vector<raster::Rasterizer::WindowTriangle> drawn_volume_triangles(const Sce
     const Vec4 L = lf.shadow_light;
     for (const Volume &vol : lf.volumes) {
         const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-        auto clip_of = [&](int sv_index) { return shadow_vertex_to_clip(f.view_proj, p, sv_index, L); };
+        auto clip_of = [&](int sv_index) {
+            return shadow_vertex_to_clip(f.view_proj, p, sv_index, L);
+        };
         for (int i = 0; i + 2 < vol.drawn_indices(); i += 3) {
             const raster::ClipVertex v[3] = {clip_of(vol.indices[(std::size_t)i]),
                                              clip_of(vol.indices[(std::size_t)i + 1]),
@@ -54,21 +56,28 @@ FaceProximity face_proximity(const std::vector<raster::Rasterizer::WindowTriangl
     const double py = (double)row + 0.5;
     FaceProximity r{HUGE_VAL, HUGE_VAL};
     for (const auto &t : tris) {
-        const double x0 = std::min({t.x[0], t.x[1], t.x[2]}), x1 = std::max({t.x[0], t.x[1], t.x[2]});
-        const double y0 = std::min({t.y[0], t.y[1], t.y[2]}), y1 = std::max({t.y[0], t.y[1], t.y[2]});
+        const double x0 = std::min({t.x[0], t.x[1], t.x[2]}),
+                     x1 = std::max({t.x[0], t.x[1], t.x[2]});
+        const double y0 = std::min({t.y[0], t.y[1], t.y[2]}),
+                     y1 = std::max({t.y[0], t.y[1], t.y[2]});
         if (px < x0 - 1 || px > x1 + 1 || py < y0 - 1 || py > y1 + 1) continue;
         for (int e = 0; e < 3; e++) {
             const int k = (e + 1) % 3;
-            r.nearest_edge = std::min(r.nearest_edge, segment_distance(px, py, t.x[e], t.y[e], t.x[k], t.y[k]));
+            r.nearest_edge = std::min(r.nearest_edge,
+                                      segment_distance(px, py, t.x[e], t.y[e], t.x[k], t.y[k]));
         }
         /* Inside: barycentric depth. */
-        const double d = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
+        const double d = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) -
+                         (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
         if (d == 0) continue;
-        const double b1 = ((px - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (py - t.y[0])) / d;
-        const double b2 = ((t.x[1] - t.x[0]) * (py - t.y[0]) - (px - t.x[0]) * (t.y[1] - t.y[0])) / d;
+        const double b1 = ((px - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (py - t.y[0])) /
+                          d;
+        const double b2 = ((t.x[1] - t.x[0]) * (py - t.y[0]) - (px - t.x[0]) * (t.y[1] - t.y[0])) /
+                          d;
         if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
         const double z = t.z[0] + b1 * (t.z[1] - t.z[0]) + b2 * (t.z[2] - t.z[0]);
-        r.gap_ulps = std::min(r.gap_ulps, std::fabs(z - depth) / depth_tie_width(depth) * kDepthTieUlps);
+        r.gap_ulps = std::min(r.gap_ulps,
+                              std::fabs(z - depth) / depth_tie_width(depth) * kDepthTieUlps);
     }
     return r;
 }

@@ -35,9 +35,9 @@ struct VolumeCache::Entry {
     AlignedVector<uint8_t> facing;        /* calculate_facing's bytes: the lighting pass's */
     AlignedVector<uint8_t> volume_facing; /* after culling */
     bool straddles = false, cull_bits = false;
-    int casting = 0;                      /* triangles that cast */
+    int casting = 0; /* triangles that cast */
     AlignedVector<int> sil, caps;
-    int sil_count = -1, caps_count = -1;  /* -1: not built yet */
+    int sil_count = -1, caps_count = -1; /* -1: not built yet */
     bool dark_cap_dropped = false;
 };
 
@@ -56,7 +56,8 @@ void VolumeCache::fit(int num_lights, int num_surfaces) {
     entries_->resize((std::size_t)num_lights * (std::size_t)num_surfaces);
 }
 
-uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector<LightFrame> &lights) {
+uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
+                     std::vector<LightFrame> &lights) {
     const Scene &scene = *in.scene;
     const Shortcuts &sc = in.shortcuts;
     const ShortcutFaults &fault = in.faults;
@@ -92,24 +93,30 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
             e.valid = false;
             return;
         }
-        if (sc.view_reach && !shadow_may_reach_view(in.view_proj, s.lo, s.hi, L, !fault.view_reach_no_extrusion)) {
+        if (sc.view_reach &&
+            !shadow_may_reach_view(in.view_proj, s.lo, s.hi, L, !fault.view_reach_no_extrusion)) {
             d.fate = VolumeFate::out_of_view;
             return; /* the entry stays for a later frame */
         }
         Plane planes[SV_NUM_LIGHT_PLANES];
         const bool has_planes = (sc.cull_straddling || sc.cull_always) &&
-                                light_volume_planes(light, planes, fault.cull_inside_planes ? 0.5 : 1.0);
-        const bool dark_drop = (sc.no_directional_dark_cap && light.kind == LightKind::directional) ||
+                                light_volume_planes(light, planes,
+                                                    fault.cull_inside_planes ? 0.5 : 1.0);
+        const bool dark_drop = (sc.no_directional_dark_cap &&
+                                light.kind == LightKind::directional) ||
                                fault.drop_dark_cap_always;
         const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
                                 (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u);
         /* The key compares bits (memcmp), not values: any change of the
          * light or its planes, -0 against +0 included, rebuilds; Vec4
          * and Plane are four floats with no padding. */
-        const bool same_light =
-            e.valid && std::memcmp(&e.light, &L, sizeof L) == 0 && // NOLINT(bugprone-suspicious-memory-comparison)
-            e.has_planes == has_planes &&
-            (!has_planes || std::memcmp(e.planes, planes, sizeof planes) == 0); // NOLINT(bugprone-suspicious-memory-comparison)
+        const bool same_light = e.valid &&
+                                std::memcmp(&e.light, &L, sizeof L) ==
+                                    0 && // NOLINT(bugprone-suspicious-memory-comparison)
+                                e.has_planes == has_planes &&
+                                (!has_planes ||
+                                 std::memcmp(e.planes, planes, sizeof planes) ==
+                                     0); // NOLINT(bugprone-suspicious-memory-comparison)
         const bool reuse = sc.reuse_static && e.valid && same_light && e.variant == variant &&
                            e.facing_variant == facing_v && e.config == config &&
                            (e.revision == s.revision || fault.reuse_ignores_motion);
@@ -141,8 +148,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
                                         {(float)x.x * (1 + 1e-6f), (float)x.y * (1 + 1e-6f),
                                          (float)x.z * (1 + 1e-6f), 0}};
                     AlignedVector<uint8_t> bits((std::size_t)p.num_vertices() + 1, 0);
-                    const int inside = facing_v->calculate_cull_bits(pos.data(), p.num_vertices(), &bounds,
-                                                                     planes, bits.data());
+                    const int inside = facing_v->calculate_cull_bits(pos.data(), p.num_vertices(),
+                                                                     &bounds, planes, bits.data());
                     if (!inside || sc.cull_always) {
                         /* (cull_always: bits all 0 where the routine
                          * found the box inside, as it leaves them.) */
@@ -171,7 +178,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
         } else if (in.mode == ModeChoice::zfail || !sc.zpass_when_safe) {
             zfail = true;
         } else {
-            zfail = !fault.zpass_always && near_plane_may_be_shadowed(scene.camera, aspect, s, light);
+            zfail = !fault.zpass_always &&
+                    near_plane_may_be_shadowed(scene.camera, aspect, s, light);
         }
         const uint64_t k0 = ticks();
         if (e.sil_count < 0) {
@@ -189,7 +197,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
                  * dark cap (3): keep the near ones. */
                 int k = 0;
                 for (int i = 0; i < n; i += 6) {
-                    for (int j = 0; j < 3; j++) e.caps[(std::size_t)k + j] = e.caps[(std::size_t)i + j];
+                    for (int j = 0; j < 3; j++)
+                        e.caps[(std::size_t)k + j] = e.caps[(std::size_t)i + j];
                     k += 3;
                 }
                 n = k;
@@ -206,7 +215,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector
         vol.zfail = zfail;
         vol.silhouette_indices = e.sil_count;
         vol.indices.assign(e.sil.begin(), e.sil.begin() + e.sil_count);
-        if (zfail) vol.indices.insert(vol.indices.end(), e.caps.begin(), e.caps.begin() + e.caps_count);
+        if (zfail)
+            vol.indices.insert(vol.indices.end(), e.caps.begin(), e.caps.begin() + e.caps_count);
         d.indices_drawn = vol.drawn_indices();
     });
     const uint64_t ticks_jobs = ticks() - k_jobs;
@@ -247,7 +257,8 @@ std::vector<const uint8_t *> lit_facing(const Scene &scene, const std::vector<Li
             /* (The cache key's bits, as in volume_pass.) */
             if (light_reaches_box(scene.lights[(std::size_t)li], s.lo, s.hi) && e.valid &&
                 e.revision == s.revision &&
-                std::memcmp(&e.light, &L, sizeof L) == 0 && // NOLINT(bugprone-suspicious-memory-comparison)
+                std::memcmp(&e.light, &L, sizeof L) ==
+                    0 && // NOLINT(bugprone-suspicious-memory-comparison)
                 !e.facing.empty()) {
                 out[(std::size_t)li * num_surfaces + si] = e.facing.data();
             }

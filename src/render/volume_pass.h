@@ -22,12 +22,12 @@ namespace sv::render {
 struct VolumePassInputs {
     const Scene *scene = nullptr;
     Mat4d view_proj;
-    double aspect = 1;                 /* the frame's width / height */
+    double aspect = 1; /* the frame's width / height */
     ModeChoice mode = ModeChoice::automatic;
     Shortcuts shortcuts;
     ShortcutFaults faults;
-    const sv_variant *variant = nullptr;        /* the volume routines */
-    const sv_facing_variant *facing = nullptr;  /* facing and cull bits */
+    const sv_variant *variant = nullptr;       /* the volume routines */
+    const sv_facing_variant *facing = nullptr; /* facing and cull bits */
 };
 
 /* Fills LIGHTS (resized to the scene's lights) with each light's
@@ -35,7 +35,8 @@ struct VolumePassInputs {
  * counts and routine ticks; CACHE keeps the volumes for the next frame
  * (shortcut 6; a cache for this frame only works as well). Returns the
  * wall TSC ticks of the jobs. Runs on the calling task arena's threads. */
-uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache, std::vector<LightFrame> &lights);
+uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
+                     std::vector<LightFrame> &lights);
 
 /* For the shading pass, per (light, surface) (light-major): the facing
  * bytes its volume was built from this frame (or reused: the same surface

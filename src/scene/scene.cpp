@@ -70,7 +70,6 @@ bool inside_closed_surface(const SceneSurface &s, const Vec3d &p) {
     return crossings % 2 == 1;
 }
 
-
 /* Colours for successive surfaces: muted, distinguishable. */
 const std::array<float, 3> kPalette[] = {
     {0.85f, 0.55f, 0.35f}, {0.45f, 0.65f, 0.85f}, {0.60f, 0.80f, 0.45f},
@@ -315,9 +314,7 @@ SceneLight auto_light(const Scene &scene, LightKind kind) {
     SceneLight l;
     l.kind = kind;
     switch (kind) {
-    case LightKind::point:
-        l.position = {c.x - 0.8 * r, hi.y + 0.9 * r, c.z + 0.7 * r};
-        break;
+    case LightKind::point: l.position = {c.x - 0.8 * r, hi.y + 0.9 * r, c.z + 0.7 * r}; break;
     case LightKind::spot:
         l.position = {c.x + 0.7 * r, hi.y + 1.1 * r, c.z + 0.4 * r};
         l.direction = normalized(sub({c.x, lo.y, c.z}, l.position));
@@ -370,8 +367,7 @@ void validate_scene(Scene &scene) {
             l.direction = normalized(l.direction);
         }
         if (l.kind == LightKind::spot &&
-            !(l.inner_degrees >= 0 && l.inner_degrees <= l.outer_degrees &&
-              l.outer_degrees < 90)) {
+            !(l.inner_degrees >= 0 && l.inner_degrees <= l.outer_degrees && l.outer_degrees < 90)) {
             throw SceneError(who + ": cone angles need 0 <= inner <= outer < 90 degrees");
         }
         if (l.kind == LightKind::directional) continue;

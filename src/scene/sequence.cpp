@@ -15,10 +15,11 @@ namespace sv {
 namespace {
 
 bool same_light(const SceneLight &a, const SceneLight &b) {
-    return a.position.x == b.position.x && a.position.y == b.position.y && a.position.z == b.position.z &&
-           a.direction.x == b.direction.x && a.direction.y == b.direction.y &&
-           a.direction.z == b.direction.z && a.range == b.range && a.inner_degrees == b.inner_degrees &&
-           a.outer_degrees == b.outer_degrees && a.intensity == b.intensity && a.color == b.color;
+    return a.position.x == b.position.x && a.position.y == b.position.y &&
+           a.position.z == b.position.z && a.direction.x == b.direction.x &&
+           a.direction.y == b.direction.y && a.direction.z == b.direction.z && a.range == b.range &&
+           a.inner_degrees == b.inner_degrees && a.outer_degrees == b.outer_degrees &&
+           a.intensity == b.intensity && a.color == b.color;
 }
 
 } // namespace
@@ -60,9 +61,11 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
         check_placement(files[fi].path, files[fi].placement);
         m->root = placement_matrix(files[fi].placement);
         if (!m->asset.animations.empty()) {
-            m->animation = fi == 0 && !o.animation.empty() ? find_animation(m->asset, o.animation) : 0;
+            m->animation = fi == 0 && !o.animation.empty() ? find_animation(m->asset, o.animation)
+                                                           : 0;
         } else if (fi == 0 && !o.animation.empty()) {
-            throw GltfError(m->path + ": --animation " + o.animation + ": the file has no animations");
+            throw GltfError(m->path + ": --animation " + o.animation +
+                            ": the file has no animations");
         }
         m->node_moves.assign(m->asset.nodes.size(), 0);
         if (m->animation >= 0) {
@@ -82,7 +85,9 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
             animated_ = true;
             animation_name_ = a.name;
         }
-        m->pose = pose_at(m->asset, m->animation, m->animation >= 0 ? m->asset.animations[(std::size_t)m->animation].start : 0);
+        m->pose = pose_at(m->asset, m->animation,
+                          m->animation >= 0 ? m->asset.animations[(std::size_t)m->animation].start
+                                            : 0);
         for (std::size_t si = 0; si < m->asset.surfaces.size(); si++) {
             const AnimatedSurface &as = m->asset.surfaces[si];
             SceneSurface s;
@@ -106,7 +111,8 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
         }
         models_.push_back(std::move(m));
     }
-    if (scene_.triangles() == 0) throw SceneError(o.file + ": the files have no triangles to render");
+    if (scene_.triangles() == 0)
+        throw SceneError(o.file + ": the files have no triangles to render");
     if (o.ground) {
         add_ground(scene_);
         links_.push_back({-1, -1});
@@ -186,7 +192,8 @@ PoseStats SceneSequence::set_time(double time) {
                                  " s puts a vertex at a non-finite position");
             }
         }
-        if (std::memcmp(m.scratch.data(), s.prepared.positions.data(), m.scratch.size() * sizeof(float)) == 0) {
+        if (std::memcmp(m.scratch.data(), s.prepared.positions.data(),
+                        m.scratch.size() * sizeof(float)) == 0) {
             continue;
         }
         std::swap(m.scratch, s.prepared.positions);
@@ -205,14 +212,14 @@ PoseStats SceneSequence::set_time(double time) {
 std::vector<std::string> SceneSequence::describe() const {
     std::vector<std::string> out;
     for (const auto &m : models_) {
-        std::string line = m->path + ": " + std::to_string(m->asset.surfaces.size()) + " surface(s), " +
-                           std::to_string(m->asset.lights.size()) + " light(s), " +
-                           std::to_string(m->asset.cameras.size()) + " camera(s), ";
+        std::string line = m->path + ": " + std::to_string(m->asset.surfaces.size()) +
+                           " surface(s), " + std::to_string(m->asset.lights.size()) +
+                           " light(s), " + std::to_string(m->asset.cameras.size()) + " camera(s), ";
         if (m->animation >= 0) {
             const Animation &a = m->asset.animations[(std::size_t)m->animation];
             char buf[160];
-            std::snprintf(buf, sizeof buf, "animation %d '%s' (%.3f s to %.3f s) of %zu", m->animation,
-                          a.name.c_str(), a.start, a.end, m->asset.animations.size());
+            std::snprintf(buf, sizeof buf, "animation %d '%s' (%.3f s to %.3f s) of %zu",
+                          m->animation, a.name.c_str(), a.start, a.end, m->asset.animations.size());
             line += buf;
         } else {
             line += "no animation";

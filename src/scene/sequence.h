@@ -41,18 +41,18 @@ struct SequenceOptions {
      * the first frame). With neither: auto point, spot and directional. */
     std::vector<SceneLight> lights;
     bool has_camera = false;
-    Camera camera;     /* else the file's first camera, else frame_camera */
+    Camera camera; /* else the file's first camera, else frame_camera */
     double aspect = 1.25;
-    const SkinningKernel *skinning = nullptr;    /* nullptr: the best */
-    const sv_planes_variant *planes = nullptr;   /* nullptr: the best */
+    const SkinningKernel *skinning = nullptr;  /* nullptr: the best */
+    const sv_planes_variant *planes = nullptr; /* nullptr: the best */
 };
 
 /* What set_time did. */
 struct PoseStats {
-    uint64_t ticks_pose = 0;      /* node matrices, lights, camera */
-    uint64_t ticks_skinning = 0;  /* world positions of the moving surfaces */
-    uint64_t ticks_planes = 0;    /* their planes */
-    int64_t planes_derived = 0;   /* triangles */
+    uint64_t ticks_pose = 0;     /* node matrices, lights, camera */
+    uint64_t ticks_skinning = 0; /* world positions of the moving surfaces */
+    uint64_t ticks_planes = 0;   /* their planes */
+    int64_t planes_derived = 0;  /* triangles */
     int surfaces_moved = 0;
     int lights_moved = 0;
 };
@@ -86,7 +86,7 @@ private:
         int model = -1, surface = -1; /* in models_ and their asset's surfaces */
     };
     std::vector<std::shared_ptr<Model>> models_;
-    std::vector<SurfaceLink> links_;    /* per scene surface (ground: model -1) */
+    std::vector<SurfaceLink> links_;             /* per scene surface (ground: model -1) */
     std::vector<int> light_model_, light_index_; /* per scene light: from a file (-1: given) */
     int camera_model_ = -1, camera_index_ = -1;
     Scene scene_;

@@ -136,9 +136,8 @@ std::size_t find_silhouette_connectivity(const ConnectivityTable &c, const int *
 }
 
 std::size_t silhouette_connectivity_tail(const ConnectivityTable &c, const int *indices,
-                                         int firstTriangle, int numTriangles,
-                                         const uint8_t *facing, DirectedEdge *out,
-                                         std::size_t n) {
+                                         int firstTriangle, int numTriangles, const uint8_t *facing,
+                                         DirectedEdge *out, std::size_t n) {
     const int *nb = c.neighbour.data();
     for (int t = firstTriangle; t < numTriangles; t++) {
         const uint8_t lit = facing[t];
@@ -154,9 +153,9 @@ std::size_t silhouette_connectivity_tail(const ConnectivityTable &c, const int *
     return n;
 }
 
-std::size_t find_silhouette_connectivity_branchless(const ConnectivityTable &c,
-                                                    const int *indices, int numTriangles,
-                                                    const uint8_t *facing, DirectedEdge *out) {
+std::size_t find_silhouette_connectivity_branchless(const ConnectivityTable &c, const int *indices,
+                                                    int numTriangles, const uint8_t *facing,
+                                                    DirectedEdge *out) {
     std::size_t n = silhouette_connectivity_tail(c, indices, 0, numTriangles, facing, out, 0);
     return silhouette_dangling(c, indices, facing, out, n);
 }

@@ -26,18 +26,18 @@ namespace {
 /* For the uses of a group of triangles, split into vectors of LANES uses:
  * lane j of vector r is use LANES * r + j of the group, i.e. corner
  * (LANES * r + j) % 3 of triangle (LANES * r + j) / 3. */
-alignas(32) const int kTri8[3][8] = {
-    {0, 0, 0, 1, 1, 1, 2, 2}, {2, 3, 3, 3, 4, 4, 4, 5}, {5, 5, 6, 6, 6, 7, 7, 7}};
+alignas(32) const int kTri8[3][8] = {{0, 0, 0, 1, 1, 1, 2, 2},
+                                     {2, 3, 3, 3, 4, 4, 4, 5},
+                                     {5, 5, 6, 6, 6, 7, 7, 7}};
 /* The next corner's use, relative to the use: +1, +1, -2. */
 const int kNext24[24] = {1, 1, -2, 1, 1, -2, 1, 1, -2, 1, 1, -2,
                          1, 1, -2, 1, 1, -2, 1, 1, -2, 1, 1, -2};
 
 } // namespace
 
-__attribute__((target("avx2,bmi")))
-std::size_t find_silhouette_connectivity_avx2(const ConnectivityTable &c, const int *indices,
-                                              int numTriangles, const uint8_t *facing,
-                                              DirectedEdge *out) {
+__attribute__((target("avx2,bmi"))) std::size_t
+find_silhouette_connectivity_avx2(const ConnectivityTable &c, const int *indices, int numTriangles,
+                                  const uint8_t *facing, DirectedEdge *out) {
     std::size_t n = 0;
     const int *nb = c.neighbour.data();
     const __m256i one = _mm256_set1_epi32(1);
@@ -80,22 +80,21 @@ std::size_t find_silhouette_connectivity_avx2(const ConnectivityTable &c, const 
 namespace {
 
 /* Sixteen triangles = 48 uses = three zmm vectors of uses. */
-alignas(64) const int kTri16[3][16] = {
-    {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5},
-    {5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10},
-    {10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15}};
+alignas(64) const
+    int kTri16[3][16] = {{0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5},
+                         {5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10},
+                         {10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15}};
 /* Use number (within the group) of the next corner, per lane. */
-alignas(64) const int kNextUse48[3][16] = {
-    {1, 2, 0, 4, 5, 3, 7, 8, 6, 10, 11, 9, 13, 14, 12, 16},
-    {17, 15, 19, 20, 18, 22, 23, 21, 25, 26, 24, 28, 29, 27, 31, 32},
-    {30, 34, 35, 33, 37, 38, 36, 40, 41, 39, 43, 44, 42, 46, 47, 45}};
+alignas(64) const
+    int kNextUse48[3][16] = {{1, 2, 0, 4, 5, 3, 7, 8, 6, 10, 11, 9, 13, 14, 12, 16},
+                             {17, 15, 19, 20, 18, 22, 23, 21, 25, 26, 24, 28, 29, 27, 31, 32},
+                             {30, 34, 35, 33, 37, 38, 36, 40, 41, 39, 43, 44, 42, 46, 47, 45}};
 
 } // namespace
 
-__attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,bmi2,popcnt")))
-std::size_t find_silhouette_connectivity_avx512(const ConnectivityTable &c, const int *indices,
-                                                int numTriangles, const uint8_t *facing,
-                                                DirectedEdge *out) {
+__attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,bmi2,popcnt"))) std::size_t
+find_silhouette_connectivity_avx512(const ConnectivityTable &c, const int *indices,
+                                    int numTriangles, const uint8_t *facing, DirectedEdge *out) {
     std::size_t n = 0;
     const int *nb = c.neighbour.data();
     const __m512i one = _mm512_set1_epi32(1);
@@ -106,8 +105,8 @@ std::size_t find_silhouette_connectivity_avx512(const ConnectivityTable &c, cons
         if (_mm_testz_si128(own16, own16)) continue; /* no triangle lit: as AVX2's */
         const __m512i own = _mm512_cvtepu8_epi32(own16);
         for (int r = 0; r < 3; r++) {
-            const __m512i lit =
-                _mm512_permutexvar_epi32(_mm512_load_si512((const void *)kTri16[r]), own);
+            const __m512i lit = _mm512_permutexvar_epi32(_mm512_load_si512((const void *)kTri16[r]),
+                                                         own);
             const __m512i p = _mm512_loadu_si512((const void *)(nb + u0 + 16 * r));
             const __m512i other = _mm512_i32gather_epi32(p, (const void *)facing, 1);
             /* lit and the neighbour's low byte 0 */
@@ -117,9 +116,8 @@ std::size_t find_silhouette_connectivity_avx512(const ConnectivityTable &c, cons
                                    _mm512_testn_epi32_mask(other, _mm512_set1_epi32(0xFF));
             if (!cast) continue;
             const __m512i from = _mm512_loadu_si512((const void *)(indices + u0 + 16 * r));
-            const __m512i nextUse =
-                _mm512_add_epi32(_mm512_load_si512((const void *)kNextUse48[r]),
-                                 _mm512_set1_epi32(u0));
+            const __m512i nextUse = _mm512_add_epi32(_mm512_load_si512((const void *)kNextUse48[r]),
+                                                     _mm512_set1_epi32(u0));
             const __m512i to = _mm512_i32gather_epi32(nextUse, (const void *)indices, 4);
             /* (from, to) pairs as qwords: unpacklo holds lanes 0,1,4,5,8,9,
              * 12,13, unpackhi lanes 2,3,6,7,...; compress each with its

@@ -125,7 +125,7 @@ constexpr std::size_t kCacheLine = 64;
 
 template <class Index, int N, bool Simd> class HashFinder final : public HashFinderBase {
     static_assert(N == 8 || N == 16 || N == 32 || N == 64, "columns");
-    static constexpr Index kEmpty = (Index)~(Index)0;
+    static constexpr Index kEmpty = (Index) ~(Index)0;
     /* Index values per 16-byte SSE2 register; N * sizeof(Index) >= 16. */
     static constexpr int kLanes = 16 / (int)sizeof(Index);
 
@@ -144,7 +144,8 @@ public:
         for (int t = 0; t < m_->num_triangles; t++) {
             if (!facing[t]) continue;
             for (int u = 3 * t; u < 3 * t + 3; u++) {
-                if (!edge(table, (Index)idx[u], (Index)idx[silhouette_next_use(u)])) return HashStatus::overflow;
+                if (!edge(table, (Index)idx[u], (Index)idx[silhouette_next_use(u)]))
+                    return HashStatus::overflow;
             }
         }
         for (const DirectedEdge &d : m_->dangling) {
@@ -249,7 +250,8 @@ std::unique_ptr<HashFinderBase> make_hash_finder(const SilhouetteMesh &m, int in
         /* 0xFFFF is the empty cell: vertices 0 .. 65534 only. */
         if (m.num_vertices > 65535) {
             throw SilhouetteError("hash finder: 16-bit cells hold vertex numbers up to 65534; "
-                                  "this surface has " + std::to_string(m.num_vertices) +
+                                  "this surface has " +
+                                  std::to_string(m.num_vertices) +
                                   " vertices (use the 32-bit table)");
         }
         return simd ? make_for_columns<uint16_t, true>(m, columns)

@@ -63,8 +63,8 @@ public:
     /* Calls visit(t) for every triangle whose box the ray P + s*R, s in
      * [0, s_max], meets (s_max may be HUGE_VAL); visit returns false to
      * stop early. */
-    template <class Visit> void for_each_candidate(const Point3 &p, const Point3 &r, double s_max,
-                                                   Visit &&visit) const {
+    template <class Visit>
+    void for_each_candidate(const Point3 &p, const Point3 &r, double s_max, Visit &&visit) const {
         if (nodes_.empty()) return;
         uint32_t stack[128];
         int top = 0;
@@ -96,8 +96,8 @@ private:
     };
     struct Node {
         Box box;
-        uint32_t first = 0; /* leaf: first entry of order_; inner: left child */
-        uint32_t count = 0; /* leaf: triangles; inner: 0 */
+        uint32_t first = 0;              /* leaf: first entry of order_; inner: left child */
+        uint32_t count = 0;              /* leaf: triangles; inner: 0 */
         uint32_t lo_tri = 0, hi_tri = 0; /* the subtree's range of order_ */
     };
     std::vector<uint32_t> order_;

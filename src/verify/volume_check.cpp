@@ -42,7 +42,9 @@ uint64_t next_random(uint64_t &state) {
     return z ^ (z >> 31);
 }
 double unit_random(uint64_t &state) { return (double)(next_random(state) >> 11) * 0x1.0p-53; }
-double uniform(uint64_t &state, double lo, double hi) { return lo + (hi - lo) * unit_random(state); }
+double uniform(uint64_t &state, double lo, double hi) {
+    return lo + (hi - lo) * unit_random(state);
+}
 
 Point3 random_direction(uint64_t &state) {
     for (;;) {
@@ -117,7 +119,7 @@ void box_planes(const Point3 &c, const Point3 &h, Plane p[SV_NUM_LIGHT_PLANES]) 
     for (int a = 0; a < 3; a++) {
         float n[3] = {0, 0, 0};
         n[a] = 1;
-        p[2 * a] = {n[0], n[1], n[2], (float)-(cc[a] - hh[a])};     /* x >= c - h */
+        p[2 * a] = {n[0], n[1], n[2], (float)-(cc[a] - hh[a])};       /* x >= c - h */
         p[2 * a + 1] = {-n[0], -n[1], -n[2], (float)(cc[a] + hh[a])}; /* x <= c + h */
     }
 }
@@ -127,10 +129,10 @@ void box_planes(const Point3 &c, const Point3 &h, Plane p[SV_NUM_LIGHT_PLANES]) 
  * appendix B made facing -- computed here without the routines under test.
  * Also returns the cull bits to hand to the variants (NULL: none needed). */
 struct FacingInput {
-    AlignedVector<uint8_t> facing;     /* numTriangles + 1 bytes, last 1 */
-    std::vector<uint8_t> cull_bits;    /* per welded vertex */
+    AlignedVector<uint8_t> facing;  /* numTriangles + 1 bytes, last 1 */
+    std::vector<uint8_t> cull_bits; /* per welded vertex */
     bool use_cull_bits = false;
-    std::vector<uint8_t> casts;        /* per triangle: 1 when it casts */
+    std::vector<uint8_t> casts; /* per triangle: 1 when it casts */
 };
 
 FacingInput facing_input(const PreparedSurface &s, const VerifyLight &l) {
@@ -247,8 +249,8 @@ bool expected_at(const MeshTriangles &m, const FacingInput &in, const Point3 &p,
  * (RobotExpressive's arm), and a point inside two parts has an even
  * number of crossings but is inside the solid all the same. */
 enum class Inside { yes, no, undecided };
-Inside inside_closed_mesh(const MeshTriangles &m, const Point3 &p, double eps_dist,
-                          uint64_t &rng, int64_t *retries) {
+Inside inside_closed_mesh(const MeshTriangles &m, const Point3 &p, double eps_dist, uint64_t &rng,
+                          int64_t *retries) {
     for (int attempt = 0; attempt < 8; attempt++) {
         const Point3 r = random_direction(rng);
         int winding = 0;
@@ -257,9 +259,12 @@ Inside inside_closed_mesh(const MeshTriangles &m, const Point3 &p, double eps_di
         tr.for_each_candidate(p, r, HUGE_VAL, [&](uint32_t t) {
             double det;
             const Hit h = intersect(p, r, HUGE_VAL, eps_dist, tr.a[t], tr.e1[t], tr.e2[t], &det);
-            if (h == Hit::hit) winding += det < 0 ? 1 : -1;
-            else if (h == Hit::near_start) return !(on_surface = true);
-            else if (h != Hit::miss) return clean = false;
+            if (h == Hit::hit)
+                winding += det < 0 ? 1 : -1;
+            else if (h == Hit::near_start)
+                return !(on_surface = true);
+            else if (h != Hit::miss)
+                return clean = false;
             return true;
         });
         if (on_surface) return Inside::undecided;
@@ -532,12 +537,11 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
     for (const sv_variant *var : variants) {
         AlignedVector<uint8_t> facing = in.facing; /* the routines modify it */
         AlignedVector<int> out(capacity + 1, -7);  /* one sentinel past the end */
-        const int n = nt == 0 ? 0
-                              : sv_create_shadow_volume(var, out.data(), s.indices.data(),
-                                                        s.num_indices(), s.sil_edges.data(),
-                                                        s.num_sil_edges(), facing.data(),
-                                                        in.use_cull_bits ? in.cull_bits.data()
-                                                                         : nullptr);
+        const int n =
+            nt == 0 ? 0
+                    : sv_create_shadow_volume(var, out.data(), s.indices.data(), s.num_indices(),
+                                              s.sil_edges.data(), s.num_sil_edges(), facing.data(),
+                                              in.use_cull_bits ? in.cull_bits.data() : nullptr);
         res.variants_checked++;
         if (n < 0 || (size_t)n > capacity || out[capacity] != -7) {
             res.ok = false;
@@ -588,8 +592,9 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
         volumes.emplace_back(verts, d.data(), (int)d.size());
         res.volume_triangles += (int64_t)volumes.back().triangles();
     }
-    const double light_reach =
-        l.light.w != 0.0f ? length(Point3{l.light.x, l.light.y, l.light.z} - f.center) : 0.0;
+    const double light_reach = l.light.w != 0.0f
+                                   ? length(Point3{l.light.x, l.light.y, l.light.z} - f.center)
+                                   : 0.0;
     const double eps_dist = 1e-9 * (f.radius + light_reach);
 
     std::vector<int> casting;
@@ -629,8 +634,7 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
                               "expected %d (casting triangles crossed by its %s, "
                               "%lld of them with the light in front)",
                               format_point(p).c_str(), w, e.winding,
-                              l.light.w != 0.0f ? "segment to the light"
-                                                : "ray towards the light",
+                              l.light.w != 0.0f ? "segment to the light" : "ray towards the light",
                               (long long)e.inverted);
                 res.ok = false;
                 res.failure = "variant(s) " + distinct_names[k] + ", " + l.describe() + buf;
@@ -651,11 +655,10 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
             c.crossing_checked++;
             if ((got_first != 0) != e.crosses_mesh) {
                 res.ok = false;
-                res.failure = "variant(s) " + distinct_names[0] + ", " + l.describe() +
-                              ": point " + format_point(p) + " outside the closed mesh is " +
+                res.failure = "variant(s) " + distinct_names[0] + ", " + l.describe() + ": point " +
+                              format_point(p) + " outside the closed mesh is " +
                               (got_first != 0 ? "in shadow" : "lit") + " but its " +
-                              (l.light.w != 0.0f ? "segment to" : "ray towards") +
-                              " the light " +
+                              (l.light.w != 0.0f ? "segment to" : "ray towards") + " the light " +
                               (e.crosses_mesh ? "crosses" : "does not cross") + " the mesh";
                 return res;
             }
@@ -671,8 +674,8 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
         res.undecided = true;
         res.undecided_reason = l.describe() + ": " + std::to_string(c.skipped) + " of " +
                                std::to_string(tried) +
-                               " points were too close to a boundary to decide (more than " +
-                               pct + "; degenerate, collinear or coincident triangles, or "
+                               " points were too close to a boundary to decide (more than " + pct +
+                               "; degenerate, collinear or coincident triangles, or "
                                "features far below the surface's size)";
     }
     return res;

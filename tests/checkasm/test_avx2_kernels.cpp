@@ -129,8 +129,8 @@ TEST_P(Avx2Kernels, CountFacingCullAllEightBitsAndExactReads) {
             }
             std::vector<uint8_t> cull = random_cull_bytes(rng, (size_t)numVerts);
             std::vector<uint8_t> expected = facing;
-            const int expected_n =
-                sv_count_facing_cull_c_ref(expected.data(), n, indices.data(), cull.data());
+            const int expected_n = sv_count_facing_cull_c_ref(expected.data(), n, indices.data(),
+                                                              cull.data());
 
             Fenced fbuf((size_t)n, side);
             Fenced ibuf(indices.size() * sizeof(int), side);
@@ -163,9 +163,9 @@ TEST_P(Avx2Kernels, CountFacingCullBit7AloneCulls) {
         }
         std::vector<uint8_t> expected = facing;
         const int e = sv_count_facing_cull_c_ref(expected.data(), n, indices.data(), cull.data());
-        EXPECT_EQ(
-            checked_call(abi, v->count_facing_cull, facing.data(), n, indices.data(), cull.data()),
-            e)
+        EXPECT_EQ(checked_call(abi, v->count_facing_cull, facing.data(), n, indices.data(),
+                               cull.data()),
+                  e)
             << v->name << " n=" << n;
         EXPECT_EQ(facing, expected) << v->name << " n=" << n;
     }
@@ -189,8 +189,8 @@ TEST_P(Avx2Kernels, SilTrianglesReadAndWriteExactlyTheirArrays) {
             }
             if (n > 0) edges[0].p1 = 0; // the first facing byte, next to a fence
             std::vector<int> expected((size_t)6 * n + 6);
-            const int expected_n =
-                sv_create_sil_triangles_c_ref(expected.data(), facing.data(), edges.data(), n);
+            const int expected_n = sv_create_sil_triangles_c_ref(expected.data(), facing.data(),
+                                                                 edges.data(), n);
 
             Fenced out((size_t)6 * n * sizeof(int), side);
             Fenced fbuf(facing.size(), side);
@@ -301,7 +301,8 @@ TEST_P(Avx2Kernels, LongArrays) {
 // a silhouette edge.
 TEST_P(Avx2Kernels, SilTrianglesOffsetsAbove2GiB) {
     const size_t edges = (size_t)1 << 27;
-    if (!HugeSilEdgeArray::available()) GTEST_SKIP() << "needs 2 GiB of memfd mappings (Linux x86-64)";
+    if (!HugeSilEdgeArray::available())
+        GTEST_SKIP() << "needs 2 GiB of memfd mappings (Linux x86-64)";
     HugeSilEdgeArray huge(edges);
     ASSERT_TRUE(huge.ok());
     SilEdge *e = huge.data();

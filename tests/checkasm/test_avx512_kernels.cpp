@@ -33,8 +33,8 @@ public:
         page_ = (size_t)sysconf(_SC_PAGESIZE);
         const size_t pages = (bytes + page_ - 1) / page_ + 2;
         len_ = pages * page_;
-        map_ = (uint8_t *)mmap(nullptr, len_, PROT_READ | PROT_WRITE,
-                               MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        map_ = (uint8_t *)mmap(nullptr, len_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+                               -1, 0);
         EXPECT_NE((void *)map_, MAP_FAILED);
         EXPECT_EQ(mprotect(map_, page_, PROT_NONE), 0);
         EXPECT_EQ(mprotect(map_ + len_ - page_, page_, PROT_NONE), 0);
@@ -98,11 +98,11 @@ std::vector<SilEdge> random_edges(Rng &rng, int n, int numTriangles, int numVert
                                                  const std::vector<SilEdge> &edges) {
     const int n = (int)edges.size();
     std::vector<int> expected_out((size_t)6 * n + 6);
-    const int expected =
-        sv_create_sil_triangles_c_ref(expected_out.data(), facing, edges.data(), n);
+    const int expected = sv_create_sil_triangles_c_ref(expected_out.data(), facing, edges.data(),
+                                                       n);
     GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
-    const int got =
-        checked_call(abi, v->create_sil_triangles, out.as<int>(), facing, edges.data(), n);
+    const int got = checked_call(abi, v->create_sil_triangles, out.as<int>(), facing, edges.data(),
+                                 n);
     if (got != expected) {
         return ::testing::AssertionFailure() << "returned " << got << ", c_ref " << expected;
     }
@@ -143,8 +143,8 @@ std::vector<std::string> variant_names_but(std::initializer_list<const char *> l
 // Every variant but sse2_paper, which keeps limit D-5 (bit 7 alone is not
 // culled in its four-triangle loop): pinned by Errata.D5_*.
 class Avx512KernelsBit7 : public VariantTest {};
-INSTANTIATE_TEST_SUITE_P(Variants, Avx512KernelsBit7, ::testing::ValuesIn(variant_names_but({"sse2_paper"})),
-                         param_name);
+INSTANTIATE_TEST_SUITE_P(Variants, Avx512KernelsBit7,
+                         ::testing::ValuesIn(variant_names_but({"sse2_paper"})), param_name);
 
 TEST_P(Avx512KernelsBit7, CullOnAnySharedBitBit7Included) {
     SCOPED_TRACE(seed_trace());
@@ -157,12 +157,12 @@ TEST_P(Avx512KernelsBit7, CullOnAnySharedBitBit7Included) {
         for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
         std::vector<uint8_t> cull = cull_bytes_8bit(rng, numVerts);
         std::vector<uint8_t> expected_facing = facing;
-        const int expected =
-            sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
+        const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(),
+                                                        cull.data());
         GuardedBuffer fbuf((size_t)n, 0);
         std::copy(facing.begin(), facing.end(), fbuf.data());
-        int got =
-            checked_call(abi, v->count_facing_cull, fbuf.data(), n, indices.data(), cull.data());
+        int got = checked_call(abi, v->count_facing_cull, fbuf.data(), n, indices.data(),
+                               cull.data());
         EXPECT_EQ(got, expected) << v->name << " n=" << n;
         EXPECT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
             << v->name << ": facing differs, n=" << n;
@@ -196,13 +196,13 @@ TEST_P(Avx512Kernels, LargeCounts) {
         if (std::string(v->name) == "sse2_paper")
             for (auto &c : cull) c &= 0x7F; // limit D-5
         std::vector<uint8_t> expected_facing = facing;
-        const int expected =
-            sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
+        const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(),
+                                                        cull.data());
         GuardedBuffer fbuf((size_t)n, 0);
         std::copy(facing.begin(), facing.end(), fbuf.data());
-        EXPECT_EQ(
-            checked_call(abi, v->count_facing_cull, fbuf.data(), n, indices.data(), cull.data()),
-            expected)
+        EXPECT_EQ(checked_call(abi, v->count_facing_cull, fbuf.data(), n, indices.data(),
+                               cull.data()),
+                  expected)
             << v->name << " n=" << n;
         EXPECT_TRUE(std::equal(expected_facing.begin(), expected_facing.end(), fbuf.data()))
             << v->name << ": facing differs, n=" << n;
@@ -250,8 +250,8 @@ TEST_P(Avx512Kernels, SilTriangleNumbersAroundTheBitmapLimit) {
             FencedBuffer ebuf(edges.size() * sizeof(SilEdge), true);
             std::copy(edges.begin(), edges.end(), ebuf.as<SilEdge>());
             std::vector<int> expected_out((size_t)6 * n + 6);
-            const int expected =
-                sv_create_sil_triangles_c_ref(expected_out.data(), facing.data(), edges.data(), n);
+            const int expected = sv_create_sil_triangles_c_ref(expected_out.data(), facing.data(),
+                                                               edges.data(), n);
             GuardedBuffer out((size_t)6 * n * sizeof(int), 0);
             EXPECT_EQ(checked_call(abi, v->create_sil_triangles, out.as<int>(), fbuf.as<uint8_t>(),
                                    ebuf.as<SilEdge>(), n),
@@ -323,8 +323,8 @@ TEST_P(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
             std::copy(indices.begin(), indices.end(), ibuf.as<int>());
             std::copy(cull.begin(), cull.end(), cbuf.as<uint8_t>());
             std::vector<uint8_t> expected_facing = facing;
-            const int expected =
-                sv_count_facing_cull_c_ref(expected_facing.data(), n, indices.data(), cull.data());
+            const int expected = sv_count_facing_cull_c_ref(expected_facing.data(), n,
+                                                            indices.data(), cull.data());
             EXPECT_EQ(checked_call(abi, v->count_facing_cull, fbuf.as<uint8_t>(), n, ibuf.as<int>(),
                                    cbuf.as<uint8_t>()),
                       expected)
@@ -343,7 +343,8 @@ TEST_P(Avx512Kernels, CullTableAroundItsRegisterBoundaries) {
 // contract does not promise the next test's property.
 class Avx512KernelsStoreNoOne : public VariantTest {};
 INSTANTIATE_TEST_SUITE_P(Variants, Avx512KernelsStoreNoOne,
-                         ::testing::ValuesIn(variant_names_but({"c_branchless", "sse2_paper"})), param_name);
+                         ::testing::ValuesIn(variant_names_but({"c_branchless", "sse2_paper"})),
+                         param_name);
 
 TEST_P(Avx512KernelsStoreNoOne, CullWritesNoFacingByteThatWasOne) {
     SCOPED_TRACE(seed_trace());
@@ -360,8 +361,9 @@ TEST_P(Avx512KernelsStoreNoOne, CullWritesNoFacingByteThatWasOne) {
             ASSERT_NE((void *)facing, MAP_FAILED);
             std::fill(facing, facing + n, 1);
             ASSERT_EQ(mprotect(facing, len, PROT_READ), 0);
-            EXPECT_EQ(
-                checked_call(abi, v->count_facing_cull, facing, n, indices.data(), cull.data()), n)
+            EXPECT_EQ(checked_call(abi, v->count_facing_cull, facing, n, indices.data(),
+                                   cull.data()),
+                      n)
                 << v->name << " n=" << n << " vertices=" << numVerts;
             munmap(facing, len);
         }
@@ -406,12 +408,12 @@ TEST_P(Avx512Kernels, InputsAtPageEdgesReadNothingOutside) {
             std::vector<int> expected_caps((size_t)6 * n + 6), expected_sil((size_t)6 * n + 6);
             const int n_caps = sv_create_cap_triangles_c_ref(expected_caps.data(), facing.data(),
                                                              indices.data(), 3 * n);
-            const int n_sil = sv_create_sil_triangles_c_ref(
-                expected_sil.data(), sil_facing.data(), edges.data(), n);
+            const int n_sil = sv_create_sil_triangles_c_ref(expected_sil.data(), sil_facing.data(),
+                                                            edges.data(), n);
 
-            const std::string where =
-                std::string(v->name) + " n=" + std::to_string(n) +
-                (at_end ? " (arrays end at a page)" : " (arrays start at a page)");
+            const std::string where = std::string(v->name) + " n=" + std::to_string(n) +
+                                      (at_end ? " (arrays end at a page)"
+                                              : " (arrays start at a page)");
             if (aligned(fbuf.as<uint8_t>(), v->align_facing)) {
                 EXPECT_EQ(check_count_facing(abi, v, facing, fbuf.as<uint8_t>()),
                           sv_count_facing_c_ref(facing.data(), n))

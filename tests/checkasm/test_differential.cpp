@@ -140,14 +140,13 @@ TEST_P(Differential, CreateSilTriangles) {
             for (auto &e : edges) {
                 e.p1 = (int)rng.below((uint32_t)numTriangles + 1);
                 // some dangling edges, the rest between two triangles
-                e.p2 = rng.chance(0.1) ? numTriangles
-                                       : (int)rng.below((uint32_t)numTriangles + 1);
+                e.p2 = rng.chance(0.1) ? numTriangles : (int)rng.below((uint32_t)numTriangles + 1);
                 e.v1 = 2 * (int)rng.below((uint32_t)numVerts);
                 e.v2 = 2 * (int)rng.below((uint32_t)numVerts);
             }
             std::vector<int> expected((size_t)6 * n + 6);
-            const int expected_count =
-                sv_create_sil_triangles_c_ref(expected.data(), facing.data(), edges.data(), n);
+            const int expected_count = sv_create_sil_triangles_c_ref(expected.data(), facing.data(),
+                                                                     edges.data(), n);
             for (size_t out_off : offsets_for(v->align_shadow_indices, 4)) {
                 GuardedBuffer out((size_t)6 * n * sizeof(int), out_off);
                 GuardedBuffer ebuf(edges.size() * sizeof(SilEdge), (out_off * 3) % 16);
@@ -178,8 +177,8 @@ TEST_P(Differential, CreateCapTriangles) {
             std::vector<int> indices((size_t)3 * n);
             for (auto &i : indices) i = (int)rng.below((uint32_t)numVerts);
             std::vector<int> expected((size_t)6 * n + 6);
-            const int expected_count = sv_create_cap_triangles_c_ref(
-                expected.data(), facing.data(), indices.data(), 3 * n);
+            const int expected_count = sv_create_cap_triangles_c_ref(expected.data(), facing.data(),
+                                                                     indices.data(), 3 * n);
             // every input offset, each paired with one of the output's
             const std::vector<size_t> out_offsets = offsets_for(v->align_shadow_indices, 4);
             for (size_t in_off : offsets_for(v->align_indices, 4)) {
@@ -233,21 +232,24 @@ TEST_P(Differential, CreateShadowVolume) {
 
                 std::vector<int> expected(cap + 6);
                 std::vector<uint8_t> expected_facing = facing;
-                const int expected_count = sv_create_shadow_volume(
-                    ref, expected.data(), indices.data(), numIndices, edges.data(), numEdges,
-                    expected_facing.data(), cull ? cullBits.data() : nullptr);
+                const int expected_count =
+                    sv_create_shadow_volume(ref, expected.data(), indices.data(), numIndices,
+                                            edges.data(), numEdges, expected_facing.data(),
+                                            cull ? cullBits.data() : nullptr);
 
                 GuardedBuffer out(cap * sizeof(int), 0);
                 GuardedBuffer fbuf(facing.size(), 0);
                 GuardedBuffer ibuf(indices.size() * sizeof(int), 0);
                 std::copy(facing.begin(), facing.end(), fbuf.data());
                 std::copy(indices.begin(), indices.end(), ibuf.as<int>());
-                int got = sv_create_shadow_volume_checked(
-                    v, out.as<int>(), cap, ibuf.as<int>(), numIndices, numVerts, edges.data(),
-                    numEdges, fbuf.data(), cull ? cullBits.data() : nullptr);
-                const std::string what =
-                    std::string(v->name) + " triangles=" + std::to_string(numTriangles) +
-                    " cull=" + std::to_string(cull) + " density " + density_name(density);
+                int got = sv_create_shadow_volume_checked(v, out.as<int>(), cap, ibuf.as<int>(),
+                                                          numIndices, numVerts, edges.data(),
+                                                          numEdges, fbuf.data(),
+                                                          cull ? cullBits.data() : nullptr);
+                const std::string what = std::string(v->name) +
+                                         " triangles=" + std::to_string(numTriangles) +
+                                         " cull=" + std::to_string(cull) + " density " +
+                                         density_name(density);
                 EXPECT_EQ(got, expected_count)
                     << what << ": " << (got < 0 ? sv_status_string(got) : "");
                 EXPECT_TRUE(

@@ -39,9 +39,9 @@ TEST(Dispatch, DetectionAgreesWithTheCompiler) {
                     __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma") &&
                     __builtin_cpu_supports("popcnt");
     EXPECT_EQ((isa & SV_ISA_AVX2) != 0, v3);
-    const bool v4 = v3 && __builtin_cpu_supports("avx512f") &&
-                    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
-                    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd");
+    const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                    __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") &&
+                    __builtin_cpu_supports("avx512cd");
     EXPECT_EQ((isa & SV_ISA_AVX512) != 0, v4);
     EXPECT_EQ((isa & SV_ISA_AVX512_VBMI2) != 0, v4 && __builtin_cpu_supports("avx512vbmi2"));
     EXPECT_EQ((isa & SV_ISA_AVX512_VBMI) != 0, v4 && __builtin_cpu_supports("avx512vbmi"));
@@ -62,8 +62,7 @@ TEST(Dispatch, LimitCapsTheIsaAndTheBestVariant) {
     EXPECT_EQ(sv_best_variant()->isa & ~(unsigned)SV_ISA_SSE2, 0u) << sv_best_variant()->name;
     ASSERT_EQ(sv_set_isa_limit("avx2"), 0);
     EXPECT_EQ(sv_cpu_isa(), hw & (SV_ISA_SSE2 | SV_ISA_AVX2));
-    EXPECT_EQ(sv_best_variant()->isa &
-                  (SV_ISA_AVX512 | SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2),
+    EXPECT_EQ(sv_best_variant()->isa & (SV_ISA_AVX512 | SV_ISA_AVX512_VBMI | SV_ISA_AVX512_VBMI2),
               0u);
     ASSERT_EQ(sv_set_isa_limit("avx512"), 0);
     EXPECT_EQ(sv_cpu_isa(), hw);

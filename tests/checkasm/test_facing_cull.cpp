@@ -22,18 +22,18 @@ uint8_t facing1(const Plane &p, const Vec4 &light) {
 }
 
 TEST(CalculateFacing, HandComputed) {
-    const Plane z0 = {0, 0, 1, 0}; // z = 0, normal +z
-    EXPECT_EQ(facing1(z0, {0, 0, 5, 1}), 1);   // point light in front
-    EXPECT_EQ(facing1(z0, {0, 0, -5, 1}), 0);  // behind
-    EXPECT_EQ(facing1(z0, {3, 4, 0, 1}), 0);   // on the plane: > 0.0f is strict
-    const Plane z2 = {0, 0, 1, -2};            // z = 2
-    EXPECT_EQ(facing1(z2, {0, 0, 2, 1}), 0);   // exactly on it: 2 - 2 = 0
+    const Plane z0 = {0, 0, 1, 0};            // z = 0, normal +z
+    EXPECT_EQ(facing1(z0, {0, 0, 5, 1}), 1);  // point light in front
+    EXPECT_EQ(facing1(z0, {0, 0, -5, 1}), 0); // behind
+    EXPECT_EQ(facing1(z0, {3, 4, 0, 1}), 0);  // on the plane: > 0.0f is strict
+    const Plane z2 = {0, 0, 1, -2};           // z = 2
+    EXPECT_EQ(facing1(z2, {0, 0, 2, 1}), 0);  // exactly on it: 2 - 2 = 0
     EXPECT_EQ(facing1(z2, {0, 0, 2.5f, 1}), 1);
     EXPECT_EQ(facing1(z2, {0, 0, 1.5f, 1}), 0);
     // Directional lights (w = 0): d is multiplied by 0, only the direction counts.
     EXPECT_EQ(facing1(z2, {0, 0, 1, 0}), 1);
     EXPECT_EQ(facing1(z2, {0, 0, -1, 0}), 0);
-    EXPECT_EQ(facing1(z2, {1, 0, 0, 0}), 0);   // grazing: 0, not facing
+    EXPECT_EQ(facing1(z2, {1, 0, 0, 0}), 0); // grazing: 0, not facing
     // A sum of -0.0 is not > 0.
     const Plane neg = {0, 0, -1, 0};
     EXPECT_EQ(facing1(neg, {0, 0, 0, 1}), 0);
@@ -115,8 +115,8 @@ TEST(CalculateFacing, AgreesWithDoubleAwayFromZero) {
         }
     }
     EXPECT_GT(checked, 100000);
-    std::printf("[          ] facing: %ld agreed with double, %ld within rounding of 0\n",
-                checked, close);
+    std::printf("[          ] facing: %ld agreed with double, %ld within rounding of 0\n", checked,
+                close);
 }
 
 // ---- Appendix B ------------------------------------------------------------
@@ -138,16 +138,17 @@ TEST(CalculateCullBits, HandComputed) {
     Plane planes[6];
     unit_box_planes(planes);
     std::vector<Vec4> v = {
-        {0, 0, 0, 1},     // inside: 0
-        {2, 0, 0, 1},     // x > 1: behind plane 1
-        {-2, 0, 0, 1},    // plane 0
-        {1, 0, 0, 1},     // on plane 1: -1 + 1 = 0 is not < 0: inside
-        {2, 2, -2, 1},    // planes 1, 3, 4
-        {-3, -3, -3, 1},  // planes 0, 2, 4
-        {0, 0, 1.5f, 7},  // w is ignored: plane 5
+        {0, 0, 0, 1},    // inside: 0
+        {2, 0, 0, 1},    // x > 1: behind plane 1
+        {-2, 0, 0, 1},   // plane 0
+        {1, 0, 0, 1},    // on plane 1: -1 + 1 = 0 is not < 0: inside
+        {2, 2, -2, 1},   // planes 1, 3, 4
+        {-3, -3, -3, 1}, // planes 0, 2, 4
+        {0, 0, 1.5f, 7}, // w is ignored: plane 5
     };
     std::vector<uint8_t> bits(v.size() + 1, 0xEE);
-    ASSERT_EQ(sv_calculate_cull_bits_c_ref(v.data(), (int)v.size(), &kHuge, planes, bits.data()), 0);
+    ASSERT_EQ(sv_calculate_cull_bits_c_ref(v.data(), (int)v.size(), &kHuge, planes, bits.data()),
+              0);
     EXPECT_EQ(bits[0], 0);
     EXPECT_EQ(bits[1], 1 << 1);
     EXPECT_EQ(bits[2], 1 << 0);
@@ -226,7 +227,8 @@ TEST(CalculateCullBits, AgreesWithDoubleAwayFromZero) {
         float ex = rnd(rng, 0, ext), ey = rnd(rng, 0, ext), ez = rnd(rng, 0, ext);
         Bounds b = {{cx, cy, cz, 0}, {ex, ey, ez, 0}};
         for (auto &p : v) {
-            p = {cx + ex * rnd(rng, -1, 1), cy + ey * rnd(rng, -1, 1), cz + ez * rnd(rng, -1, 1), 1};
+            p = {cx + ex * rnd(rng, -1, 1), cy + ey * rnd(rng, -1, 1), cz + ez * rnd(rng, -1, 1),
+                 1};
         }
         int inside = sv_calculate_cull_bits_c_ref(v.data(), n, &b, planes, bits.data());
         inside_returns += inside;
@@ -241,8 +243,8 @@ TEST(CalculateCullBits, AgreesWithDoubleAwayFromZero) {
                 checked++;
                 int expect = e.value < 0.0 ? 1 : 0;
                 if (inside) {
-                    ASSERT_EQ(expect, 0) << "reported inside, but vertex " << j
-                                         << " is behind plane " << i;
+                    ASSERT_EQ(expect, 0)
+                        << "reported inside, but vertex " << j << " is behind plane " << i;
                 } else if (expect) {
                     ASSERT_EQ((bits[j] >> i) & 1, 1) << "vertex " << j << " plane " << i;
                 } else {
@@ -257,7 +259,8 @@ TEST(CalculateCullBits, AgreesWithDoubleAwayFromZero) {
     EXPECT_GT(inside_returns, 0) << "no round exercised the early-out";
     EXPECT_LT(inside_returns, 60);
     std::printf("[          ] cull bits: %ld agreed with double, %ld within rounding of 0, "
-                "%ld surfaces inside\n", checked, close, inside_returns);
+                "%ld surfaces inside\n",
+                checked, close, inside_returns);
 }
 
 } // namespace

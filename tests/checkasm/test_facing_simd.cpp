@@ -70,7 +70,9 @@ TEST_P(FacingSimd, CalculateFacingIsBitIdenticalToTheReference) {
                     planes[i] = {random_float(rng, extremes), random_float(rng, extremes),
                                  random_float(rng, extremes), random_float(rng, extremes)};
                 }
-                const float w = rng.chance(0.5) ? 1.0f : rng.chance(0.5) ? 0.0f : random_float(rng, extremes);
+                const float w = rng.chance(0.5)   ? 1.0f
+                                : rng.chance(0.5) ? 0.0f
+                                                  : random_float(rng, extremes);
                 const Vec4 light = {random_float(rng, extremes), random_float(rng, extremes),
                                     random_float(rng, extremes), w};
                 // Grazing planes: the light within rounding of the plane, so
@@ -87,7 +89,8 @@ TEST_P(FacingSimd, CalculateFacingIsBitIdenticalToTheReference) {
                     }
                 }
                 std::vector<uint8_t> want((size_t)n + 1, 0xEE);
-                with_ftz_daz(ftz, [&] { sv_calculate_facing_c_ref(planes, n, &light, want.data()); });
+                with_ftz_daz(ftz,
+                             [&] { sv_calculate_facing_c_ref(planes, n, &light, want.data()); });
                 const size_t out_off = rng.below(64);
                 GuardedBuffer out((size_t)n + 1, out_off);
                 out.fill(0xEE);
@@ -113,7 +116,8 @@ TEST_P(FacingSimd, CalculateFacingIsBitIdenticalToTheReference) {
                     << v->name << " fused, n=" << n << " extremes=" << extremes << " ftz=" << ftz;
                 EXPECT_EQ(count, sv_count_facing_c_ref(want.data(), n))
                     << v->name << " fused count, n=" << n << " extremes=" << extremes;
-                EXPECT_TRUE(out2.guards_intact()) << v->name << " fused wrote out of bounds, n=" << n;
+                EXPECT_TRUE(out2.guards_intact())
+                    << v->name << " fused wrote out of bounds, n=" << n;
             }
         }
     }
@@ -164,7 +168,8 @@ TEST_P(FacingSimd, CalculateCullBitsIsBitIdenticalToTheReference) {
                         const Plane &p = planes[rng.below(6)];
                         if (!rng.chance(0.5) || p.c == 0.0f) continue;
                         pos[i].z = (float)(-((double)p.a * pos[i].x + (double)p.b * pos[i].y +
-                                             (double)p.d) / p.c);
+                                             (double)p.d) /
+                                           p.c);
                     }
                 }
                 Bounds bounds = {{0, 0, 0, 0}, {2, 2, 2, 0}};

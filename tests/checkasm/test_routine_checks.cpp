@@ -86,8 +86,8 @@ std::vector<Variant> with_good(std::vector<Variant> broken) {
 
 // Runs ROUTINE over TABLE: VARIANT must come back FAILED with WHAT in its
 // detail, and every other row ok (or skipped, where this CPU lacks it).
-Result expect_reported(Routine routine, const std::vector<Variant> &table, const std::string &variant,
-                       const std::string &what) {
+Result expect_reported(Routine routine, const std::vector<Variant> &table,
+                       const std::string &variant, const std::string &what) {
     const std::vector<Result> rs = svcheck::check_routine(routine, table, kSeed);
     const Result bad = row(rs, variant);
     EXPECT_EQ(bad.status, Result::failed) << variant;
@@ -113,12 +113,15 @@ TEST(RoutineChecks, LibraryVariantsPassOrSkipWithAReason) {
     for (Routine r : svcheck::all_routines()) {
         const std::vector<Result> rs = svcheck::check_routine(r, table, kSeed);
         // (the per-light call has a plan: "planned" only)
-        EXPECT_GE(rs.size(), r == Routine::shadow_volume_for_light ? 1u : 2u) << svcheck::routine_name(r);
+        EXPECT_GE(rs.size(), r == Routine::shadow_volume_for_light ? 1u : 2u)
+            << svcheck::routine_name(r);
         for (const Result &x : rs) {
             // The lines `shadowvol check` would print: the report of the
             // cross builds, which have no `shadowvol` program.
             std::printf("%-24s %-13s %s %s\n", svcheck::routine_name(r), x.variant.c_str(),
-                        x.status == Result::ok ? "ok" : x.status == Result::skipped ? "skipped" : "FAILED",
+                        x.status == Result::ok        ? "ok"
+                        : x.status == Result::skipped ? "skipped"
+                                                      : "FAILED",
                         x.detail.c_str());
             EXPECT_NE(x.status, Result::failed)
                 << svcheck::routine_name(r) << " " << x.variant << ": " << x.detail;
@@ -136,8 +139,8 @@ TEST(RoutineChecks, ReportsAMiscountAtOneSize) {
     const Result bad = expect_reported(Routine::count_facing, table, "miscount",
                                        "n=" + std::to_string(kMiscountedSize) + ", ");
     // What the line of `shadowvol check` would say (docs/TESTING.md quotes it).
-    std::printf("count_facing miscount FAILED (%d of %d cases) first: %s\n", bad.failures, bad.cases,
-                bad.detail.c_str());
+    std::printf("count_facing miscount FAILED (%d of %d cases) first: %s\n", bad.failures,
+                bad.cases, bad.detail.c_str());
     // Four facing modes at that size, each one too high.
     EXPECT_EQ(bad.failures, 4);
     EXPECT_NE(bad.detail.find("returned"), std::string::npos) << bad.detail;
@@ -147,8 +150,9 @@ TEST(RoutineChecks, ReportsAMiscountAtOneSize) {
 }
 
 TEST(RoutineChecks, ReportsAWritePastTheDocumentedBound) {
-    const auto table = with_good({c_ref_with("cap_past", nullptr, cap_writes_past_bound, nullptr),
-                                  c_ref_with("facing_past", nullptr, nullptr, facing_writes_past_bound)});
+    const auto table = with_good(
+        {c_ref_with("cap_past", nullptr, cap_writes_past_bound, nullptr),
+         c_ref_with("facing_past", nullptr, nullptr, facing_writes_past_bound)});
     // (Each broken variant's other routine is c_ref's: ok in the other run.)
     expect_reported(Routine::create_cap_triangles, table, "cap_past",
                     "outside 6 * numTriangles ints at byte 0 past the bound");
@@ -158,7 +162,8 @@ TEST(RoutineChecks, ReportsAWritePastTheDocumentedBound) {
 
 #if defined(SV_HAVE_ABI_CHECKER)
 TEST(RoutineChecks, ReportsAClobberedCalleeSavedRegister) {
-    const auto table = with_good({c_ref_with("clobber", sv_broken_count_facing_clobber, nullptr, nullptr)});
+    const auto table = with_good(
+        {c_ref_with("clobber", sv_broken_count_facing_clobber, nullptr, nullptr)});
     const Result bad = expect_reported(Routine::count_facing, table, "clobber",
                                        std::string("ABI broken: ") + sv_abi_callee_saved_name(0));
     // Every call breaks it, and only the ABI: the count is c_ref's.
@@ -170,7 +175,8 @@ TEST(RoutineChecks, ReportsDirtyUpperState) {
     if (!(sv_abi_detect() & SV_ABI_HAS_XINUSE) || !(sv_cpu_isa_detected() & SV_ISA_AVX2)) {
         GTEST_SKIP() << "no AVX or no XGETBV ecx=1 here: the dirty-upper check does not run";
     }
-    const auto table = with_good({c_ref_with("dirty", sv_broken_count_facing_dirty_ymm, nullptr, nullptr)});
+    const auto table = with_good(
+        {c_ref_with("dirty", sv_broken_count_facing_dirty_ymm, nullptr, nullptr)});
     const Result bad = expect_reported(Routine::count_facing, table, "dirty", "missing vzeroupper");
     EXPECT_EQ(bad.failures, bad.cases);
 }
@@ -192,8 +198,8 @@ TEST(RoutineChecks, ReportsABrokenPlanInThePerLightCall) {
         plans[c].kernels.create_sil_triangles = sil_drops_a_quad;
         v.by_class[c].plan = &plans[c];
     }
-    const Result bad = expect_reported(Routine::shadow_volume_for_light, with_good({v}), "broken_plan",
-                                       "returned");
+    const Result bad = expect_reported(Routine::shadow_volume_for_light, with_good({v}),
+                                       "broken_plan", "returned");
     EXPECT_GT(bad.failures, 0);
     EXPECT_LT(bad.failures, bad.cases); // only the 3-mod-7 edge counts
 }

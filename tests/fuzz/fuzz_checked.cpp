@@ -77,7 +77,9 @@ bool edges_in(const SilEdge *e, long n, int nt, long nv /* -1: unknown */) {
     }
     return true;
 }
-bool paper_cull(const sv_variant *v) { return v->count_facing_cull == sv_count_facing_cull_sse2_paper; }
+bool paper_cull(const sv_variant *v) {
+    return v->count_facing_cull == sv_count_facing_cull_sse2_paper;
+}
 bool no_bit7(const uint8_t *c, int n) {
     for (int i = 0; i < n; i++) {
         if (c[i] & 0x80) return false;
@@ -88,7 +90,8 @@ bool no_bit7(const uint8_t *c, int n) {
  * acceptance of invalid input (facing[numTriangles] = 0, sse2_paper's bit
  * 7, ...), is a finding. */
 void hold_contract(const char *routine, const sv_variant *v, int status, bool valid) {
-    if (status >= 0 && !valid) finding(routine, v->name, "accepted out-of-contract input", status, 0);
+    if (status >= 0 && !valid)
+        finding(routine, v->name, "accepted out-of-contract input", status, 0);
     if (status < 0 && valid) finding(routine, v->name, "refused in-contract input", status, 0);
 }
 
@@ -117,7 +120,8 @@ void fuzz_count_facing(FuzzedDataProvider &d, const sv_variant *v) {
     Exact<uint8_t> f(len, misalignment(d, 1));
     for (size_t i = 0; i < len; i++) f.p[i] = facing_byte(d);
     const int got = sv_count_facing_checked(v, f.p, n);
-    hold_contract("count_facing", v, got, n >= 0 && aligned_to(f.p, v->align_facing) && all_bool(f.p, n));
+    hold_contract("count_facing", v, got,
+                  n >= 0 && aligned_to(f.p, v->align_facing) && all_bool(f.p, n));
     if (got < 0) return;
     const int want = sv_count_facing_checked(sv_variant_by_name("c_ref"), f.p, n);
     if (got != want) finding("count_facing", v->name, "differs from c_ref", got, want);
@@ -129,7 +133,8 @@ void fuzz_count_facing_cull(FuzzedDataProvider &d, const sv_variant *v) {
         int idx[3] = {0, 0, 0};
         uint8_t cull[1] = {0};
         const int r = sv_count_facing_cull_checked(v, f, INT_MAX / 3 + 1, idx, cull, 1);
-        if (r != SV_E_OVERFLOW) finding("count_facing_cull", v->name, "huge count", r, SV_E_OVERFLOW);
+        if (r != SV_E_OVERFLOW)
+            finding("count_facing_cull", v->name, "huge count", r, SV_E_OVERFLOW);
         return;
     }
     const int nt = count(d, 512), nv = d.ConsumeIntegralInRange<int>(0, 300);
@@ -152,12 +157,15 @@ void fuzz_count_facing_cull(FuzzedDataProvider &d, const sv_variant *v) {
                   nt >= 0 && all_bool(fr.p, nt) && indices_in(idx.p, 3L * nt, nv) &&
                       (nt <= 0 || !paper_cull(v) || no_bit7(cull.p, nv)));
     if (got < 0) {
-        if (t && std::memcmp(f.p, fr.p, t)) finding("count_facing_cull", v->name, "refused but wrote", got, 0);
+        if (t && std::memcmp(f.p, fr.p, t))
+            finding("count_facing_cull", v->name, "refused but wrote", got, 0);
         return;
     }
-    const int want = sv_count_facing_cull_checked(sv_variant_by_name("c_ref"), fr.p, nt, idx.p, cull.p, nv);
+    const int want = sv_count_facing_cull_checked(sv_variant_by_name("c_ref"), fr.p, nt, idx.p,
+                                                  cull.p, nv);
     if (got != want) finding("count_facing_cull", v->name, "differs from c_ref", got, want);
-    if (t && std::memcmp(f.p, fr.p, t)) finding("count_facing_cull", v->name, "facing differs", 0, 0);
+    if (t && std::memcmp(f.p, fr.p, t))
+        finding("count_facing_cull", v->name, "facing differs", 0, 0);
 }
 
 SilEdge edge(FuzzedDataProvider &d, int nt, int nv) {
@@ -176,7 +184,8 @@ void fuzz_sil(FuzzedDataProvider &d, const sv_variant *v) {
         SilEdge e = {0, 1, 0, 2};
         int out[6];
         const int r = sv_create_sil_triangles_checked(v, out, 6, f, 1, &e, INT_MAX / 6 + 1);
-        if (r != SV_E_OVERFLOW) finding("create_sil_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
+        if (r != SV_E_OVERFLOW)
+            finding("create_sil_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
         return;
     }
     const int nt = d.ConsumeIntegralInRange<int>(0, 300), ne = count(d, 400);
@@ -188,18 +197,22 @@ void fuzz_sil(FuzzedDataProvider &d, const sv_variant *v) {
     Exact<SilEdge> e(edges, 0);
     for (size_t i = 0; i < edges; i++) e.p[i] = edge(d, nt, nv);
     size_t capacity = 6 * edges;
-    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity)
+        capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_sil_triangles_checked(v, out.p, capacity, f.p, nt, e.p, ne);
     hold_contract("create_sil_triangles", v, got,
                   ne >= 0 && capacity >= 6 * edges && aligned_to(out.p, v->align_shadow_indices) &&
                       all_bool(f.p, nt) && f.p[nt] == 1 && edges_in(e.p, ne, nt, -1));
     if (got < 0) return;
-    if ((size_t)got > capacity) finding("create_sil_triangles", v->name, "past capacity", got, (long)capacity);
+    if ((size_t)got > capacity)
+        finding("create_sil_triangles", v->name, "past capacity", got, (long)capacity);
     std::vector<int> ref(6 * edges + 1);
-    const int want = sv_create_sil_triangles_checked(sv_variant_by_name("c_ref"), ref.data(), 6 * edges, f.p, nt, e.p, ne);
+    const int want = sv_create_sil_triangles_checked(sv_variant_by_name("c_ref"), ref.data(),
+                                                     6 * edges, f.p, nt, e.p, ne);
     if (got != want) finding("create_sil_triangles", v->name, "differs from c_ref", got, want);
-    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int))) finding("create_sil_triangles", v->name, "indices differ", 0, 0);
+    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int)))
+        finding("create_sil_triangles", v->name, "indices differ", 0, 0);
 }
 
 void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
@@ -207,10 +220,12 @@ void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
         uint8_t f[1] = {0};
         int idx[3] = {0, 0, 0}, out[6];
         const int r = sv_create_cap_triangles_checked(v, out, 6, f, idx, 3 * (INT_MAX / 6 + 1), 1);
-        if (r != SV_E_OVERFLOW) finding("create_cap_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
+        if (r != SV_E_OVERFLOW)
+            finding("create_cap_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
         return;
     }
-    const int nt = d.ConsumeIntegralInRange<int>(0, 300), nv = d.ConsumeIntegralInRange<int>(0, 300);
+    const int nt = d.ConsumeIntegralInRange<int>(0, 300),
+              nv = d.ConsumeIntegralInRange<int>(0, 300);
     int ni = 3 * nt;
     if (d.ConsumeIntegral<uint8_t>() < 8) ni += d.ConsumeIntegralInRange<int>(-4, 2);
     const size_t nidx = ni > 0 ? (size_t)ni : 0;
@@ -218,11 +233,13 @@ void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
     for (size_t i = 0; i < nidx / 3; i++) f.p[i] = facing_byte(d);
     Exact<int> idx(nidx, misalignment(d, 4));
     for (size_t i = 0; i < nidx; i++) {
-        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0 ? d.ConsumeIntegralInRange<int>(0, nv - 1)
-                                                                : d.ConsumeIntegralInRange<int>(-1, nv + 1);
+        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0
+                       ? d.ConsumeIntegralInRange<int>(0, nv - 1)
+                       : d.ConsumeIntegralInRange<int>(-1, nv + 1);
     }
     size_t capacity = 2 * nidx;
-    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity)
+        capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_cap_triangles_checked(v, out.p, capacity, f.p, idx.p, ni, nv);
     hold_contract("create_cap_triangles", v, got,
@@ -231,13 +248,16 @@ void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
                       all_bool(f.p, ni / 3) && indices_in(idx.p, ni, nv));
     if (got < 0) return;
     std::vector<int> ref(2 * nidx + 1);
-    const int want = sv_create_cap_triangles_checked(sv_variant_by_name("c_ref"), ref.data(), 2 * nidx, f.p, idx.p, ni, nv);
+    const int want = sv_create_cap_triangles_checked(sv_variant_by_name("c_ref"), ref.data(),
+                                                     2 * nidx, f.p, idx.p, ni, nv);
     if (got != want) finding("create_cap_triangles", v->name, "differs from c_ref", got, want);
-    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int))) finding("create_cap_triangles", v->name, "indices differ", 0, 0);
+    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int)))
+        finding("create_cap_triangles", v->name, "indices differ", 0, 0);
 }
 
 void fuzz_volume(FuzzedDataProvider &d, const sv_variant *v) {
-    const int nt = d.ConsumeIntegralInRange<int>(0, 200), nv = d.ConsumeIntegralInRange<int>(1, 200);
+    const int nt = d.ConsumeIntegralInRange<int>(0, 200),
+              nv = d.ConsumeIntegralInRange<int>(1, 200);
     const int ne = d.ConsumeIntegralInRange<int>(0, 300);
     const int ni = 3 * nt;
     Exact<int> idx((size_t)ni, misalignment(d, 4));
@@ -257,7 +277,8 @@ void fuzz_volume(FuzzedDataProvider &d, const sv_variant *v) {
         cull.p[i] = b < 200 ? (uint8_t)(b & 0x3F) : b; /* mostly six light planes */
     }
     size_t capacity = sv_shadow_volume_capacity(ni, ne);
-    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity) capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity)
+        capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_shadow_volume_checked(v, out.p, capacity, idx.p, ni, nv, e.p, ne, f.p,
                                                     use_cull ? cull.p : nullptr);
@@ -269,15 +290,19 @@ void fuzz_volume(FuzzedDataProvider &d, const sv_variant *v) {
                       fr.p[nt] == 1 && indices_in(idx.p, ni, nv) && edges_in(e.p, ne, nt, nv) &&
                       (!use_cull || nt == 0 || !paper_cull(v) || no_bit7(cull.p, nv)));
     if (got < 0) {
-        if (std::memcmp(f.p, fr.p, (size_t)nt + 1)) finding("create_shadow_volume", v->name, "refused but wrote facing", got, 0);
+        if (std::memcmp(f.p, fr.p, (size_t)nt + 1))
+            finding("create_shadow_volume", v->name, "refused but wrote facing", got, 0);
         return;
     }
     std::vector<int> ref(sv_shadow_volume_capacity(ni, ne) + 1);
-    const int want = sv_create_shadow_volume_checked(sv_variant_by_name("c_ref"), ref.data(), ref.size() - 1, idx.p, ni, nv,
-                                                     e.p, ne, fr.p, use_cull ? cull.p : nullptr);
+    const int want = sv_create_shadow_volume_checked(sv_variant_by_name("c_ref"), ref.data(),
+                                                     ref.size() - 1, idx.p, ni, nv, e.p, ne, fr.p,
+                                                     use_cull ? cull.p : nullptr);
     if (got != want) finding("create_shadow_volume", v->name, "differs from c_ref", got, want);
-    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int))) finding("create_shadow_volume", v->name, "indices differ", 0, 0);
-    if (std::memcmp(f.p, fr.p, (size_t)nt + 1)) finding("create_shadow_volume", v->name, "facing differs", 0, 0);
+    if (got && std::memcmp(out.p, ref.data(), (size_t)got * sizeof(int)))
+        finding("create_shadow_volume", v->name, "indices differ", 0, 0);
+    if (std::memcmp(f.p, fr.p, (size_t)nt + 1))
+        finding("create_shadow_volume", v->name, "facing differs", 0, 0);
 }
 
 } // namespace

@@ -60,8 +60,8 @@ void check_volumes(const sv::PreparedSurface &p, const sv::VerifyLight &l,
                                                       p.sil_edges.data(), p.num_sil_edges(),
                                                       facing.data(), nullptr);
         if (n < 0) {
-            finding(name + ": variant " + v->name + " refused a prepared surface: " +
-                    sv_status_string(n));
+            finding(name + ": variant " + v->name +
+                    " refused a prepared surface: " + sv_status_string(n));
         }
         const sv::ClosureResult c = sv::check_closure(out.data(), n, p.num_vertices());
         if (!c.closed) finding(name + ": variant " + v->name + ": " + c.problem);

@@ -50,12 +50,14 @@ void check_placement(const sv::ModelPlacement &m) {
 void check_light(const sv::SceneLight &l) {
     if (l.placed_automatically) return;
     if (!finite3(l.position) || !finite3(l.direction) || !std::isfinite(l.range) || l.range < 0) {
-        finding("a light with a non-finite number or a negative range was accepted: " + l.describe());
+        finding("a light with a non-finite number or a negative range was accepted: " +
+                l.describe());
     }
     if (l.kind != sv::LightKind::point) {
         const double len = std::sqrt(l.direction.x * l.direction.x + l.direction.y * l.direction.y +
                                      l.direction.z * l.direction.z);
-        if (!(std::fabs(len - 1) < 1e-9)) finding("a light direction that is not unit: " + l.describe());
+        if (!(std::fabs(len - 1) < 1e-9))
+            finding("a light direction that is not unit: " + l.describe());
     }
     if (l.kind == sv::LightKind::spot &&
         !(l.inner_degrees >= 0 && l.inner_degrees <= l.outer_degrees && l.outer_degrees < 90)) {
@@ -64,8 +66,8 @@ void check_light(const sv::SceneLight &l) {
 }
 
 void check_camera(const sv::Camera &c) {
-    if (!finite3(c.eye) || !finite3(c.target) || !finite3(c.up) || !std::isfinite(c.fov_y_degrees) ||
-        !std::isfinite(c.near_distance)) {
+    if (!finite3(c.eye) || !finite3(c.target) || !finite3(c.up) ||
+        !std::isfinite(c.fov_y_degrees) || !std::isfinite(c.near_distance)) {
         finding("a camera with a non-finite number was accepted");
     }
 }

@@ -49,7 +49,8 @@ void check_pose(const sv::AnimatedAsset &a, const sv::Pose &pose, const std::str
     const sv::Mat4d root;
     int surfaces = 0;
     for (const sv::AnimatedSurface &s : a.surfaces) {
-        if (s.prepared.num_triangles() > kMaxSurfaceTriangles || ++surfaces > kMaxSurfaces) continue;
+        if (s.prepared.num_triangles() > kMaxSurfaceTriangles || ++surfaces > kMaxSurfaces)
+            continue;
         const std::size_t nv = (std::size_t)s.prepared.num_vertices();
         std::vector<float> ref(3 * nv + 3, 0.5f), out(3 * nv + 3, 0.5f);
         sv::pose_surface(a, s, pose, root, ref.data(), &table[0]);
@@ -59,7 +60,8 @@ void check_pose(const sv::AnimatedAsset &a, const sv::Pose &pose, const std::str
             std::fill(out.begin(), out.end(), 0.5f);
             sv::pose_surface(a, s, pose, root, out.data(), &table[k]);
             if (std::memcmp(out.data(), ref.data(), out.size() * sizeof(float)) != 0) {
-                finding(s.name + " " + when + ": skinning kernel " + table[k].name + " differs from c_ref");
+                finding(s.name + " " + when + ": skinning kernel " + table[k].name +
+                        " differs from c_ref");
             }
         }
         /* Planes of the posed surface, every variant against c_ref's bits. */
@@ -70,7 +72,8 @@ void check_pose(const sv::AnimatedAsset &a, const sv::Pose &pose, const std::str
             if ((planes[k].isa & sv_cpu_isa()) != planes[k].isa) continue;
             planes[k].derive_planes(ref.data(), s.prepared.indices.data(), nt, p1.data());
             if (std::memcmp(p0.data(), p1.data(), (std::size_t)nt * sizeof(Plane)) != 0) {
-                finding(s.name + " " + when + ": planes variant " + planes[k].name + " differs from c_ref");
+                finding(s.name + " " + when + ": planes variant " + planes[k].name +
+                        " differs from c_ref");
             }
         }
         /* A volume from the posed surface stays closed (the topology is
@@ -81,21 +84,25 @@ void check_pose(const sv::AnimatedAsset &a, const sv::Pose &pose, const std::str
         sv::PreparedSurface posed = s.prepared;
         std::memcpy(posed.positions.data(), ref.data(), 3 * nv * sizeof(float));
         std::memcpy(posed.planes.data(), p0.data(), (std::size_t)nt * sizeof(Plane));
-        const Vec4 lights[2] = {{ref[0] + 3.f, ref[1] + 5.f, ref[2] + 7.f, 1.f}, {0.3f, 0.9f, -0.2f, 0.f}};
+        const Vec4 lights[2] = {{ref[0] + 3.f, ref[1] + 5.f, ref[2] + 7.f, 1.f},
+                                {0.3f, 0.9f, -0.2f, 0.f}};
         for (const Vec4 &L : lights) {
             sv::AlignedVector<uint8_t> facing((std::size_t)nt + 1, 1);
             sv_calculate_facing_c_ref(posed.planes.data(), nt, &L, facing.data());
-            sv::AlignedVector<int> idx(sv_shadow_volume_capacity(posed.num_indices(), posed.num_sil_edges()));
-            const int n = sv_create_shadow_volume(sv_best_variant(), idx.data(), posed.indices.data(),
-                                                  posed.num_indices(), posed.sil_edges.data(),
-                                                  posed.num_sil_edges(), facing.data(), nullptr);
+            sv::AlignedVector<int> idx(
+                sv_shadow_volume_capacity(posed.num_indices(), posed.num_sil_edges()));
+            const int n = sv_create_shadow_volume(sv_best_variant(), idx.data(),
+                                                  posed.indices.data(), posed.num_indices(),
+                                                  posed.sil_edges.data(), posed.num_sil_edges(),
+                                                  facing.data(), nullptr);
             const sv::ClosureResult c = sv::check_closure(idx.data(), n, posed.num_vertices());
             if (!c.closed) finding(s.name + " " + when + ": volume not closed: " + c.problem);
         }
     }
     /* Lights and cameras at the pose: a refusal is SceneError, nothing else. */
     sv::Scene scene;
-    for (std::size_t i = 0; i < a.lights.size(); i++) scene.lights.push_back(sv::light_at(a, (int)i, pose, root));
+    for (std::size_t i = 0; i < a.lights.size(); i++)
+        scene.lights.push_back(sv::light_at(a, (int)i, pose, root));
     for (std::size_t i = 0; i < a.cameras.size(); i++) {
         double aspect = 0;
         scene.camera = sv::camera_at(a, (int)i, pose, root, &aspect);
@@ -121,7 +128,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         check_pose(a, sv::pose_at(a, -1, 0), "at the file's pose");
         for (int k = 0; k < (int)a.animations.size() && k < kMaxAnimations; k++) {
             const sv::Animation &an = a.animations[(std::size_t)k];
-            for (double t : {an.start, 0.5 * (an.start + an.end), an.end, an.end + 1.0, an.start - 1.0}) {
+            for (double t :
+                 {an.start, 0.5 * (an.start + an.end), an.end, an.end + 1.0, an.start - 1.0}) {
                 check_pose(a, sv::pose_at(a, k, t), "animation " + std::to_string(k));
             }
         }

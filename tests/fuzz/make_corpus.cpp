@@ -52,8 +52,9 @@ std::string base64(const std::string &in) {
 struct Doc {
     std::string bin;
     std::vector<std::string> views, accessors;
-    template <class T> int data(const std::vector<T> &v, int component, const char *type,
-                                size_t count, const std::string &extra = "") {
+    template <class T>
+    int data(const std::vector<T> &v, int component, const char *type, size_t count,
+             const std::string &extra = "") {
         while (bin.size() % 4) bin += '\0';
         const size_t off = bin.size();
         bin.append(reinterpret_cast<const char *>(v.data()), v.size() * sizeof(T));
@@ -71,13 +72,13 @@ struct Doc {
             hi[i % 3] = std::max(hi[i % 3], p[i]);
         }
         char mm[160];
-        std::snprintf(mm, sizeof mm, ",\"min\":[%g,%g,%g],\"max\":[%g,%g,%g]", lo[0], lo[1],
-                      lo[2], hi[0], hi[1], hi[2]);
+        std::snprintf(mm, sizeof mm, ",\"min\":[%g,%g,%g],\"max\":[%g,%g,%g]", lo[0], lo[1], lo[2],
+                      hi[0], hi[1], hi[2]);
         return data(p, 5126, "VEC3", p.size() / 3, mm);
     }
     std::string json(const std::string &members, bool glb) const {
         std::string j = "{\"asset\":{\"version\":\"2.0\",\"generator\":\"sv_fuzz_corpus\"}," +
-                         members + ",\"accessors\":[";
+                        members + ",\"accessors\":[";
         for (size_t i = 0; i < accessors.size(); i++) j += (i ? "," : "") + accessors[i];
         j += "],\"bufferViews\":[";
         for (size_t i = 0; i < views.size(); i++) j += (i ? "," : "") + views[i];
@@ -130,31 +131,38 @@ int main(int argc, char **argv) {
     fs::create_directories(dir / "glb");
     fs::create_directories(dir / "gltf");
     const std::string one_mesh = "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}]";
-    {   // the cube, u32 / u16 / u8 indices
+    { // the cube, u32 / u16 / u8 indices
         for (int ct : {5125, 5123, 5121}) {
             Doc d;
             const int p = d.vec3(kCube);
             int i;
-            if (ct == 5125) i = d.data(kCubeIdx, ct, "SCALAR", kCubeIdx.size());
-            else if (ct == 5123) i = d.data(std::vector<uint16_t>(kCubeIdx.begin(), kCubeIdx.end()), ct, "SCALAR", kCubeIdx.size());
-            else i = d.data(std::vector<uint8_t>(kCubeIdx.begin(), kCubeIdx.end()), ct, "SCALAR", kCubeIdx.size());
+            if (ct == 5125)
+                i = d.data(kCubeIdx, ct, "SCALAR", kCubeIdx.size());
+            else if (ct == 5123)
+                i = d.data(std::vector<uint16_t>(kCubeIdx.begin(), kCubeIdx.end()), ct, "SCALAR",
+                           kCubeIdx.size());
+            else
+                i = d.data(std::vector<uint8_t>(kCubeIdx.begin(), kCubeIdx.end()), ct, "SCALAR",
+                           kCubeIdx.size());
             emit(dir, "cube_" + std::to_string(ct), d,
-                 one_mesh + ",\"meshes\":[{\"name\":\"cube\",\"primitives\":[{\"attributes\":"
-                            "{\"POSITION\":" + std::to_string(p) + "},\"indices\":" +
-                     std::to_string(i) + "}]}]");
+                 one_mesh +
+                     ",\"meshes\":[{\"name\":\"cube\",\"primitives\":[{\"attributes\":"
+                     "{\"POSITION\":" +
+                     std::to_string(p) + "},\"indices\":" + std::to_string(i) + "}]}]");
         }
     }
-    {   // strip and fan, not indexed, in one mesh; and points
+    { // strip and fan, not indexed, in one mesh; and points
         Doc d;
         const int s = d.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0});
         const int f = d.vec3({0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1});
         emit(dir, "strip_fan", d,
              one_mesh + ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" +
-                 std::to_string(s) + "},\"mode\":5},{\"attributes\":{\"POSITION\":" +
-                 std::to_string(f) + "},\"mode\":6},{\"attributes\":{\"POSITION\":" +
-                 std::to_string(f) + "},\"mode\":0}]}]");
+                 std::to_string(s) +
+                 "},\"mode\":5},{\"attributes\":{\"POSITION\":" + std::to_string(f) +
+                 "},\"mode\":6},{\"attributes\":{\"POSITION\":" + std::to_string(f) +
+                 "},\"mode\":0}]}]");
     }
-    {   // a hierarchy: TRS, a matrix, a mirror, two instances
+    { // a hierarchy: TRS, a matrix, a mirror, two instances
         Doc d;
         const int p = d.vec3(kCube);
         const int i = d.data(kCubeIdx, 5125, "SCALAR", kCubeIdx.size());
@@ -163,10 +171,10 @@ int main(int argc, char **argv) {
              "\"translation\":[1,2,3],\"rotation\":[0,0.7071068,0,0.7071068],\"scale\":[2,2,2]},"
              "{\"mesh\":0,\"name\":\"mirror\",\"scale\":[-1,1,1]},"
              "{\"mesh\":0,\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,5,0,0,1]}],"
-             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(p) +
-                 "},\"indices\":" + std::to_string(i) + "}]}]");
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" +
+                 std::to_string(p) + "},\"indices\":" + std::to_string(i) + "}]}]");
     }
-    {   // a skin: two joints, u8 joints, float weights, inverse bind matrices
+    { // a skin: two joints, u8 joints, float weights, inverse bind matrices
         Doc d;
         const int p = d.vec3(kCube);
         const int i = d.data(kCubeIdx, 5125, "SCALAR", kCubeIdx.size());
@@ -187,12 +195,13 @@ int main(int argc, char **argv) {
         emit(dir, "skin", d,
              "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0,\"skin\":0},{\"children\":"
              "[2],\"name\":\"root\"},{\"translation\":[0,1,0],\"rotation\":[0.2,0,0,0.98]}],"
-             "\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":" + std::to_string(ia) +
+             "\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":" +
+                 std::to_string(ia) +
                  "}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" +
                  std::to_string(p) + ",\"JOINTS_0\":" + std::to_string(ja) + ",\"WEIGHTS_0\":" +
                  std::to_string(wa) + "},\"indices\":" + std::to_string(i) + "}]}]");
     }
-    {   // a sparse accessor over the cube's positions
+    { // a sparse accessor over the cube's positions
         Doc d;
         d.vec3(kCube);
         const int i = d.data(kCubeIdx, 5125, "SCALAR", kCubeIdx.size());
@@ -202,19 +211,25 @@ int main(int argc, char **argv) {
         d.accessors[0] += ",\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":2,"
                           "\"componentType\":5125},\"values\":{\"bufferView\":3}}}";
         emit(dir, "sparse", d,
-             one_mesh + ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
-                        "\"indices\":" + std::to_string(i) + "}]}]");
+             one_mesh +
+                 ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+                 "\"indices\":" +
+                 std::to_string(i) + "}]}]");
     }
     { // command lines for fuzz_options: the selector byte, then NUL-separated arguments
         fs::create_directories(dir / "options");
         const std::vector<std::pair<char, std::vector<std::string>>> lines = {
-            {0, {"--add", "models/character_1344.glb@1,0,-2,30,1.5", "--ground", "--light",
-                 "point:2,4,3,20", "--light", "spot:0,5,0,0,-1,0,10,30", "--camera",
-                 "eye=3,2,5,target=0,1,0,fov=50,near=0.1", "--size", "640x480", "--mode=zfail",
-                 "--threads", "2", "--no-gl", "--stencil", "bf"}},
-            {1, {"scene.glb@0,0,0", "--frames", "12", "--light", "dir:0.2,-1,0.1", "--size=320x200",
-                 "--animation", "0", "--fps", "24", "--full", "--json", "-"}},
-            {1, {"scene.glb", "--time", "0.5:2.25", "--light", "point:auto", "--no-truth", "--stencil=bf"}},
+            {0,
+             {"--add", "models/character_1344.glb@1,0,-2,30,1.5", "--ground", "--light",
+              "point:2,4,3,20", "--light", "spot:0,5,0,0,-1,0,10,30", "--camera",
+              "eye=3,2,5,target=0,1,0,fov=50,near=0.1", "--size", "640x480", "--mode=zfail",
+              "--threads", "2", "--no-gl", "--stencil", "bf"}},
+            {1,
+             {"scene.glb@0,0,0", "--frames", "12", "--light", "dir:0.2,-1,0.1", "--size=320x200",
+              "--animation", "0", "--fps", "24", "--full", "--json", "-"}},
+            {1,
+             {"scene.glb", "--time", "0.5:2.25", "--light", "point:auto", "--no-truth",
+              "--stencil=bf"}},
             {2, {"spot:1,2,3,0,0,-1,5,40"}},
             {3, {"eye=0,1.5,4,target=0,1,0,up=0,1,0,fov=45"}},
             {4, {"a.glb@1e3,-2.5e-3,7,-90,0.25"}},
@@ -242,8 +257,8 @@ int main(int argc, char **argv) {
             const std::string key = "\"buffers\":[{";
             const size_t at = json.find(key);
             if (at != std::string::npos) {
-                json.insert(at + key.size(),
-                            "\"uri\":\"data:application/octet-stream;base64," + base64(bin) + "\",");
+                json.insert(at + key.size(), "\"uri\":\"data:application/octet-stream;base64," +
+                                                 base64(bin) + "\",");
                 write(dir / "gltf" / "character_1344.gltf", json);
             }
         }

@@ -93,8 +93,7 @@ public:
         for (std::size_t i = 0; i < a.mag_.size(); i++) {
             uint64_t carry = 0;
             for (std::size_t j = 0; j < b.mag_.size(); j++) {
-                const uint64_t t =
-                    (uint64_t)a.mag_[i] * b.mag_[j] + r.mag_[i + j] + carry;
+                const uint64_t t = (uint64_t)a.mag_[i] * b.mag_[j] + r.mag_[i + j] + carry;
                 r.mag_[i + j] = (uint32_t)t;
                 carry = t >> 32;
             }
@@ -194,8 +193,8 @@ inline int reference_facing_sign(const float p0[3], const float p1[3], const flo
 
 // The same for coordinates that are integers below 2^20 in magnitude (the
 // light's w too): det fits __int128 (|det| < 6 * 2^21 * 2^21 * 2^42).
-inline int reference_facing_sign_int128(const float p0[3], const float p1[3],
-                                        const float p2[3], const Vec4 &l) {
+inline int reference_facing_sign_int128(const float p0[3], const float p1[3], const float p2[3],
+                                        const Vec4 &l) {
     const float lc[3] = {l.x, l.y, l.z};
     __int128 u[3], v[3], r[3];
     for (int i = 0; i < 3; i++) {

@@ -23,7 +23,8 @@ std::vector<std::string> seed_model_paths(const std::string &set) {
     std::vector<std::string> shared;
     while (const dirent *e = readdir(d)) {
         const std::string n = e->d_name;
-        if (n.size() > 4 && n.compare(n.size() - 4, 4, ".glb") == 0) shared.push_back(dir + "/" + n);
+        if (n.size() > 4 && n.compare(n.size() - 4, 4, ".glb") == 0)
+            shared.push_back(dir + "/" + n);
     }
     closedir(d);
     std::sort(shared.begin(), shared.end());

@@ -76,9 +76,9 @@ std::string shared_models_dir();
 // tier's parameterised tests, and nothing else (the other tests ran in the
 // baseline entry). A test that calls in_this_run undeclared fails, so none
 // is left out of the tier entries unnoticed.
-#define SV_TIERED_TEST(suite, name)                                                               \
-    static const bool sv_tiered_##suite##_##name = ::svtest::declare_tiered(#suite "." #name);   \
+#define SV_TIERED_TEST(suite, name)                                                                \
+    static const bool sv_tiered_##suite##_##name = ::svtest::declare_tiered(#suite "." #name);     \
     TEST(suite, name)
-#define SV_TIERED_TEST_P(suite, name)                                                             \
-    static const bool sv_tiered_##suite##_##name = ::svtest::declare_tiered(#suite "." #name);   \
+#define SV_TIERED_TEST_P(suite, name)                                                              \
+    static const bool sv_tiered_##suite##_##name = ::svtest::declare_tiered(#suite "." #name);     \
     TEST_P(suite, name)

@@ -76,8 +76,8 @@ const Tier *tier_named(const std::string &name) {
 // one (c_*, sse2*, avx2*, avx512*), and the tier and dispatch level its
 // prefix names.
 struct ParamVariant {
-    std::string tier;  // "" baseline
-    unsigned level;    // SV_ISA_* bits dispatch must allow
+    std::string tier; // "" baseline
+    unsigned level;   // SV_ISA_* bits dispatch must allow
 };
 bool param_variant(const std::string &test_name, ParamVariant &out) {
     const size_t slash = test_name.rfind('/');
@@ -90,9 +90,12 @@ bool param_variant(const std::string &test_name, ParamVariant &out) {
             return true;
         }
     }
-    if (starts("sse2")) out = {"", SV_ISA_SSE2};
-    else if (starts("c_")) out = {"", 0};
-    else return false; // another parameter (a model set): every tier's entry
+    if (starts("sse2"))
+        out = {"", SV_ISA_SSE2};
+    else if (starts("c_"))
+        out = {"", 0};
+    else
+        return false; // another parameter (a model set): every tier's entry
     return true;
 }
 
@@ -134,16 +137,18 @@ std::string entry_condition_unmet() {
     const char *tier = tier_of_this_run();
     if (*tier) {
         const Tier *t = tier_named(tier);
-        if (!t) return std::string("SV_TEST_ISA=") + tier + " is no tier (avx2, avx512, avx512vbmi)";
+        if (!t)
+            return std::string("SV_TEST_ISA=") + tier + " is no tier (avx2, avx512, avx512vbmi)";
         const unsigned need = t->needs;
         if ((sv_cpu_isa_detected() & need) != need) {
             char names[128];
-            return std::string("this CPU lacks the ") + tier + " tier (it has: " +
-                   sv_isa_names(sv_cpu_isa_detected(), names, sizeof names) + ")";
+            return std::string("this CPU lacks the ") + tier +
+                   " tier (it has: " + sv_isa_names(sv_cpu_isa_detected(), names, sizeof names) +
+                   ")";
         }
         if ((sv_cpu_isa() & need) != need)
-            return std::string("the ISA limit SV_ISA=") + sv_isa_limit_name() + " holds the " + tier +
-                   " tier down";
+            return std::string("the ISA limit SV_ISA=") + sv_isa_limit_name() + " holds the " +
+                   tier + " tier down";
     }
     if (shared_models_run()) {
         struct stat st;
@@ -189,8 +194,10 @@ bool in_this_run(unsigned isa, const char *name) {
         !tiered_tests().count(suite_dot_name(cur->test_suite_name(), cur->name()))) {
         static std::set<std::string> told;
         if (told.insert(suite_dot_name(cur->test_suite_name(), cur->name())).second)
-            ADD_FAILURE() << "this test loops over variants (in_this_run): declare it with SV_TIERED_TEST "
-                             "or SV_TIERED_TEST_P (tests/support/test_conditions.h) so that the tier entries run it";
+            ADD_FAILURE()
+                << "this test loops over variants (in_this_run): declare it with SV_TIERED_TEST "
+                   "or SV_TIERED_TEST_P (tests/support/test_conditions.h) so that the tier entries "
+                   "run it";
     }
     const char *tier = isa_tier(isa);
     if (*tier && std::strcmp(tier, tier_of_this_run()) != 0) return false;
@@ -200,9 +207,9 @@ bool in_this_run(unsigned isa, const char *name) {
         return true;
     }
     if ((isa & sv_cpu_isa_detected()) == isa) return false; // held down by SV_ISA: out of scope
-    variants_not_run().push_back(std::string(name) + " in " +
-                                 (cur ? std::string(cur->test_suite_name()) + "." + cur->name() : "?") +
-                                 ": " + why);
+    variants_not_run().push_back(
+        std::string(name) + " in " +
+        (cur ? std::string(cur->test_suite_name()) + "." + cur->name() : "?") + ": " + why);
     return false;
 }
 
@@ -213,9 +220,11 @@ bool shared_models_run() {
 
 std::string shared_models_dir() {
     const ::testing::TestInfo *t = ::testing::UnitTest::GetInstance()->current_test_info();
-    if (!t || (std::string(t->test_suite_name()) + "." + t->name()).find("SharedModels") == std::string::npos)
-        ADD_FAILURE() << "only a test named *SharedModels* may read the shared models (its name puts "
-                         "it in the shared-models ctest entry)";
+    if (!t || (std::string(t->test_suite_name()) + "." + t->name()).find("SharedModels") ==
+                  std::string::npos)
+        ADD_FAILURE()
+            << "only a test named *SharedModels* may read the shared models (its name puts "
+               "it in the shared-models ctest entry)";
     return SV_SHARED_MODELS_DIR;
 }
 
@@ -233,8 +242,9 @@ int main(int argc, char **argv) {
     if (RUN_ALL_TESTS() != 0) return 1;
     ::testing::UnitTest *u = ::testing::UnitTest::GetInstance();
     if (u->test_to_run_count() == 0) {
-        std::printf("[  FAILED  ] no test ran (filter %s): an entry that tests nothing cannot pass\n",
-                    GTEST_FLAG_GET(filter).c_str());
+        std::printf(
+            "[  FAILED  ] no test ran (filter %s): an entry that tests nothing cannot pass\n",
+            GTEST_FLAG_GET(filter).c_str());
         return 1;
     }
     int skipped = 0;
@@ -257,15 +267,17 @@ int main(int argc, char **argv) {
         }
     }
     if (*svtest::tier_of_this_run() && svtest::tier_variants_run == 0) {
-        std::printf("[  FAILED  ] SV_TEST_ISA=%s: no test here ran a variant of that tier (this program "
-                    "has none: the entry tests nothing of its own)\n",
-                    svtest::tier_of_this_run());
+        std::printf(
+            "[  FAILED  ] SV_TEST_ISA=%s: no test here ran a variant of that tier (this program "
+            "has none: the entry tests nothing of its own)\n",
+            svtest::tier_of_this_run());
         return 1;
     }
-    for (const std::string &v : svtest::variants_not_run()) std::printf("[  SKIPPED ] variant %s\n", v.c_str());
+    for (const std::string &v : svtest::variants_not_run())
+        std::printf("[  SKIPPED ] variant %s\n", v.c_str());
     if (skipped || !svtest::variants_not_run().empty()) {
-        std::printf("%d tests skipped, %zu variants not run: the entry counts as skipped\n", skipped,
-                    svtest::variants_not_run().size());
+        std::printf("%d tests skipped, %zu variants not run: the entry counts as skipped\n",
+                    skipped, svtest::variants_not_run().size());
         return svtest::kSkipped;
     }
     return 0;

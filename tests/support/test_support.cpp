@@ -188,13 +188,12 @@ bool stop_after_failures(int limit) {
 }
 
 #if defined(__linux__)
-HugeSilEdgeArray::HugeSilEdgeArray(size_t edges)
-    : edges_(edges), bytes_(edges * sizeof(SilEdge)) {
+HugeSilEdgeArray::HugeSilEdgeArray(size_t edges) : edges_(edges), bytes_(edges * sizeof(SilEdge)) {
     const size_t chunk = 2u << 20;
     if (bytes_ == 0 || bytes_ % chunk != 0) return;
     const size_t chunks = bytes_ / chunk;
-    void *base = mmap(nullptr, bytes_, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE,
-                      -1, 0);
+    void *base = mmap(nullptr, bytes_, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1,
+                      0);
     if (base == MAP_FAILED) return;
     base_ = (uint8_t *)base;
     fd_ = memfd_create("sv_zero_edges", 0);

@@ -140,8 +140,7 @@ typename svcheck::fn_traits<Fn>::ret checked_call(Rng &rng, Fn fn, A... args) {
 #else
 // No checker on this platform (docs/PLATFORMS.md): the routine is called
 // directly with its own prototype, so results are still compared.
-template <class R, class... P, class... A>
-R checked_call(Rng &, R (*fn)(P...), A... args) {
+template <class R, class... P, class... A> R checked_call(Rng &, R (*fn)(P...), A... args) {
     static_assert(sizeof...(P) == sizeof...(A), "checked_call: wrong number of arguments");
     return fn(static_cast<P>(args)...);
 }
@@ -178,7 +177,7 @@ std::string param_name(const ::testing::TestParamInfo<std::string> &info);
 // The cases come from rng_for(name of the test without the variant), so
 // every variant sees the same cases, whichever of them the filter runs.
 class VariantTest : public ::testing::TestWithParam<std::string> {
-  protected:
+protected:
     void SetUp() override;
     const sv_variant *v = nullptr;
     Rng abi{0};
@@ -186,7 +185,7 @@ class VariantTest : public ::testing::TestWithParam<std::string> {
 
 // The same over sv_facing_variants().
 class FacingVariantTest : public ::testing::TestWithParam<std::string> {
-  protected:
+protected:
     void SetUp() override;
     const sv_facing_variant *v = nullptr;
     Rng abi{0};
@@ -206,10 +205,8 @@ bool stop_after_failures(int limit = 20);
 #if defined(SV_HAVE_ASM_SSE2)
 #define SV_REQUIRE_SSE2_PAPER() (void)0
 #else
-#define SV_REQUIRE_SSE2_PAPER() \
+#define SV_REQUIRE_SSE2_PAPER()                                                                    \
     GTEST_SKIP() << "sse2_paper is not built on this platform (docs/PLATFORMS.md)"
 #endif
 
-namespace svtest {
-
-} // namespace svtest
+namespace svtest {} // namespace svtest

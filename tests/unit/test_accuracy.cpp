@@ -42,8 +42,8 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // MXCSR settings a caller may have: default, FTZ+DAZ, and the three other
 // rounding modes (with FTZ+DAZ for good measure on one of them).
-const unsigned kCallerMxcsr[] = {0x1F80u, 0x1F80u | 0x8040u, 0x1F80u | 0x2000u,
-                                 0x1F80u | 0x4000u, 0x1F80u | 0x6000u | 0x8040u};
+const unsigned kCallerMxcsr[] = {0x1F80u, 0x1F80u | 0x8040u, 0x1F80u | 0x2000u, 0x1F80u | 0x4000u,
+                                 0x1F80u | 0x6000u | 0x8040u};
 
 template <class F> void with_mxcsr(unsigned csr, F &&f) {
     const unsigned saved = _mm_getcsr();
@@ -61,9 +61,7 @@ float wide_float(Rng &rng) {
     return rng.chance(0.5) ? -f : f;
 }
 
-float ordinary(Rng &rng, double scale = 1.0) {
-    return (float)((2.0 * rng.unit() - 1.0) * scale);
-}
+float ordinary(Rng &rng, double scale = 1.0) { return (float)((2.0 * rng.unit() - 1.0) * scale); }
 
 struct Tri {
     float p[3][3];
@@ -302,14 +300,16 @@ TEST(ExactPredicate, AgreesWithBigIntegers) {
                 for (float &x : p) x = wide_float(rng);
             }
             l = Vec4{wide_float(rng), wide_float(rng), wide_float(rng),
-                     rng.chance(0.3) ? 0.0f : rng.chance(0.7) ? 1.0f : wide_float(rng)};
+                     rng.chance(0.3)   ? 0.0f
+                     : rng.chance(0.7) ? 1.0f
+                                       : wide_float(rng)};
         } else {
             near_degenerate(rng, t, l);
         }
         const int want = ref_sign(t, l);
         ASSERT_EQ(exact_sign(t, l), want)
-            << "p0 " << t.p[0][0] << " " << t.p[0][1] << " " << t.p[0][2] << " light " << l.x
-            << " " << l.y << " " << l.z << " " << l.w;
+            << "p0 " << t.p[0][0] << " " << t.p[0][1] << " " << t.p[0][2] << " light " << l.x << " "
+            << l.y << " " << l.z << " " << l.w;
         ASSERT_EQ(sv_facing_exact_sign_unfiltered(t.p[0], t.p[1], t.p[2], &l), want);
         int sign = 9;
         (void)sv_exact_det_estimate(t.p[0], t.p[1], t.p[2], &l, &sign);
@@ -508,15 +508,16 @@ SV_TIERED_TEST(ExactPredicate, ArrayRoutinesMatchThePredicate) {
                 want_stage += !sv_exact_filter_decides(p0, p1, p2, &l);
             }
             GuardedBuffer f((std::size_t)n + 1, rng.below(64));
-            const int stage = sv_calculate_facing_exact(m.positions.data(), m.indices.data(), n,
-                                                        &l, f.data());
+            const int stage = sv_calculate_facing_exact(m.positions.data(), m.indices.data(), n, &l,
+                                                        f.data());
             ASSERT_EQ(std::memcmp(f.data(), want.data(), want.size()), 0) << "n " << n;
             ASSERT_EQ(stage, want_stage);
             ASSERT_TRUE(f.guards_intact());
             if (avx2) {
                 GuardedBuffer g((std::size_t)n + 1, rng.below(64));
-                const int stage2 = sv_calculate_facing_exact_avx2(
-                    m.positions.data(), m.indices.data(), n, &l, g.data());
+                const int stage2 = sv_calculate_facing_exact_avx2(m.positions.data(),
+                                                                  m.indices.data(), n, &l,
+                                                                  g.data());
                 ASSERT_EQ(std::memcmp(g.data(), want.data(), want.size()), 0) << "avx2 n " << n;
                 ASSERT_EQ(stage2, want_stage);
                 ASSERT_TRUE(g.guards_intact());
@@ -537,9 +538,9 @@ SV_TIERED_TEST(ExactPredicate, ArrayRoutinesMatchThePredicate) {
 
 float plane_value(Rng &rng, bool extremes) {
     if (extremes && rng.chance(0.15)) {
-        static const float special[] = {0.0f,    -0.0f,    kNaN,     kInf,   -kInf,
-                                        FLT_MAX, -FLT_MAX, FLT_MIN,  -FLT_MIN, 0x1p-149f,
-                                        -0x1p-149f, 1e-40f, 3e38f};
+        static const float special[] = {0.0f,       -0.0f,    kNaN,    kInf,     -kInf,
+                                        FLT_MAX,    -FLT_MAX, FLT_MIN, -FLT_MIN, 0x1p-149f,
+                                        -0x1p-149f, 1e-40f,   3e38f};
         return special[rng.below(sizeof special / sizeof special[0])];
     }
     return ordinary(rng, 2.0);
@@ -549,8 +550,7 @@ float plane_value(Rng &rng, bool extremes) {
 // the avx2 ctest entry alone (tests/support/test_conditions.h) and skips there
 // where the CPU lacks AVX2.
 class SimdTwins : public ::testing::TestWithParam<std::string> {};
-INSTANTIATE_TEST_SUITE_P(Tier, SimdTwins, ::testing::Values("avx2"),
-                         svtest::param_name);
+INSTANTIATE_TEST_SUITE_P(Tier, SimdTwins, ::testing::Values("avx2"), svtest::param_name);
 
 TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
     Rng rng = svtest::rng_for("Variants.SimdTwins");
@@ -566,8 +566,10 @@ TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
                 std::vector<PlaneD> pd((std::size_t)n);
                 std::vector<sv_plane16_block> blocks(((std::size_t)n + 7) / 8);
                 for (int i = 0; i < n; i++) {
-                    planes[(std::size_t)i] = {plane_value(rng, extremes), plane_value(rng, extremes),
-                                              plane_value(rng, extremes), plane_value(rng, extremes)};
+                    planes[(std::size_t)i] = {plane_value(rng, extremes),
+                                              plane_value(rng, extremes),
+                                              plane_value(rng, extremes),
+                                              plane_value(rng, extremes)};
                     const Plane &p = planes[(std::size_t)i];
                     pd[(std::size_t)i] = {p.a * (1.0 + 1e-12), p.b, p.c, p.d * (1.0 - 1e-12)};
                     sv_plane16_block &b = blocks[(std::size_t)i / 8];
@@ -578,7 +580,9 @@ TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
                 }
                 const Vec4 l{plane_value(rng, extremes), plane_value(rng, extremes),
                              plane_value(rng, extremes),
-                             extremes ? plane_value(rng, true) : rng.chance(0.3) ? 0.0f : 1.0f};
+                             extremes          ? plane_value(rng, true)
+                             : rng.chance(0.3) ? 0.0f
+                                               : 1.0f};
                 auto check = [&](const char *name, auto scalar, auto simd) {
                     GuardedBuffer a((std::size_t)n + 1, rng.below(64));
                     GuardedBuffer b((std::size_t)n + 1, rng.below(64));
@@ -592,22 +596,22 @@ TEST_P(SimdTwins, BitIdenticalToTheirDefinitions) {
                     for (int i = 0; i < n; i++) ASSERT_LE(a.data()[i], 1);
                     ASSERT_TRUE(a.guards_intact() && b.guards_intact()) << name;
                 };
-                check("fma",
-                      [&](uint8_t *f) { sv_calculate_facing_fma(planes.data(), n, &l, f); },
-                      [&](uint8_t *f) { sv_calculate_facing_fma_avx2(planes.data(), n, &l, f); });
-                check("double",
-                      [&](uint8_t *f) { sv_calculate_facing_double(pd.data(), n, &l, f); },
-                      [&](uint8_t *f) { sv_calculate_facing_double_avx2(pd.data(), n, &l, f); });
-                check("fixed16",
-                      [&](uint8_t *f) { sv_calculate_facing_fixed16(blocks.data(), n, &l, f); },
-                      [&](uint8_t *f) {
-                          sv_calculate_facing_fixed16_avx2(blocks.data(), n, &l, f);
-                      });
-                check("fixed16_prefetch",
-                      [&](uint8_t *f) { sv_calculate_facing_fixed16(blocks.data(), n, &l, f); },
-                      [&](uint8_t *f) {
-                          sv_calculate_facing_fixed16_avx2_prefetch(blocks.data(), n, &l, f);
-                      });
+                check(
+                    "fma", [&](uint8_t *f) { sv_calculate_facing_fma(planes.data(), n, &l, f); },
+                    [&](uint8_t *f) { sv_calculate_facing_fma_avx2(planes.data(), n, &l, f); });
+                check(
+                    "double", [&](uint8_t *f) { sv_calculate_facing_double(pd.data(), n, &l, f); },
+                    [&](uint8_t *f) { sv_calculate_facing_double_avx2(pd.data(), n, &l, f); });
+                check(
+                    "fixed16",
+                    [&](uint8_t *f) { sv_calculate_facing_fixed16(blocks.data(), n, &l, f); },
+                    [&](uint8_t *f) { sv_calculate_facing_fixed16_avx2(blocks.data(), n, &l, f); });
+                check(
+                    "fixed16_prefetch",
+                    [&](uint8_t *f) { sv_calculate_facing_fixed16(blocks.data(), n, &l, f); },
+                    [&](uint8_t *f) {
+                        sv_calculate_facing_fixed16_avx2_prefetch(blocks.data(), n, &l, f);
+                    });
             }
         }
     }
@@ -649,8 +653,8 @@ TEST(Variants, DoublePlanesRoundToTheReferencePlanes) {
         if (!std::isfinite(f.d)) continue; /* |d| beyond FLT_MAX: rounds to inf */
         const float r[4] = {(float)d.a, (float)d.b, (float)d.c, (float)d.d};
         ASSERT_EQ(std::memcmp(r, &f, sizeof r), 0)
-            << f.a << " " << f.b << " " << f.c << " " << f.d << " vs " << d.a << " " << d.b
-            << " " << d.c << " " << d.d;
+            << f.a << " " << f.b << " " << f.c << " " << f.d << " vs " << d.a << " " << d.b << " "
+            << d.c << " " << d.d;
     }
 }
 
@@ -801,7 +805,8 @@ SV_TIERED_TEST(Variants, BoundedDifferenceContracts) {
         } else {
             static const float ws[] = {1.0f, 1.0f, 2.0f, -1.0f, 0.5f};
             const float w = ws[rng.below(5)];
-            l = Vec4{(float)(off * (2 * rng.unit() - 1) * w), (float)(off * (2 * rng.unit() - 1) * w),
+            l = Vec4{(float)(off * (2 * rng.unit() - 1) * w),
+                     (float)(off * (2 * rng.unit() - 1) * w),
                      (float)(off * (2 * rng.unit() - 1) * w), w};
         }
         const std::vector<Tri> tris = adversarial_triangles(rng, l, 200);
@@ -824,9 +829,9 @@ SV_TIERED_TEST(Variants, BoundedDifferenceContracts) {
             GuardedBuffer f((std::size_t)nt + 1, 0);
             v.run(data, l, nullptr, f.data());
             ASSERT_TRUE(f.guards_intact()) << v.name;
-            const acc::Contract c =
-                v.contract == acc::Contract::same_as ? acc::variant_by_name(v.same_as)->contract
-                                                     : v.contract;
+            const acc::Contract c = v.contract == acc::Contract::same_as
+                                        ? acc::variant_by_name(v.same_as)->contract
+                                        : v.contract;
             for (int t = 0; t < nt; t++) {
                 const uint8_t got = f.data()[t];
                 stats[vi].tests++;
@@ -842,7 +847,8 @@ SV_TIERED_TEST(Variants, BoundedDifferenceContracts) {
                 if (std::fabs(dist) <= B) {
                     stats[vi].in_band++;
                     stats[vi].wrong_in_band += got != want;
-                    if (got != want) stats[vi].worst = std::max(stats[vi].worst, std::fabs(dist) / B);
+                    if (got != want)
+                        stats[vi].worst = std::max(stats[vi].worst, std::fabs(dist) / B);
                 } else {
                     const Tri &tr = tris[(std::size_t)t];
                     ASSERT_EQ(got, want)
@@ -889,8 +895,8 @@ TEST(Variants, BoundsAreTight) {
                      rng.chance(0.3) ? 0.0f : 1.0f};
         const sv::TriangleErrorModel m = sv::triangle_error_model(t.p[0], t.p[1], t.p[2]);
         // The scale: the light's distance from the triangle plus 1.
-        const double scale = 1.0 + std::sqrt((double)l.x * l.x + (double)l.y * l.y +
-                                             (double)l.z * l.z);
+        const double scale = 1.0 +
+                             std::sqrt((double)l.x * l.x + (double)l.y * l.y + (double)l.z * l.z);
         using A = sv::FacingArithmetic;
         EXPECT_LT(sv::facing_error_bound(A::float_planes, m, l) / scale, 2e-6);
         EXPECT_LT(sv::facing_error_bound(A::float_planes_fma, m, l) / scale, 2e-6);
@@ -1012,7 +1018,8 @@ SV_TIERED_TEST(Variants, IndependentOfTheCallersMxcsr) {
         const Vec4 l{ordinary(rng) * sc, ordinary(rng) * sc, ordinary(rng) * sc,
                      li % 5 == 0 ? 0.0f : 1.0f};
         for (const acc::Variant &v : acc::variants()) {
-            if (!svtest::in_this_run(v.isa, v.name) || std::strncmp(v.name, "c_ref", 5) == 0) continue;
+            if (!svtest::in_this_run(v.isa, v.name) || std::strncmp(v.name, "c_ref", 5) == 0)
+                continue;
             std::vector<uint8_t> want((std::size_t)nt + 1);
             v.run(data, l, nullptr, want.data());
             for (unsigned csr : kCallerMxcsr) {
@@ -1031,8 +1038,7 @@ SV_TIERED_TEST(Variants, IndependentOfTheCallersMxcsr) {
             const sv::AlignedVector<PlaneD> pd = sv::double_planes(s);
             const sv::AlignedVector<sv_plane16_block> p16 = sv::fixed16_planes(s);
             ASSERT_EQ(std::memcmp(pd.data(), data.planes_d.data(), pd.size() * sizeof pd[0]), 0);
-            ASSERT_EQ(std::memcmp(p16.data(), data.planes16.data(), p16.size() * sizeof p16[0]),
-                      0);
+            ASSERT_EQ(std::memcmp(p16.data(), data.planes16.data(), p16.size() * sizeof p16[0]), 0);
         });
     }
 }
@@ -1040,8 +1046,8 @@ SV_TIERED_TEST(Variants, IndependentOfTheCallersMxcsr) {
 // ---- The study and its plot ----------------------------------------------------
 
 TEST(Study, CharacterWithoutTiming) {
-    std::unique_ptr<acc::StudyModel> m =
-        acc::load_study_model(std::string(SV_MODELS_DIR) + "/character_1344.glb");
+    std::unique_ptr<acc::StudyModel> m = acc::load_study_model(std::string(SV_MODELS_DIR) +
+                                                               "/character_1344.glb");
     ASSERT_EQ(m->triangles, 1344);
     acc::StudyOptions o;
     o.lights = 4;
@@ -1085,8 +1091,7 @@ TEST(Study, CharacterWithoutTiming) {
 
 namespace {
 std::string test_base64(const std::string &in) {
-    static const char kTable[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char kTable[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     std::size_t i = 0;
     for (; i + 2 < in.size(); i += 3) {
@@ -1170,10 +1175,10 @@ TEST(Study, BadModelIsAnError) {
 
 TEST(Plot, SvgIsWellFormed) {
     std::vector<svplot::ScatterPoint> pts = {{"c_ref", "c_ref", 1.2, 1e-6},
-                                       {"c_ref_avx2", "c_ref", 0.5, 1e-6},
-                                       {"exact", "exact", 20, 0},
-                                       {"a<b>&\"", "odd", 3, 0.5},
-                                       {"no speed", "odd", 0, 0.5}};
+                                             {"c_ref_avx2", "c_ref", 0.5, 1e-6},
+                                             {"exact", "exact", 20, 0},
+                                             {"a<b>&\"", "odd", 3, 0.5},
+                                             {"no speed", "odd", 0, 0.5}};
     svplot::ScatterText text{"T", "S", "X", "Y", "0", "F"};
     const std::string svg = svplot::render_loglog_scatter(pts, text);
     EXPECT_EQ(svg.rfind("<?xml", 0), 0u);

@@ -45,7 +45,6 @@
 #include <string>
 #include <vector>
 
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -166,8 +165,7 @@ TEST(AnimSample, SlerpTakesTheShorterArc) {
 TEST(AnimSample, RotationsComeOutNormalized) {
     // STEP with a key of length 2; CUBICSPLINE between unit keys with big
     // tangents leaves the unit sphere before normalization.
-    const auto s = make_sampler(sv::AnimSampler::Interp::step, 4, {0, 1},
-                                {0, 0, 0, 2, 0, 0, 3, 4});
+    const auto s = make_sampler(sv::AnimSampler::Interp::step, 4, {0, 1}, {0, 0, 0, 2, 0, 0, 3, 4});
     double v[4];
     sv::sample(s, 0.2, v);
     EXPECT_DOUBLE_EQ(v[3], 1.0);
@@ -185,8 +183,7 @@ TEST(AnimSample, RotationsComeOutNormalized) {
 // ============================================================ glTF writer
 
 std::string base64(const std::string &in) {
-    static const char kTable[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char kTable[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     std::size_t i = 0;
     for (; i + 2 < in.size(); i += 3) {
@@ -224,9 +221,8 @@ struct Doc {
         views.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
                         ",\"byteLength\":" + std::to_string(bytes) + "}");
         accessors.push_back("{\"bufferView\":" + std::to_string(views.size() - 1) +
-                            ",\"componentType\":" + std::to_string(component_type) +
-                            ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"" +
-                            extra + "}");
+                            ",\"componentType\":" + std::to_string(component_type) + ",\"count\":" +
+                            std::to_string(count) + ",\"type\":\"" + type + "\"" + extra + "}");
         return int(accessors.size()) - 1;
     }
     int floats(const std::vector<float> &v, const std::string &type, std::size_t per) {
@@ -294,13 +290,16 @@ struct Rig {
     std::string channel_path = "rotation";
     std::vector<float> translations = {0, 0, 0, 0, 0.5f, 0, 0, 1, 0};
     // The mesh: skinned to joints 1 and 2 (JOINTS_0 as u8).
-    std::vector<uint8_t> joints;  // 4 per vertex
-    std::vector<float> weights;   // 4 per vertex
-    bool second_set = false;      // JOINTS_1 / WEIGHTS_1 too
-    std::string node2_extra;      // more members of node 2
-    std::string light_point = "{\"type\":\"point\",\"range\":5,\"intensity\":3,\"color\":[1,0.5,0.25]}";
-    std::string light_spot = "{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.2,\"outerConeAngle\":0.5}}";
-    std::string camera = "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1,\"aspectRatio\":1.5}}";
+    std::vector<uint8_t> joints; // 4 per vertex
+    std::vector<float> weights;  // 4 per vertex
+    bool second_set = false;     // JOINTS_1 / WEIGHTS_1 too
+    std::string node2_extra;     // more members of node 2
+    std::string light_point =
+        "{\"type\":\"point\",\"range\":5,\"intensity\":3,\"color\":[1,0.5,0.25]}";
+    std::string light_spot =
+        "{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.2,\"outerConeAngle\":0.5}}";
+    std::string camera = "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1,"
+                         "\"aspectRatio\":1.5}}";
     std::string extra_animation; // another animation, when not empty
     std::string mesh_extra;      // more members of the primitive
 
@@ -336,18 +335,19 @@ struct Rig {
         d.meshes.push_back("{\"name\":\"tetra\",\"primitives\":[{\"attributes\":{" + attributes +
                            "},\"indices\":" + std::to_string(idx) + mesh_extra + "}]}");
         // The joints' bind pose: node 1 at the origin, node 2 at (0, 1, 0).
-        const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+        const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1,
                                         1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
         const int ib = d.floats(ibm, "MAT4", 16);
         d.skins.push_back("{\"name\":\"rig\",\"joints\":[1,2],\"inverseBindMatrices\":" +
                           std::to_string(ib) + ",\"skeleton\":1}");
-        d.node("\"name\":\"root\",\"translation\":[10,0,0],\"children\":[1,3,4,5,6]"); // 0
-        d.node("\"name\":\"hip\",\"children\":[2]");                                 // 1
-        d.node("\"name\":\"arm\",\"translation\":[0,1,0]" + node2_extra);            // 2
+        d.node("\"name\":\"root\",\"translation\":[10,0,0],\"children\":[1,3,4,5,6]");   // 0
+        d.node("\"name\":\"hip\",\"children\":[2]");                                     // 1
+        d.node("\"name\":\"arm\",\"translation\":[0,1,0]" + node2_extra);                // 2
         d.node("\"name\":\"body\",\"mesh\":0,\"skin\":0,\"translation\":[100,100,100]"); // 3
-        d.node("\"name\":\"lamp\",\"translation\":[0,3,0],\"rotation\":[-0.70710678,0,0,0.70710678],"
-               "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}"); // 4: spot aimed down
-        d.node("\"name\":\"eye\",\"translation\":[0,1,5],\"camera\":0");   // 5
+        d.node(
+            "\"name\":\"lamp\",\"translation\":[0,3,0],\"rotation\":[-0.70710678,0,0,0.70710678],"
+            "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}");   // 4: spot aimed down
+        d.node("\"name\":\"eye\",\"translation\":[0,1,5],\"camera\":0"); // 5
         d.node("\"name\":\"bulb\",\"translation\":[1,2,3],"
                "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}"); // 6
         d.scenes.push_back("{\"nodes\":[0]}");
@@ -579,8 +579,8 @@ TEST_F(AnimFile, RigidMirroredNodeAndTheFilesPose) {
     d.node("\"mesh\":0,\"scale\":[-1,1,1]");
     const int tin = d.floats({0, 1}, "SCALAR", 1);
     const int tout = d.floats({0, 0, 0, 0, 0, 3}, "VEC3", 3);
-    d.animations.push_back("{\"samplers\":[{\"input\":" + std::to_string(tin) + ",\"output\":" +
-                           std::to_string(tout) +
+    d.animations.push_back("{\"samplers\":[{\"input\":" + std::to_string(tin) +
+                           ",\"output\":" + std::to_string(tout) +
                            "}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":1,\"path\":"
                            "\"translation\"}}]}");
     const std::string path = write(d.json(), "mirror.gltf");
@@ -592,9 +592,10 @@ TEST_F(AnimFile, RigidMirroredNodeAndTheFilesPose) {
     EXPECT_EQ(a.animations[0].name, "animation#0");
     const sv::GltfModel g = sv::load_gltf(path);
     ASSERT_EQ(g.surfaces.size(), 1u);
-    const sv::PreparedSurface gp = sv::prepare_surface(
-        g.surfaces[0].positions.data(), g.surfaces[0].num_vertices(), g.surfaces[0].indices.data(),
-        g.surfaces[0].indices.size());
+    const sv::PreparedSurface gp = sv::prepare_surface(g.surfaces[0].positions.data(),
+                                                       g.surfaces[0].num_vertices(),
+                                                       g.surfaces[0].indices.data(),
+                                                       g.surfaces[0].indices.size());
     ASSERT_EQ(gp.num_vertices(), s.prepared.num_vertices());
     EXPECT_EQ(gp.positions, s.prepared.positions); // bit for bit (pose -1, rigid)
     ASSERT_EQ(gp.indices.size(), s.prepared.indices.size());
@@ -722,7 +723,8 @@ TEST_F(AnimFile, ZeroQuaternions) {
 TEST_F(AnimFile, UnknownInterpolation) {
     Rig rig;
     rig.rotation_interp = "QUADRATIC";
-    expect_error(rig, {"sampler 0", "interpolation 'QUADRATIC' is not LINEAR, STEP or CUBICSPLINE"});
+    expect_error(rig,
+                 {"sampler 0", "interpolation 'QUADRATIC' is not LINEAR, STEP or CUBICSPLINE"});
 }
 
 TEST_F(AnimFile, JointIndexBeyondTheSkin) {
@@ -744,7 +746,8 @@ TEST_F(AnimFile, ChannelTargets) {
     ASSERT_EQ(a.animations[0].channels.size(), 1u);
     EXPECT_EQ(a.animations[0].channels[0].node, 1);
     bool noted = false;
-    for (const std::string &n : a.notes) noted = noted || n.find("`node` field is missing") != n.npos;
+    for (const std::string &n : a.notes)
+        noted = noted || n.find("`node` field is missing") != n.npos;
     EXPECT_TRUE(noted);
     Rig path;
     path.channel_path = "colour";
@@ -765,7 +768,8 @@ TEST_F(AnimFile, BadLights) {
     range.light_point = "{\"type\":\"point\",\"range\":-1}";
     expect_error(range, {"KHR_lights_punctual light 0", "range -1 is negative"});
     Rig cone;
-    cone.light_spot = "{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.6,\"outerConeAngle\":0.5}}";
+    cone.light_spot =
+        "{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.6,\"outerConeAngle\":0.5}}";
     expect_error(cone, {"light 1", "outerConeAngle 0.5 is smaller than innerConeAngle 0.6"});
     Rig wide;
     wide.light_spot = "{\"type\":\"spot\",\"spot\":{\"outerConeAngle\":1.6}}";
@@ -813,7 +817,8 @@ TEST_F(AnimFile, BadCameras) {
     inf.camera = "{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":1e999}}";
     expect_error(inf, {"number overflow parsing '1e999'"});
     Rig aspect;
-    aspect.camera = "{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":1,\"aspectRatio\":-1}}";
+    aspect.camera =
+        "{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":1,\"aspectRatio\":-1}}";
     expect_error(aspect, {"camera 0", "aspectRatio -1 must be finite and > 0"});
     Rig wide;
     wide.camera = "{\"type\":\"perspective\",\"perspective\":{\"yfov\":3.2,\"znear\":1}}";
@@ -896,8 +901,7 @@ SV_TIERED_TEST(AnimSkinning, KernelsMatchTheReferenceBitForBit) {
                                                 influences, count, want.data());
             for (const sv::SkinningKernel *k : kernels) {
                 std::vector<float> got(3 * count + 4, 12345.0f); // 4 guard floats after
-                k->fn(m.data(), rest.data(), jt.data(), wt.data(), influences, count,
-                      got.data());
+                k->fn(m.data(), rest.data(), jt.data(), wt.data(), influences, count, got.data());
                 EXPECT_EQ(std::memcmp(got.data(), want.data(), 4 * got.size()), 0)
                     << k->name << " influences " << influences << " count " << count << " "
                     << svtest::seed_trace();
@@ -912,9 +916,10 @@ SV_TIERED_TEST(AnimSkinning, KernelsMatchTheReferenceBitForBit) {
 struct Character {
     const char *file;
 };
-const Character kCharacters[] = {{"Fox.glb"}, {"CesiumMan.glb"}, {"RobotExpressive.glb"},
+const Character kCharacters[] = {{"Fox.glb"},
+                                 {"CesiumMan.glb"},
+                                 {"RobotExpressive.glb"},
                                  {"RiggedFigure.glb"}};
-
 
 double extent(const std::vector<float> &p) {
     float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
@@ -939,8 +944,7 @@ SV_TIERED_TEST(AnimSharedModels, LoadPoseAndPlay) {
         ASSERT_FALSE(a.animations.empty());
         ASSERT_FALSE(a.surfaces.empty());
         std::printf("[ anim     ] %-20s %zu nodes, %zu skins, %zu surfaces, %zu animations:",
-                    c.file, a.nodes.size(), a.skins.size(), a.surfaces.size(),
-                    a.animations.size());
+                    c.file, a.nodes.size(), a.skins.size(), a.surfaces.size(), a.animations.size());
         for (const sv::Animation &an : a.animations) {
             std::printf(" %s (%.2f s)", an.name.c_str(), an.end - an.start);
         }
@@ -955,8 +959,9 @@ SV_TIERED_TEST(AnimSharedModels, LoadPoseAndPlay) {
             EXPECT_EQ(s.name, gs.name);
             EXPECT_EQ(s.mirrored, gs.mirrored);
             EXPECT_EQ(s.flipped_triangles, gs.flipped_triangles);
-            const sv::PreparedSurface gp = sv::prepare_surface(
-                gs.positions.data(), gs.num_vertices(), gs.indices.data(), gs.indices.size());
+            const sv::PreparedSurface gp = sv::prepare_surface(gs.positions.data(),
+                                                               gs.num_vertices(), gs.indices.data(),
+                                                               gs.indices.size());
             const sv::PrepareReport &x = s.prepared.report, &y = gp.report;
             EXPECT_EQ(x.triangles, y.triangles) << s.name;
             EXPECT_EQ(x.sil_edges, y.sil_edges) << s.name;
@@ -974,8 +979,8 @@ SV_TIERED_TEST(AnimSharedModels, LoadPoseAndPlay) {
                 const double tol = s.skin >= 0 ? 1e-5 * extent(gp.positions) : 0.0;
                 double worst = 0;
                 for (std::size_t e = 0; e < gp.positions.size(); e++) {
-                    worst = std::max(worst, std::fabs(double(gp.positions[e]) -
-                                                      s.prepared.positions[e]));
+                    worst = std::max(worst,
+                                     std::fabs(double(gp.positions[e]) - s.prepared.positions[e]));
                 }
                 EXPECT_LE(worst, tol) << s.name;
             }

@@ -35,15 +35,12 @@ struct Result {
     }
 };
 
-std::size_t words(int nv) {
-    return ((std::size_t)nv + 31) / 32;
-}
+std::size_t words(int nv) { return ((std::size_t)nv + 31) / 32; }
 
 // The non-compact listing, written out again: TN = (P w - V) . N, left to
 // right in float, front when TN <= 0 (this file is built without
 // contraction).
-template <class Triangles>
-Result reference_noncompact(const Triangles &t, int nv, const Vec4 &v) {
+template <class Triangles> Result reference_noncompact(const Triangles &t, int nv, const Vec4 &v) {
     Result r;
     r.count = 0;
     r.front.resize(t.size());
@@ -106,16 +103,21 @@ Result check_all(const sv::PreparedSurface &s, const sv::AlignedVector<sv_cull_t
                  const sv::AlignedVector<sv_cull_triangle16> &t16,
                  const sv::AlignedVector<sv_cull_block4> &blocks, const Vec4 &view) {
     const int nt = s.num_triangles(), nv = s.num_vertices();
-    const Result nc = run([&](uint32_t *b, uint8_t *f) {
-        return sv_backface_noncompact(t32.data(), nt, nv, &view, b, f); }, nt, nv);
+    const Result nc =
+        run([&](uint32_t *b,
+                uint8_t *f) { return sv_backface_noncompact(t32.data(), nt, nv, &view, b, f); },
+            nt, nv);
     EXPECT_TRUE(nc == reference_noncompact(t32, nv, view));
     expect_consistent(nc, s.indices.data(), nt, nv);
-    const Result c = run([&](uint32_t *b, uint8_t *f) {
-        return sv_backface_compact(t16.data(), nt, nv, &view, b, f); }, nt, nv);
+    const Result c =
+        run([&](uint32_t *b,
+                uint8_t *f) { return sv_backface_compact(t16.data(), nt, nv, &view, b, f); },
+            nt, nv);
     expect_consistent(c, s.indices.data(), nt, nv);
     for (const sv::BackfaceBlockVariant *v : runnable_block_variants()) {
-        const Result r = run([&](uint32_t *b, uint8_t *f) {
-            return v->fn(blocks.data(), nt, nv, &view, b, f); }, nt, nv);
+        const Result r = run([&](uint32_t *b,
+                                 uint8_t *f) { return v->fn(blocks.data(), nt, nv, &view, b, f); },
+                             nt, nv);
         EXPECT_TRUE(r == c) << v->name;
         // Without the front bytes (the benchmark's call): the same count and bits.
         std::vector<uint32_t> bits(words(nv), 0xFFFFFFFF);
@@ -134,8 +136,10 @@ Vec4 random_view(Rng &rng, const Bounds &b) {
         len += c * c;
     }
     len = std::sqrt(len) + 1e-12;
-    if (rng.chance(0.2)) return Vec4{(float)(d[0] / len), (float)(d[1] / len), (float)(d[2] / len), 0};
-    return Vec4{b.center.x + (float)(dist * r * d[0] / len), b.center.y + (float)(dist * r * d[1] / len),
+    if (rng.chance(0.2))
+        return Vec4{(float)(d[0] / len), (float)(d[1] / len), (float)(d[2] / len), 0};
+    return Vec4{b.center.x + (float)(dist * r * d[0] / len),
+                b.center.y + (float)(dist * r * d[1] / len),
                 b.center.z + (float)(dist * r * d[2] / len), 1};
 }
 
@@ -156,9 +160,10 @@ SV_TIERED_TEST_P(BackfaceModels, EveryModelEveryMethodAndTheBound) {
             const sv::AlignedVector<sv_cull_block4> blocks = sv::cull_blocks(s);
             std::vector<sv::TriangleErrorModel> em;
             for (int t = 0; t < s.num_triangles(); t++) {
-                em.push_back(sv::triangle_error_model(&s.positions[3 * (std::size_t)s.indices[3 * t]],
-                                                      &s.positions[3 * (std::size_t)s.indices[3 * t + 1]],
-                                                      &s.positions[3 * (std::size_t)s.indices[3 * t + 2]]));
+                em.push_back(
+                    sv::triangle_error_model(&s.positions[3 * (std::size_t)s.indices[3 * t]],
+                                             &s.positions[3 * (std::size_t)s.indices[3 * t + 1]],
+                                             &s.positions[3 * (std::size_t)s.indices[3 * t + 2]]));
             }
             const Bounds b = sv::surface_bounds(s);
             const int views = s.num_triangles() > 20000 ? 3 : 12;
@@ -232,9 +237,16 @@ SV_TIERED_TEST(Backface, EveryCountAndPaddingLanes) {
             c.v2 = (uint16_t)rng.below((uint32_t)nv);
             c.v3 = (uint16_t)rng.below((uint32_t)nv);
             idx.insert(idx.end(), {c.v1, c.v2, c.v3});
-            t32[(std::size_t)t] = sv_cull_triangle{(float)rng.unit(), (float)rng.unit(), (float)rng.unit(),
-                                                   c.nx / 32767.0f, c.ny / 32767.0f, c.nz / 32767.0f,
-                                                   c.v1, c.v2, c.v3, 0};
+            t32[(std::size_t)t] = sv_cull_triangle{(float)rng.unit(),
+                                                   (float)rng.unit(),
+                                                   (float)rng.unit(),
+                                                   c.nx / 32767.0f,
+                                                   c.ny / 32767.0f,
+                                                   c.nz / 32767.0f,
+                                                   c.v1,
+                                                   c.v2,
+                                                   c.v3,
+                                                   0};
             if (rng.chance(0.05)) t32[(std::size_t)t].px = specials[rng.below(8)];
         }
         // The blocks (sv::cull_blocks transposes; a wrong transpose shows
@@ -251,15 +263,22 @@ SV_TIERED_TEST(Backface, EveryCountAndPaddingLanes) {
             const Vec4 view{(float)(rng.unit() * 200 - 100), (float)(rng.unit() * 200 - 100),
                             (float)(rng.unit() * 200 - 100), rep == 2 ? 0.0f : 1.0f};
             SCOPED_TRACE("n " + std::to_string(n) + " rep " + std::to_string(rep));
-            const Result nc = run([&](uint32_t *b, uint8_t *f) {
-                return sv_backface_noncompact(t32.data(), n, nv, &view, b, f); }, n, nv);
+            const Result nc = run(
+                [&](uint32_t *b, uint8_t *f) {
+                    return sv_backface_noncompact(t32.data(), n, nv, &view, b, f);
+                },
+                n, nv);
             EXPECT_TRUE(nc == reference_noncompact(t32, nv, view));
-            const Result c = run([&](uint32_t *b, uint8_t *f) {
-                return sv_backface_compact(t16.data(), n, nv, &view, b, f); }, n, nv);
+            const Result c =
+                run([&](uint32_t *b,
+                        uint8_t *f) { return sv_backface_compact(t16.data(), n, nv, &view, b, f); },
+                    n, nv);
             expect_consistent(c, idx.data(), n, nv);
             for (const sv::BackfaceBlockVariant *v : runnable_block_variants()) {
-                const Result r = run([&](uint32_t *b, uint8_t *f) {
-                    return v->fn(blocks.data(), n, nv, &view, b, f); }, n, nv);
+                const Result r =
+                    run([&](uint32_t *b,
+                            uint8_t *f) { return v->fn(blocks.data(), n, nv, &view, b, f); },
+                        n, nv);
                 EXPECT_TRUE(r == c) << v->name;
             }
         }
@@ -306,9 +325,11 @@ SV_TIERED_TEST(Backface, BadInput) {
     // vertex numbers are dropped (the decision alone).
     std::vector<float> pos;
     std::vector<uint32_t> idx;
-    for (uint32_t v = 0; v < 65537 + 2; v++) pos.insert(pos.end(), {(float)v, (float)(v % 7), (float)(v % 3)});
+    for (uint32_t v = 0; v < 65537 + 2; v++)
+        pos.insert(pos.end(), {(float)v, (float)(v % 7), (float)(v % 3)});
     idx.insert(idx.end(), {0u, 1u, 65538u});
-    const sv::PreparedSurface s = sv::prepare_surface(pos.data(), pos.size() / 3, idx.data(), idx.size());
+    const sv::PreparedSurface s = sv::prepare_surface(pos.data(), pos.size() / 3, idx.data(),
+                                                      idx.size());
     EXPECT_THROW(sv::cull_triangles(s), sv::BackfaceError);
     EXPECT_THROW(sv::cull_triangles16(s), sv::BackfaceError);
     EXPECT_THROW(sv::cull_blocks(s), sv::BackfaceError);

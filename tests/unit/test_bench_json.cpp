@@ -42,8 +42,8 @@ using nlohmann::json;
 
 const char *const kSchema = "shadowvol-bench/1";
 const std::set<std::string> kRoutines = {
-    "calculate_facing",     "calculate_cull_bits",  "count_facing",
-    "count_facing_cull",    "create_sil_triangles", "create_cap_triangles",
+    "calculate_facing",     "calculate_cull_bits",       "count_facing",
+    "count_facing_cull",    "create_sil_triangles",      "create_cap_triangles",
     "create_shadow_volume", "create_shadow_volume_cull", "pipeline",
     "pipeline_cull",
 };
@@ -90,7 +90,7 @@ std::set<std::string> facing_variant_names(bool runnableOnly) {
 std::set<std::string> all_variant_names() {
     std::set<std::string> names = variant_names(false);
     for (const std::string &f : facing_variant_names(false)) names.insert(f);
-    names.insert("planned"); /* the planner's choice (shadowvol_plan.h) */
+    names.insert("planned");         /* the planner's choice (shadowvol_plan.h) */
     names.insert("planned_kernels"); /* its kernels unfused (pipelines only) */
     return names;
 }
@@ -134,8 +134,8 @@ public:
         }
         const json &v = obj.at(key);
         if (!v.is_number_integer() || v.get<long long>() < lo) {
-            fail(where, std::string("\"") + key + "\" is not a whole number >= " +
-                            std::to_string(lo));
+            fail(where,
+                 std::string("\"") + key + "\" is not a whole number >= " + std::to_string(lo));
             return -1;
         }
         return v.get<long long>();
@@ -265,8 +265,7 @@ public:
     /* Every routine x variant x regime row of MODEL once: the kernel
      * routines for every variant this CPU runs, appendices A and B for
      * c_ref; and the model's sizes. */
-    void coverage(const json &doc, const std::string &model, long long triangles,
-                  long long edges) {
+    void coverage(const json &doc, const std::string &model, long long triangles, long long edges) {
         if (!doc.is_object() || !doc.contains("results") || !doc.at("results").is_array()) {
             return; /* reported by document() */
         }
@@ -412,8 +411,8 @@ TEST_F(BenchJson, DocumentMatchesTheSchemaAndCoversEveryRow) {
      * calculate_* routines x the runnable A/B variants + the planned
      * variant on all 10 + planned_kernels on the 2 pipelines, in 2
      * regimes. */
-    const size_t want =
-        2 * (8 * variant_names(true).size() + 2 * facing_variant_names(true).size() + 10 + 2);
+    const size_t want = 2 * (8 * variant_names(true).size() +
+                             2 * facing_variant_names(true).size() + 10 + 2);
     EXPECT_EQ(doc.at("results").size(), want);
 }
 
@@ -523,7 +522,8 @@ TEST_F(BenchJson, LimitsReportTheRatesAndAFloorPerRoutine) {
         EXPECT_EQ(f.value("model", ""), "character_1344.glb");
         routines.insert(f.value("routine", ""));
         const double floor = f.value("floor_ticks", -1.0), load = f.value("load_port_ticks", -1.0),
-                     lookup = f.value("lookup_ticks", -1.0), store = f.value("store_port_ticks", -1.0);
+                     lookup = f.value("lookup_ticks", -1.0),
+                     store = f.value("store_port_ticks", -1.0);
         EXPECT_GT(floor, 0.0) << f.dump();
         EXPECT_TRUE(lookup >= 0 && lookup <= load) << f.dump();
         EXPECT_TRUE(store >= 0 && floor == std::max(load, store)) << f.dump();
@@ -551,8 +551,7 @@ TEST_F(BenchJson, ValidatorRejectsBrokenDocuments) {
          "\"ticks_min\" is not a finite number"},
         {"a row that failed its check", [](json &d) { d["results"][3]["checked"] = false; },
          "\"checked\" is false"},
-        {"another schema", [](json &d) { d["schema"] = "shadowvol-bench/2"; },
-         "schema is not"},
+        {"another schema", [](json &d) { d["schema"] = "shadowvol-bench/2"; }, "schema is not"},
         {"no schema", [](json &d) { d.erase("schema"); }, "no \"schema\""},
         {"isa as a string", [](json &d) { d["cpu"]["isa"] = "sse2 avx2"; },
          "\"isa\" is missing or not an array"},
@@ -570,16 +569,12 @@ TEST_F(BenchJson, ValidatorRejectsBrokenDocuments) {
          "ticks_median is below ticks_min"},
         {"negative ticks", [](json &d) { d["results"][1]["ticks_min"] = -5; },
          "\"ticks_min\" is not a finite number >= 0"},
-        {"wrong elements", [](json &d) { d["results"][2]["elements"] = 1343; },
-         "elements is not"},
+        {"wrong elements", [](json &d) { d["results"][2]["elements"] = 1343; }, "elements is not"},
         {"elements as a float", [](json &d) { d["results"][2]["elements"] = 1344.5; },
          "\"elements\" is not a whole number"},
-        {"a row missing", [](json &d) { d["results"].erase(d["results"].begin() + 5); },
-         "no row"},
-        {"a row twice", [](json &d) { d["results"].push_back(d["results"][0]); },
-         "appears twice"},
-        {"other sizes", [](json &d) { d["results"][4]["triangles"] = 1000; },
-         "other sizes"},
+        {"a row missing", [](json &d) { d["results"].erase(d["results"].begin() + 5); }, "no row"},
+        {"a row twice", [](json &d) { d["results"].push_back(d["results"][0]); }, "appears twice"},
+        {"other sizes", [](json &d) { d["results"][4]["triangles"] = 1000; }, "other sizes"},
         {"results not an array", [](json &d) { d["results"] = json::object(); },
          "\"results\" is missing"},
     };

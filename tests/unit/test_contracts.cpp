@@ -114,11 +114,14 @@ TEST(Contracts, SilTrianglesRefusesBadEdges) {
     SilEdge good = {0, 2, 0, 2};
     EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &good, 1), 6);
     SilEdge odd = {0, 2, 1, 2};
-    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &odd, 1), SV_E_ODD_VERTEX);
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &odd, 1),
+              SV_E_ODD_VERTEX);
     SilEdge far = {0, 3, 0, 2};
-    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &far, 1), SV_E_INDEX_RANGE);
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &far, 1),
+              SV_E_INDEX_RANGE);
     SilEdge neg = {-1, 1, 0, 2};
-    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &neg, 1), SV_E_INDEX_RANGE);
+    EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, facing, 2, &neg, 1),
+              SV_E_INDEX_RANGE);
     uint8_t bad_facing[3] = {0, 1, 2};
     EXPECT_EQ(sv_create_sil_triangles_checked(paper(), out, 6, bad_facing, 2, &good, 1),
               SV_E_FACING_NOT_BOOL);
@@ -134,7 +137,8 @@ TEST(Contracts, CapTrianglesRefusesPartialTrianglesAndUnalignedIndices) {
     uint8_t facing[4] = {0, 0, 1, 0};
     alignas(16) int out[32];
     EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 12, 4), 18);
-    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 13, 4), SV_E_COUNT);
+    EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices, 13, 4),
+              SV_E_COUNT);
     EXPECT_EQ(sv_create_cap_triangles_checked(paper(), out, 24, facing, indices + 1, 9, 4),
               SV_E_ALIGNMENT);
     EXPECT_EQ(sv_create_cap_triangles_checked(ref(), out, 24, facing, indices + 1, 9, 4), 12);
@@ -164,8 +168,8 @@ TEST(Contracts, ShadowVolumeCapacityAndOverflow) {
     uint8_t facing[2] = {0, 1};
     SilEdge edge = {0, 1, 0, 2};
     // 6 * 400M edges does not fit the int the routine returns
-    EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out, SIZE_MAX, indices, 3, 3, &edge,
-                                              400000000, facing, nullptr),
+    EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out, SIZE_MAX, indices, 3, 3, &edge, 400000000,
+                                              facing, nullptr),
               SV_E_OVERFLOW);
     EXPECT_EQ(sv_create_shadow_volume_checked(ref(), out, 11, indices, 3, 3, &edge, 1, facing,
                                               nullptr),
@@ -243,8 +247,8 @@ SV_TIERED_TEST(Contracts, Sse2PaperRefusesCullBitSeven) {
         uint8_t facing2[16] = {0, 0, 0, 0, 1};
         alignas(16) int out[64];
         const SilEdge edge = {0, 1, 0, 2};
-        const int r = sv_create_shadow_volume_checked(v, out, 64, indices, 12, 4, &edge, 1,
-                                                      facing2, cull);
+        const int r = sv_create_shadow_volume_checked(v, out, 64, indices, 12, 4, &edge, 1, facing2,
+                                                      cull);
         EXPECT_EQ(r, paper_cull ? SV_E_CULL_BITS : 0) << v->name;
         uint8_t low[4] = {0x40, 0x40, 0x40, 0x41}; // bits 0..6: every variant takes them
         uint8_t facing3[16] = {0, 0, 0, 0, 1};

@@ -71,8 +71,8 @@ Glb parse(const std::vector<std::uint8_t> &file) {
 // its bufferView and the buffer.
 std::vector<double> values(const Glb &g, int a, size_t *components = nullptr) {
     const json &acc = g.doc["accessors"][a];
-    static const std::map<std::string, size_t> comps = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3},
-                                                        {"VEC4", 4}, {"MAT4", 16}};
+    static const std::map<std::string, size_t> comps = {
+        {"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT4", 16}};
     const size_t nc = comps.at(acc["type"].get<std::string>());
     if (components) *components = nc;
     const int ct = acc["componentType"];
@@ -111,7 +111,8 @@ const std::vector<std::uint8_t> &scene_file() {
 }
 
 TEST(DemoScene, FileIsWhatTheGeneratorWrites) {
-    ASSERT_FALSE(scene_file().empty()) << SV_DEMO_SCENE_GLB << " is missing: build shadowvol_demo_scene";
+    ASSERT_FALSE(scene_file().empty())
+        << SV_DEMO_SCENE_GLB << " is missing: build shadowvol_demo_scene";
     const std::vector<std::uint8_t> a = svgen::write_demo_scene_glb();
     const std::vector<std::uint8_t> b = svgen::write_demo_scene_glb();
     EXPECT_TRUE(a == b) << "the generator is not deterministic";
@@ -125,13 +126,14 @@ TEST(DemoScene, LoadsTerrainAndClosedSkinnedCharacter) {
     ASSERT_TRUE(by.count("terrain @ terrain"));
     ASSERT_TRUE(by.count("character @ character"));
     EXPECT_GT(by["terrain @ terrain"]->num_triangles(), 100000u);
-    EXPECT_EQ(by["terrain @ terrain"]->num_triangles(), (size_t)svgen::demo_scene_info().terrain_triangles);
+    EXPECT_EQ(by["terrain @ terrain"]->num_triangles(),
+              (size_t)svgen::demo_scene_info().terrain_triangles);
     const sv::GltfSurface &c = *by["character @ character"];
     EXPECT_TRUE(c.skinned);
     EXPECT_FALSE(c.mirrored);
     EXPECT_EQ(c.num_triangles(), 1344u);
-    const sv::PreparedSurface p =
-        sv::prepare_surface(c.positions.data(), c.num_vertices(), c.indices.data(), c.indices.size());
+    const sv::PreparedSurface p = sv::prepare_surface(c.positions.data(), c.num_vertices(),
+                                                      c.indices.data(), c.indices.size());
     const sv::PrepareReport &r = p.report;
     EXPECT_EQ(r.boundary_edges, 0u);
     EXPECT_EQ(p.num_triangles(), 1344);
@@ -146,9 +148,10 @@ TEST(DemoScene, LoadsTerrainAndClosedSkinnedCharacter) {
     EXPECT_NEAR(hi[1], 1.865, 0.02);
     EXPECT_NEAR(0.5 * (lo[2] + hi[2]), -2.0, 0.1);
     for (const auto &s : m.surfaces) {
-        if (s.name.rfind("pillar", 0) == 0 || s.name.rfind("wall", 0) == 0 || s.name.rfind("ground", 0) == 0) {
-            const sv::PreparedSurface q =
-                sv::prepare_surface(s.positions.data(), s.num_vertices(), s.indices.data(), s.indices.size());
+        if (s.name.rfind("pillar", 0) == 0 || s.name.rfind("wall", 0) == 0 ||
+            s.name.rfind("ground", 0) == 0) {
+            const sv::PreparedSurface q = sv::prepare_surface(s.positions.data(), s.num_vertices(),
+                                                              s.indices.data(), s.indices.size());
             EXPECT_EQ(q.report.boundary_edges, 0u) << s.name;
         }
     }
@@ -159,7 +162,8 @@ TEST(DemoScene, LightsCameraAnimationValid) {
     const json &d = g.doc;
     EXPECT_EQ(d["asset"]["version"], "2.0");
     ASSERT_TRUE(d.contains("extensionsUsed"));
-    EXPECT_NE(std::find(d["extensionsUsed"].begin(), d["extensionsUsed"].end(), "KHR_lights_punctual"),
+    EXPECT_NE(std::find(d["extensionsUsed"].begin(), d["extensionsUsed"].end(),
+                        "KHR_lights_punctual"),
               d["extensionsUsed"].end());
     const json &lights = d["extensions"]["KHR_lights_punctual"]["lights"];
     std::map<std::string, int> kinds;
@@ -185,7 +189,8 @@ TEST(DemoScene, LightsCameraAnimationValid) {
     std::set<int> lit;
     int cameraNodes = 0;
     for (const json &n : d["nodes"]) {
-        if (n.contains("extensions")) lit.insert(n["extensions"]["KHR_lights_punctual"]["light"].get<int>());
+        if (n.contains("extensions"))
+            lit.insert(n["extensions"]["KHR_lights_punctual"]["light"].get<int>());
         if (n.contains("camera")) {
             cameraNodes++;
             EXPECT_EQ(n["camera"], 0);
@@ -241,7 +246,8 @@ TEST(DemoScene, LightsCameraAnimationValid) {
         EXPECT_LT(ch["target"]["node"].get<size_t>(), d["nodes"].size());
         const std::vector<double> in = values(g, s["input"]);
         ASSERT_FALSE(in.empty());
-        for (size_t i = 1; i < in.size(); i++) ASSERT_LT(in[i - 1], in[i]) << "input not increasing";
+        for (size_t i = 1; i < in.size(); i++)
+            ASSERT_LT(in[i - 1], in[i]) << "input not increasing";
         const json &inAcc = d["accessors"][s["input"].get<int>()];
         ASSERT_TRUE(inAcc.contains("min") && inAcc.contains("max"));
         EXPECT_EQ(inAcc["min"][0].get<double>(), in.front());
@@ -254,8 +260,8 @@ TEST(DemoScene, LightsCameraAnimationValid) {
         EXPECT_EQ(nc, path == "rotation" ? 4u : 3u);
         if (path == "rotation") {
             for (size_t k = 0; k < out.size(); k += 4) {
-                const double l = out[k] * out[k] + out[k + 1] * out[k + 1] + out[k + 2] * out[k + 2] +
-                                 out[k + 3] * out[k + 3];
+                const double l = out[k] * out[k] + out[k + 1] * out[k + 1] +
+                                 out[k + 2] * out[k + 2] + out[k + 3] * out[k + 3];
                 EXPECT_NEAR(std::sqrt(l), 1.0, 1e-6);
             }
         }
@@ -265,4 +271,4 @@ TEST(DemoScene, LightsCameraAnimationValid) {
     EXPECT_NEAR(duration, 1.0, 1e-6);
 }
 
-}  // namespace
+} // namespace

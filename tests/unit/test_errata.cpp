@@ -130,8 +130,7 @@ TEST(Errata, E2F4_CountsAreRightForOutputAbove4GiB) {
     Rng rng = rng_for("Errata.E2F4");
     const size_t len = 1 << 16;
     void *hint = (void *)(uintptr_t)0x7e0000000000ull;
-    int *out = (int *)mmap(hint, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
-                           -1, 0);
+    int *out = (int *)mmap(hint, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     ASSERT_NE((void *)out, MAP_FAILED);
     ASSERT_GT((uintptr_t)out, (uintptr_t)0xFFFFFFFFull);
     uint8_t facing[5] = {1, 0, 0, 1, 1};
@@ -188,7 +187,7 @@ TEST(Errata, E4_Limit_OddVertexNumbersBreakTheXorTrick) {
     alignas(16) int ref[6], fast[6];
     ASSERT_EQ(sv_create_sil_triangles_c_ref(ref, facing, &edge, 1), 6);
     ASSERT_EQ(checked_call(rng, sv_create_sil_triangles_sse2_paper, fast, facing, &edge, 1), 6);
-    EXPECT_EQ(ref[1], 6); // v2 + 1
+    EXPECT_EQ(ref[1], 6);  // v2 + 1
     EXPECT_EQ(fast[1], 4); // v2 ^ 1
 }
 
@@ -231,8 +230,9 @@ private:
     size_t len_;
 };
 
-const int kHugeNegativeCounts[] = {INT32_MIN, INT32_MIN + 1, INT32_MIN + 100, INT32_MIN + 255,
-                                   INT32_MIN + 256, -1000, -256, -17, -1};
+const int kHugeNegativeCounts[] = {
+    INT32_MIN, INT32_MIN + 1, INT32_MIN + 100, INT32_MIN + 255, INT32_MIN + 256, -1000, -256, -17,
+    -1};
 
 } // namespace
 
@@ -292,7 +292,8 @@ TEST_P(ErrataVariants, NegativeCountsWriteNothing) {
 TEST(Errata, E3_TwoToThe27EdgesDoNotWrapTheOffset) {
     Rng rng = rng_for("Errata.E3");
     const size_t edges = (size_t)1 << 27;
-    if (!HugeSilEdgeArray::available()) GTEST_SKIP() << "needs 2 GiB of memfd mappings (Linux x86-64)";
+    if (!HugeSilEdgeArray::available())
+        GTEST_SKIP() << "needs 2 GiB of memfd mappings (Linux x86-64)";
     HugeSilEdgeArray huge(edges);
     ASSERT_TRUE(huge.ok());
     SilEdge *e = huge.data();

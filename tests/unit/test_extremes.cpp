@@ -160,8 +160,8 @@ enum class Reference { bigint, none };
 
 // The whole check of the file's header comment, for one surface and its
 // lights.
-void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lights,
-                      Reference ref, const char *scene) {
+void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lights, Reference ref,
+                      const char *scene) {
     svtest::IsaLimitLifted lifted;
     const int nt = s.num_triangles();
     const float center[3] = {0, 0, 0};
@@ -180,13 +180,14 @@ void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lig
         std::vector<uint8_t> exact((std::size_t)nt + 1, 1);
         std::vector<double> D((std::size_t)nt);
         for (int t = 0; t < nt; t++) {
-            const int sg = sv_facing_exact_sign(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), &l);
+            const int sg = sv_facing_exact_sign(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2),
+                                                &l);
             exact[(std::size_t)t] = sg > 0;
             D[(std::size_t)t] = sv::exact_signed_distance(corner(s, t, 0), corner(s, t, 1),
                                                           corner(s, t, 2), l);
             if (ref == Reference::bigint && light_finite(l)) {
                 ASSERT_EQ(sg, svtest::reference_facing_sign(corner(s, t, 0), corner(s, t, 1),
-                                                             corner(s, t, 2), l))
+                                                            corner(s, t, 2), l))
                     << "triangle " << t;
             }
             if (!light_finite(l)) {
@@ -226,8 +227,8 @@ void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lig
                 const acc::Contract c = v.contract == acc::Contract::same_as
                                             ? acc::variant_by_name(v.same_as)->contract
                                             : v.contract;
-                const float tau =
-                    sv_eps_bias_threshold(data.eps_distance, data.eps_angle, data.center, &l);
+                const float tau = sv_eps_bias_threshold(data.eps_distance, data.eps_angle,
+                                                        data.center, &l);
                 for (int t = 0; t < nt; t++) {
                     const uint8_t got = bytes[(std::size_t)t];
                     ASSERT_LE(got, 1) << v.name;
@@ -240,10 +241,11 @@ void check_everything(const sv::PreparedSurface &s, const std::vector<Vec4> &lig
                     const double target = c == acc::Contract::biased ? (double)tau : 0.0;
                     const double dist = D[(std::size_t)t] - target;
                     if (std::fabs(dist) > B) {
-                        const bool want =
-                            c == acc::Contract::biased ? dist > 0 : exact[(std::size_t)t] != 0;
-                        ASSERT_EQ(got, want) << v.name << " triangle " << t << " D " << D[(std::size_t)t]
-                                             << " bound " << B << (ftz ? " (FTZ/DAZ)" : "");
+                        const bool want = c == acc::Contract::biased ? dist > 0
+                                                                     : exact[(std::size_t)t] != 0;
+                        ASSERT_EQ(got, want)
+                            << v.name << " triangle " << t << " D " << D[(std::size_t)t]
+                            << " bound " << B << (ftz ? " (FTZ/DAZ)" : "");
                     }
                 }
                 if (!caller_env) {
@@ -307,11 +309,11 @@ SV_TIERED_TEST(Extreme, CoordinatesNearFltMax) {
     for (float s : {FLT_MAX, FLT_MAX / 2, 0x1p126f}) {
         const sv::PreparedSurface o = prepare(octahedron(s));
         std::vector<Vec4> l = lights_around(s);
-        l.push_back({FLT_MAX, FLT_MAX, FLT_MAX, 1});  // beyond every face
+        l.push_back({FLT_MAX, FLT_MAX, FLT_MAX, 1}); // beyond every face
         l.push_back({-FLT_MAX, 0, 0, 1});
-        l.push_back({s, 0, 0, 1});                     // at a vertex
-        l.push_back({FLT_MAX, -FLT_MAX, FLT_MAX, 0});  // directional, huge components
-        l.push_back({1, 1, 1, FLT_MAX});               // homogeneous, w huge
+        l.push_back({s, 0, 0, 1});                    // at a vertex
+        l.push_back({FLT_MAX, -FLT_MAX, FLT_MAX, 0}); // directional, huge components
+        l.push_back({1, 1, 1, FLT_MAX});              // homogeneous, w huge
         check_everything(o, l, Reference::bigint, "octahedron near FLT_MAX");
         if (HasFatalFailure()) return;
     }
@@ -323,8 +325,11 @@ SV_TIERED_TEST(Extreme, CoordinatesNearFltMax) {
     bool overflowed = false;
     for (const Plane &p : t.planes) overflowed = overflowed || std::isinf(p.d);
     EXPECT_TRUE(overflowed) << "the test wants a float plane whose d overflows";
-    std::vector<Vec4> l = {{0, 0, 0, 1}, {far[0], far[1], far[2], 1}, {1, 1, 1, 0},
-                           {-1, 0, 0, 0}, {FLT_MAX, FLT_MAX, FLT_MAX, 1}};
+    std::vector<Vec4> l = {{0, 0, 0, 1},
+                           {far[0], far[1], far[2], 1},
+                           {1, 1, 1, 0},
+                           {-1, 0, 0, 0},
+                           {FLT_MAX, FLT_MAX, FLT_MAX, 1}};
     check_everything(t, l, Reference::bigint, "octahedron at 1.5 * 2^127");
 }
 
@@ -347,10 +352,14 @@ SV_TIERED_TEST(Extreme, CoordinatesNearTheSmallestNormalFloat) {
 SV_TIERED_TEST(Extreme, SubnormalCoordinatesWithAndWithoutFtzDaz) {
     const float d = 0x1p-149f;
     const sv::PreparedSurface c = prepare(cube(7, d));
-    std::vector<Vec4> l = {{3 * d, 2 * d, 20 * d, 1},  {-5 * d, 3 * d, 3 * d, 1},
-                           {3 * d, 3 * d, 7 * d, 1},   {0, 0, 0, 1},
-                           {d, d, d, 1},               {0, 0, 1, 0},
-                           {d, 0, 0, 0},               {1, 2, 3, 1}};
+    std::vector<Vec4> l = {{3 * d, 2 * d, 20 * d, 1},
+                           {-5 * d, 3 * d, 3 * d, 1},
+                           {3 * d, 3 * d, 7 * d, 1},
+                           {0, 0, 0, 1},
+                           {d, d, d, 1},
+                           {0, 0, 1, 0},
+                           {d, 0, 0, 0},
+                           {1, 2, 3, 1}};
     check_everything(c, l, Reference::bigint, "cube of 7 subnormal granules");
     if (HasFatalFailure()) return;
     const sv::PreparedSurface o = prepare(octahedron(100 * d));
@@ -413,8 +422,8 @@ SV_TIERED_TEST(Extreme, LightExactlyOnATrianglesPlane) {
         for (int t = 0; t < c.num_triangles(); t++) {
             if (svtest::reference_facing_sign(corner(c, t, 0), corner(c, t, 1), corner(c, t, 2),
                                               p) == 0) {
-                EXPECT_EQ(sv_facing_exact_sign(corner(c, t, 0), corner(c, t, 1),
-                                               corner(c, t, 2), &p),
+                EXPECT_EQ(sv_facing_exact_sign(corner(c, t, 0), corner(c, t, 1), corner(c, t, 2),
+                                               &p),
                           0);
             }
         }
@@ -429,12 +438,13 @@ SV_TIERED_TEST(Extreme, LightExactlyOnATrianglesPlane) {
     }
     tilt.indices = {0, 1, 2, 0, 3, 1, 3, 2, 1, 4, 1, 0};
     const sv::PreparedSurface tp = prepare(tilt);
-    std::vector<Vec4> on = {{4, 1, 2, 1}, {-12, 6, 4, 1}, {100, -50, 4, 1}, {2, 2, 2, 1},
-                            {1e6f, -5e5f, 4, 1}};
+    std::vector<Vec4> on = {
+        {4, 1, 2, 1}, {-12, 6, 4, 1}, {100, -50, 4, 1}, {2, 2, 2, 1}, {1e6f, -5e5f, 4, 1}};
     check_everything(tp, on, Reference::bigint, "tilted plane, lights on it");
     for (const Vec4 &p : on) {
         for (int t = 0; t < tp.num_triangles(); t++) {
-            EXPECT_EQ(sv_facing_exact_sign(corner(tp, t, 0), corner(tp, t, 1), corner(tp, t, 2), &p),
+            EXPECT_EQ(sv_facing_exact_sign(corner(tp, t, 0), corner(tp, t, 1), corner(tp, t, 2),
+                                           &p),
                       0);
         }
     }
@@ -496,7 +506,8 @@ SV_TIERED_TEST(Extreme, LightAtInfinityAlongAFaceNormal) {
     for (int t = 0; t < ch.num_triangles(); t += 331) {
         const Plane &p = ch.planes[(std::size_t)t];
         const Vec4 up{p.a, p.b, p.c, 0}, down{-p.a, -p.b, -p.c, 0};
-        EXPECT_EQ(sv_facing_exact_sign(corner(ch, t, 0), corner(ch, t, 1), corner(ch, t, 2), &up), 1);
+        EXPECT_EQ(sv_facing_exact_sign(corner(ch, t, 0), corner(ch, t, 1), corner(ch, t, 2), &up),
+                  1);
         EXPECT_EQ(sv_facing_exact_sign(corner(ch, t, 0), corner(ch, t, 1), corner(ch, t, 2), &down),
                   -1);
     }
@@ -515,14 +526,14 @@ SV_TIERED_TEST(Extreme, ZeroAreaTriangles) {
         for (float x : p) m.positions.push_back(x);
     }
     // a=0 b=1 c=2 apex=3 m=4 (5 is a copy of m: welded)
-    m.indices = {0, 2, 4, 4, 2, 1, 0, 4, 3, 4, 1, 3, 1, 2, 3, 2, 0, 3,
-                 0, 4, 1, 1, 5, 0,  // zero area: collinear a, m, b (both windings)
-                 0, 0, 3, 3, 5, 4}; // repeated corners (5 welds to 4)
+    m.indices = {0, 2, 4, 4, 2, 1, 0, 4, 3, 4, 1, 3,
+                 1, 2, 3, 2, 0, 3, 0, 4, 1, 1, 5, 0, // zero area: collinear a, m, b (both windings)
+                 0, 0, 3, 3, 5, 4};                  // repeated corners (5 welds to 4)
     const sv::PreparedSurface s = prepare(m);
     EXPECT_EQ(s.report.degenerate_dropped, 2);
     EXPECT_EQ(s.report.zero_normal_triangles, 2);
-    std::vector<Vec4> l = {{1, 1, 1, 1}, {1, -5, 0, 1}, {2, 0, 0, 1}, {0, 0, 1, 0},
-                           {0, -1, 0, 0}, {1, 0, 0, 0}};
+    std::vector<Vec4> l = {{1, 1, 1, 1}, {1, -5, 0, 1}, {2, 0, 0, 1},
+                           {0, 0, 1, 0}, {0, -1, 0, 0}, {1, 0, 0, 0}};
     check_everything(s, l, Reference::bigint, "tetrahedron with zero-area triangles");
     if (HasFatalFailure()) return;
     // The zero-area triangles face no light, in every variant.
@@ -530,7 +541,8 @@ SV_TIERED_TEST(Extreme, ZeroAreaTriangles) {
         for (int t = 0; t < s.num_triangles(); t++) {
             const Plane &pl = s.planes[(std::size_t)t];
             if (pl.a != 0 || pl.b != 0 || pl.c != 0 || pl.d != 0) continue;
-            EXPECT_EQ(sv_facing_exact_sign(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), &p), 0);
+            EXPECT_EQ(sv_facing_exact_sign(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2), &p),
+                      0);
         }
     }
 }
@@ -562,7 +574,8 @@ SV_TIERED_TEST(Extreme, NanAndInfinitePositions) {
     s.positions[3 * 6 + 2] = kInf;
     s.positions[3 * 3 + 0] = -kInf;
     for (int t = 0; t < nt; t++) {
-        s.planes[(std::size_t)t] = sv::triangle_plane(corner(s, t, 0), corner(s, t, 1), corner(s, t, 2));
+        s.planes[(std::size_t)t] = sv::triangle_plane(corner(s, t, 0), corner(s, t, 1),
+                                                      corner(s, t, 2));
     }
     s.planes[0] = {kNaN, 0, 1, 0};
     s.planes[1] = {kInf, 0, 0, 0};
@@ -592,7 +605,8 @@ SV_TIERED_TEST(Extreme, NanAndInfinitePositions) {
                 ASSERT_LE(f.data()[t], 1) << v.name;
                 bool finite = true;
                 for (int k = 0; k < 3; k++) {
-                    for (int i = 0; i < 3; i++) finite = finite && std::isfinite(corner(s, t, k)[i]);
+                    for (int i = 0; i < 3; i++)
+                        finite = finite && std::isfinite(corner(s, t, k)[i]);
                 }
                 // Planes 0..2 were replaced by hand: only position-derived
                 // data is defined by the corners.
@@ -655,15 +669,14 @@ SV_TIERED_TEST(Extreme, CountsThatWouldOverflowIntAreRejected) {
         EXPECT_EQ(sv_create_shadow_volume_checked(v, out, SIZE_MAX, indices, 3 * 200000000, 3,
                                                   &edge, 200000000, facing, nullptr),
                   SV_E_OVERFLOW);
-        EXPECT_EQ(sv_create_shadow_volume_checked(v, out, SIZE_MAX, indices, INT_MAX - 1, 3,
-                                                  &edge, 0, facing, nullptr),
+        EXPECT_EQ(sv_create_shadow_volume_checked(v, out, SIZE_MAX, indices, INT_MAX - 1, 3, &edge,
+                                                  0, facing, nullptr),
                   SV_E_OVERFLOW);
         // numIndices = 3 * numTriangles > INT_MAX for the culling count.
         EXPECT_EQ(sv_count_facing_cull_checked(v, facing, INT_MAX / 3 + 1, indices, facing, 3),
                   SV_E_OVERFLOW);
         // Room below the bound is refused before anything is written.
-        EXPECT_EQ(sv_create_sil_triangles_checked(v, out, 64, facing, 0, &edge, 11),
-                  SV_E_CAPACITY);
+        EXPECT_EQ(sv_create_sil_triangles_checked(v, out, 64, facing, 0, &edge, 11), SV_E_CAPACITY);
     }
     // The messages say what is wrong.
     EXPECT_NE(std::string(sv_status_string(SV_E_OVERFLOW)).find("INT_MAX"), std::string::npos);

@@ -41,8 +41,8 @@ sv::PreparedSurface height_field(int triangles, std::mt19937 &rng) {
     std::vector<uint32_t> idx;
     for (int y = 0; y < w; y++) {
         for (int x = 0; x < w; x++) {
-            const uint32_t a = (uint32_t)(y * (w + 1) + x), b = a + 1,
-                           c = a + (uint32_t)(w + 1), d = c + 1;
+            const uint32_t a = (uint32_t)(y * (w + 1) + x), b = a + 1, c = a + (uint32_t)(w + 1),
+                           d = c + 1;
             const uint32_t t[6] = {a, b, d, a, d, c};
             idx.insert(idx.end(), t, t + 6);
         }
@@ -102,8 +102,8 @@ void light_box(const Mesh &m, int kind, std::mt19937 &rng, Plane out[SV_NUM_LIGH
     }
     for (int a = 0; a < 3; a++) {
         Plane p{0, 0, 0, 0}, q{0, 0, 0, 0};
-        (&p.a)[a] = 1.0f, p.d = -lo[a];  // x >= lo
-        (&q.a)[a] = -1.0f, q.d = hi[a];  // x <= hi
+        (&p.a)[a] = 1.0f, p.d = -lo[a]; // x >= lo
+        (&q.a)[a] = -1.0f, q.d = hi[a]; // x <= hi
         out[2 * a] = p, out[2 * a + 1] = q;
     }
 }
@@ -115,15 +115,15 @@ int reference_volume(const Mesh &m, const Vec4 &light, const Plane *lightPlanes,
     std::vector<uint8_t> facing((size_t)nt + 1), cull((size_t)m.surface.numVerts + 1);
     sv_calculate_facing_c_ref(m.surface.planes, nt, &light, facing.data());
     const uint8_t *cb = nullptr;
-    if (lightPlanes && sv_calculate_cull_bits_c_ref(m.surface.positions, m.surface.numVerts,
-                                                    &m.surface.bounds, lightPlanes,
-                                                    cull.data()) == 0) {
+    if (lightPlanes &&
+        sv_calculate_cull_bits_c_ref(m.surface.positions, m.surface.numVerts, &m.surface.bounds,
+                                     lightPlanes, cull.data()) == 0) {
         cb = cull.data();
     }
     out.assign(sv_shadow_volume_capacity(m.surface.numIndices, m.surface.numSilEdges), 0);
     return sv_create_shadow_volume(sv_variant_by_name("c_ref"), out.data(), m.surface.indices,
-                                   m.surface.numIndices, m.surface.silEdges,
-                                   m.surface.numSilEdges, facing.data(), cb);
+                                   m.surface.numIndices, m.surface.silEdges, m.surface.numSilEdges,
+                                   facing.data(), cb);
 }
 
 // The ISA levels this ctest entry checks, for sv_set_isa_limit.
@@ -263,7 +263,8 @@ SV_TIERED_TEST(ForLight, MisalignedInputArraysGiveTheSameVolume) {
     IsaLimitGuard guard;
     std::mt19937 rng(1515);
     std::vector<Mesh> meshes;
-    for (int t : {0, 1, 3, 15, 16, 17, 31, 32, 33, 64, 100, 1000}) meshes.push_back(make_mesh(t, rng));
+    for (int t : {0, 1, 3, 15, 16, 17, 31, 32, 33, 64, 100, 1000})
+        meshes.push_back(make_mesh(t, rng));
     for (const char *level : isa_levels()) {
         ASSERT_EQ(0, sv_set_isa_limit(level));
         sv_plan_reset();
@@ -289,7 +290,8 @@ SV_TIERED_TEST(ForLight, MisalignedInputArraysGiveTheSameVolume) {
                 const std::string what = std::string(level) + ", " + std::to_string(nt) +
                                          " triangles, misaligned inputs, box " + std::to_string(l);
                 for (int offset : {0, 1}) {
-                    expect_same_volume(m, light, nullptr, offset, (what + ", no light volume").c_str());
+                    expect_same_volume(m, light, nullptr, offset,
+                                       (what + ", no light volume").c_str());
                     expect_same_volume(m, light, box, offset, (what + ", light volume").c_str());
                 }
             }
@@ -315,7 +317,8 @@ SV_TIERED_TEST(ForLight, PlanWithoutTheFusedCountGivesTheSameVolume) {
             for (int offset : {0, 1}) {
                 const std::string what = std::string(level) + ", " +
                                          std::to_string(m.surface.numIndices / 3) +
-                                         " triangles, no fused count, offset " + std::to_string(offset);
+                                         " triangles, no fused count, offset " +
+                                         std::to_string(offset);
                 expect_same_volume(m, random_light(rng), nullptr, offset, what.c_str(), &p);
             }
         }
@@ -353,7 +356,7 @@ TEST(ForLight, RefusesBadCallsAndWritesNothing) {
     bad.planes = nullptr;
     EXPECT_EQ(call(&bad, &light, nullptr, out.data(), cap, facing.data(), nullptr), SV_E_NULL);
     bad = m.surface;
-    bad.numIndices = 3 * 400000000;      // 6 per triangle no longer fits an int
+    bad.numIndices = 3 * 400000000; // 6 per triangle no longer fits an int
     bad.numSilEdges = 0;
     EXPECT_EQ(call(&bad, &light, nullptr, out.data(), SIZE_MAX, facing.data(), nullptr),
               SV_E_OVERFLOW);

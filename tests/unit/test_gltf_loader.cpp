@@ -102,7 +102,8 @@ struct Doc {
         return int(accessors.size()) - 1;
     }
     // Floats in their own bufferView, and an accessor over all of them.
-    int floats(const std::vector<float> &v, const std::string &type, const std::string &extra = "") {
+    int floats(const std::vector<float> &v, const std::string &type,
+               const std::string &extra = "") {
         const std::size_t offset = bin.append(v);
         return accessor(view(offset, v.size() * 4), 0, kFloat, v.size() / component_count(type),
                         type, extra);
@@ -178,8 +179,7 @@ std::string prim(int position, int indices = -1, int mode = -1, const std::strin
 }
 
 std::string base64(const std::string &in) {
-    static const char kTable[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char kTable[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     std::size_t i = 0;
     for (; i + 2 < in.size(); i += 3) {
@@ -215,10 +215,11 @@ std::string buffer_json(std::size_t byte_length, const std::string &uri) {
 
 // JSON with the buffer inline as a data: URI.
 fs::path write_gltf(const Doc &doc, const fs::path &path) {
-    const std::string buffer =
-        doc.bin.size() ? buffer_json(doc.bin.size(), "data:application/octet-stream;base64," +
-                                                         base64(doc.bin.bytes()))
-                       : "";
+    const std::string buffer = doc.bin.size()
+                                   ? buffer_json(doc.bin.size(),
+                                                 "data:application/octet-stream;base64," +
+                                                     base64(doc.bin.bytes()))
+                                   : "";
     write_bytes(path, doc.json(buffer));
     return path;
 }
@@ -263,9 +264,8 @@ fs::path write_glb(const Doc &doc, const fs::path &path) {
 // set; 12 triangles, counter-clockwise seen from outside.
 const std::vector<float> kCubePositions = {-1, -1, -1, 1, -1, -1, -1, 1, -1, 1, 1, -1,
                                            -1, -1, 1,  1, -1, 1,  -1, 1, 1,  1, 1, 1};
-const std::vector<uint32_t> kCubeIndices = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5,
-                                            0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3,
-                                            0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
+const std::vector<uint32_t> kCubeIndices = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
+                                            2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
 
 // Sum over triangles of p0 . (p1 x p2) / 6: the enclosed volume, positive
 // when the closed mesh is wound counter-clockwise seen from outside.
@@ -379,7 +379,8 @@ TEST_F(Gltf, EveryTriangleModeAndIndexTypeGivesTheSpecTriangles) {
             const std::string what = "mode " + std::to_string(c.mode) +
                                      (c.indexed ? " indices " + std::to_string(index_type)
                                                 : " not indexed");
-            for (const fs::path &path : {write_gltf(d, file("m.gltf")), write_glb(d, file("m.glb"))}) {
+            for (const fs::path &path :
+                 {write_gltf(d, file("m.gltf")), write_glb(d, file("m.glb"))}) {
                 const sv::GltfModel m = sv::load_gltf(path.string());
                 ASSERT_EQ(m.surfaces.size(), 1u) << what;
                 const sv::GltfSurface &s = m.surfaces[0];
@@ -432,8 +433,8 @@ TEST_F(Gltf, PrimitivesMergeWithOffsetIndicesAndPointsLinesAreNoted) {
 TEST_F(Gltf, FormatIsChosenByTheMagicNotTheName) {
     const Doc d = single_primitive(kCubePositions, kCubeIndices, kU16);
     write_bytes(file("binary.gltf"), glb_bytes(d));
-    std::string json = d.json(buffer_json(d.bin.size(), "data:application/octet-stream;base64," +
-                                                            base64(d.bin.bytes())));
+    std::string json = d.json(
+        buffer_json(d.bin.size(), "data:application/octet-stream;base64," + base64(d.bin.bytes())));
     write_bytes(file("text.glb"), json);
     EXPECT_EQ(sv::load_gltf(file("binary.gltf").string()).surfaces.at(0).num_triangles(), 12u);
     EXPECT_EQ(sv::load_gltf(file("text.glb").string()).surfaces.at(0).num_triangles(), 12u);
@@ -541,7 +542,7 @@ std::vector<int> mesh_order(const sv::GltfModel &m) {
 }
 
 TEST_F(Gltf, SceneSelection) {
-    {   // `scene` picks scene 1.
+    { // `scene` picks scene 1.
         Doc d = three_mesh_doc();
         d.scene("0");
         d.scene("2");
@@ -549,7 +550,7 @@ TEST_F(Gltf, SceneSelection) {
         EXPECT_EQ(mesh_order(sv::load_gltf(write_gltf(d, file("a.gltf")).string())),
                   (std::vector<int>{2}));
     }
-    {   // No `scene`: scene 0; the child is placed by its parent too.
+    { // No `scene`: scene 0; the child is placed by its parent too.
         Doc d = three_mesh_doc();
         d.scene("0");
         d.scene("2");
@@ -558,12 +559,12 @@ TEST_F(Gltf, SceneSelection) {
         EXPECT_EQ(m.surfaces.at(1).positions[0], 1.0f);
         EXPECT_EQ(m.surfaces.at(1).positions[1], 1.0f);
     }
-    {   // No scenes: every root node (0 and 2), depth first.
+    { // No scenes: every root node (0 and 2), depth first.
         const Doc d = three_mesh_doc();
         EXPECT_EQ(mesh_order(sv::load_gltf(write_gltf(d, file("c.gltf")).string())),
                   (std::vector<int>{0, 1, 2}));
     }
-    {   // No nodes: each mesh once at identity.
+    { // No nodes: each mesh once at identity.
         Doc d = three_mesh_doc();
         d.nodes.clear();
         const sv::GltfModel m = sv::load_gltf(write_gltf(d, file("d.gltf")).string());
@@ -571,7 +572,7 @@ TEST_F(Gltf, SceneSelection) {
         EXPECT_EQ(m.surfaces.at(1).node_index, -1);
         EXPECT_EQ(m.surfaces.at(1).name, "one");
     }
-    {   // A mesh instanced twice gives two surfaces.
+    { // A mesh instanced twice gives two surfaces.
         Doc d = three_mesh_doc();
         d.node("\"mesh\":1,\"translation\":[0,0,7]");
         d.scene("0,2,3");
@@ -590,7 +591,7 @@ TEST_F(Gltf, MeshNameSelectsInstancesOrLoadsAtIdentity) {
     ASSERT_EQ(m.surfaces.size(), 1u);
     EXPECT_EQ(m.surfaces[0].node_index, 1);
     EXPECT_EQ(m.surfaces[0].positions[0], 1.0f); // placed by its parent
-    options.mesh_name = "two"; // not in scene 0: once at identity
+    options.mesh_name = "two";                   // not in scene 0: once at identity
     m = sv::load_gltf(path.string(), options);
     ASSERT_EQ(m.surfaces.size(), 1u);
     EXPECT_EQ(m.surfaces[0].node_index, -1);
@@ -626,10 +627,11 @@ struct SkinSetup {
         d.node("\"mesh\":0,\"skin\":0,\"translation\":[100,0,0]");
         d.node("\"translation\":[5,0,0]");
         d.node("\"translation\":[0,3,0],\"rotation\":[0,0,0.7071067811865476,"
-               "0.7071067811865476]" + joint1_extra);
+               "0.7071067811865476]" +
+               joint1_extra);
         std::string skin = "{\"joints\":[1,2]";
         if (inverse_bind) {
-            const int ibm = d.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+            const int ibm = d.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1,
                                       1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1},
                                      "MAT4");
             skin += ",\"inverseBindMatrices\":" + std::to_string(ibm);
@@ -780,7 +782,8 @@ TEST_F(Gltf, EqualMeshPositionsGiveEqualWorldBitsSkinnedFirstVertexDecides) {
     d.meshes[0] = "{\"name\":\"skinned\",\"primitives\":[" +
                   prim(0, 1, -1, "\"JOINTS_0\":2,\"WEIGHTS_0\":3") + "," +
                   prim(pos, -1, -1,
-                       "\"JOINTS_0\":" + std::to_string(j) + ",\"WEIGHTS_0\":" + std::to_string(w)) +
+                       "\"JOINTS_0\":" + std::to_string(j) +
+                           ",\"WEIGHTS_0\":" + std::to_string(w)) +
                   "]}";
     const sv::GltfModel m = sv::load_gltf(write_gltf(d, file("skinweld.gltf")).string());
     const sv::GltfSurface &s = m.surfaces.at(0);
@@ -881,8 +884,19 @@ TEST_F(Gltf, TruncatedGlbAtEveryKindOfCut) {
     uint32_t json_length;
     std::memcpy(&json_length, glb.data() + 12, 4);
     const std::size_t bin_header = 20 + json_length;
-    const std::size_t cuts[] = {2,  4,  8,  11, 12, 16, 19, 20, 20 + json_length / 2,
-                                bin_header, bin_header + 4, bin_header + 8, bin_header + 40,
+    const std::size_t cuts[] = {2,
+                                4,
+                                8,
+                                11,
+                                12,
+                                16,
+                                19,
+                                20,
+                                20 + json_length / 2,
+                                bin_header,
+                                bin_header + 4,
+                                bin_header + 8,
+                                bin_header + 40,
                                 glb.size() - 1};
     for (std::size_t cut : cuts) {
         write_bytes(file("cut.glb"), glb.substr(0, cut));
@@ -922,49 +936,52 @@ TEST_F(Gltf, MissingOrShortBuffers) {
     fs::remove(file("ext.bin"));
     expect_error(path, {"ext.bin"});
 
-    {   // The accessor wants 9 vertices, the bufferView holds 8.
+    { // The accessor wants 9 vertices, the bufferView holds 8.
         Doc bad = d;
-        bad.accessors[0] = "{\"bufferView\":0,\"componentType\":5126,\"count\":9,\"type\":\"VEC3\"}";
+        bad.accessors[0] =
+            "{\"bufferView\":0,\"componentType\":5126,\"count\":9,\"type\":\"VEC3\"}";
         expect_error(write_gltf(bad, file("short.gltf")), {"accessor 0", "run past the end"});
     }
-    {   // The bufferView runs past its buffer.
+    { // The bufferView runs past its buffer.
         Doc bad = d;
         bad.views[0] = "{\"buffer\":0,\"byteOffset\":100,\"byteLength\":96}";
-        expect_error(write_gltf(bad, file("view.gltf")), {"bufferView 0", "past the end of buffer"});
+        expect_error(write_gltf(bad, file("view.gltf")),
+                     {"bufferView 0", "past the end of buffer"});
     }
-    {   // byteOffset past the end of the bufferView.
+    { // byteOffset past the end of the bufferView.
         Doc bad = d;
         bad.accessors[0] = "{\"bufferView\":0,\"byteOffset\":100,\"componentType\":5126,"
                            "\"count\":8,\"type\":\"VEC3\"}";
         expect_error(write_gltf(bad, file("offset.gltf")), {"byteOffset 100", "past the end"});
     }
-    {   // A stride smaller than the 12-byte element.
+    { // A stride smaller than the 12-byte element.
         Doc bad = d;
         bad.views[0] = "{\"buffer\":0,\"byteLength\":96,\"byteStride\":8}";
         expect_error(write_gltf(bad, file("stride.gltf")), {"byteStride 8", "smaller"});
     }
-    {   // A stride that walks past the end.
+    { // A stride that walks past the end.
         Doc bad = d;
         bad.views[0] = "{\"buffer\":0,\"byteLength\":96,\"byteStride\":16}";
         expect_error(write_gltf(bad, file("stride2.gltf")), {"stride 16", "past the end"});
     }
-    {   // A count whose byte size overflows.
+    { // A count whose byte size overflows.
         Doc bad = d;
         bad.accessors[1] = "{\"bufferView\":1,\"componentType\":5123,"
                            "\"count\":4611686018427387904,\"type\":\"SCALAR\"}";
         expect_error(write_gltf(bad, file("huge.gltf")), {"accessor 1", "too large"});
     }
-    {   // No bufferView, not sparse.
+    { // No bufferView, not sparse.
         Doc bad = d;
         bad.accessors[0] = "{\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"}";
         expect_error(write_gltf(bad, file("noview.gltf")), {"no bufferView"});
     }
-    {   // Accessor and bufferView indices out of range.
+    { // Accessor and bufferView indices out of range.
         Doc bad = d;
         bad.meshes[0] = "{\"primitives\":[" + prim(7, 1) + "]}";
         expect_error(write_gltf(bad, file("acc.gltf")), {"accessor 7 does not exist"});
         bad = d;
-        bad.accessors[0] = "{\"bufferView\":5,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"}";
+        bad.accessors[0] =
+            "{\"bufferView\":5,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"}";
         expect_error(write_gltf(bad, file("bv.gltf")), {"bufferView 5 does not exist"});
     }
 }
@@ -1094,7 +1111,8 @@ TEST_F(Gltf, MorphTargetsAreIgnoredWithANote) {
     const sv::GltfModel m = sv::load_gltf(write_gltf(d, file("morph.gltf")).string());
     EXPECT_EQ(m.surfaces.at(0).positions, (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
     bool noted = false;
-    for (const std::string &n : m.notes) noted |= n.find("1 morph target(s) ignored") != std::string::npos;
+    for (const std::string &n : m.notes)
+        noted |= n.find("1 morph target(s) ignored") != std::string::npos;
     EXPECT_TRUE(noted);
 }
 
@@ -1126,7 +1144,8 @@ TEST_F(Gltf, DamagedFilesLoadOrFailCleanly) {
         }
         write_bytes(file("damaged.glb"), damaged);
         try {
-            expect_valid(sv::load_gltf(file("damaged.glb").string()), "damaged " + std::to_string(i));
+            expect_valid(sv::load_gltf(file("damaged.glb").string()),
+                         "damaged " + std::to_string(i));
             loaded++;
         } catch (const sv::GltfError &e) {
             EXPECT_NE(std::string(e.what()).find("damaged.glb: "), std::string::npos);
@@ -1154,8 +1173,10 @@ bool printable_utf8(const std::string &s) {
             i++;
             continue;
         }
-        std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3
-                          : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+        std::size_t len = c >= 0xC2 && c <= 0xDF   ? 2
+                          : c >= 0xE0 && c <= 0xEF ? 3
+                          : c >= 0xF0 && c <= 0xF4 ? 4
+                                                   : 0;
         if (!len || i + len > n) return false;
         for (std::size_t k = 1; k < len; k++) {
             if ((p[i + k] & 0xC0) != 0x80) return false;
@@ -1240,8 +1261,7 @@ TEST_F(Gltf, AccessorRangeIsCheckedBeforeAllocating) {
         std::fflush(nullptr);
         _exit(status);
     };
-    EXPECT_EXIT(child(),
-        testing::ExitedWithCode(0), "");
+    EXPECT_EXIT(child(), testing::ExitedWithCode(0), "");
 #endif
 }
 
@@ -1249,17 +1269,18 @@ TEST_F(Gltf, AccessorRangeIsCheckedBeforeAllocating) {
 // and JSON parse errors echo raw bytes. Every message is now bounded and
 // printable UTF-8, and so are the surface names taken from the file.
 TEST_F(Gltf, MessagesAreBoundedAndValidUtf8) {
-    {   // a data: URI of a megabyte that is not base64
+    { // a data: URI of a megabyte that is not base64
         Doc d = single_primitive(kCubePositions, kCubeIndices);
         std::string json = d.json("{\"byteLength\":99,\"uri\":\"data:application/octet-stream;"
-                                  "base64," + std::string(1 << 20, '!') + "\"}");
+                                  "base64," +
+                                  std::string(1 << 20, '!') + "\"}");
         write_bytes(file("uri.gltf"), json);
         const std::string m = gltf_error_of(file("uri.gltf"));
         EXPECT_FALSE(m.empty());
         EXPECT_LE(m.size(), 2000u) << m.substr(0, 400);
         EXPECT_TRUE(printable_utf8(m)) << m.substr(0, 400);
     }
-    {   // bytes that are not UTF-8 where the parser stops
+    { // bytes that are not UTF-8 where the parser stops
         const std::string json = "{\"asset\":{\"version\":\"2.0\"}, \xC3\x28\xFF\xFE\x01 }";
         write_bytes(file("bytes.gltf"), json);
         const std::string m = gltf_error_of(file("bytes.gltf"));
@@ -1267,7 +1288,7 @@ TEST_F(Gltf, MessagesAreBoundedAndValidUtf8) {
         EXPECT_TRUE(printable_utf8(m)) << m;
         EXPECT_LE(m.size(), 2000u);
     }
-    {   // names with control characters (JSON escapes) and of 10 KB
+    { // names with control characters (JSON escapes) and of 10 KB
         Doc d;
         const int pos = d.positions(kCubePositions);
         const int idx = d.indices(kCubeIndices);
@@ -1284,7 +1305,9 @@ TEST_F(Gltf, MessagesAreBoundedAndValidUtf8) {
     }
     // printable_text on its own: cut, escapes, idempotence
     EXPECT_EQ(sv::printable_text("abc"), "abc");
-    EXPECT_EQ(sv::printable_text(std::string("a\xFF" "b")), "a\\xFFb");
+    EXPECT_EQ(sv::printable_text(std::string("a\xFF"
+                                             "b")),
+              "a\\xFFb");
     EXPECT_EQ(sv::printable_text(std::string("\xE2\x82\xAC")), "\xE2\x82\xAC");
     EXPECT_EQ(sv::printable_text(std::string("\xED\xA0\x80")), "\\xED\\xA0\\x80") << "surrogate";
     EXPECT_EQ(sv::printable_text(std::string("\xC0\xAF")), "\\xC0\\xAF") << "overlong";
@@ -1316,8 +1339,9 @@ TEST_F(Gltf, HostileSizesAreRefusedBeforeBuilding) {
     o.max_triangles = 240; // 20 instances x 12 triangles: at the limit
     EXPECT_EQ(sv::load_gltf(path.string(), o).surfaces.size(), 20u);
     o.max_triangles = 239;
-    expect_error(path, {"asks for 240 triangles and 160 vertices in 20 mesh instance",
-                        "GB", "limit of 239 triangles", "--max-triangles"},
+    expect_error(path,
+                 {"asks for 240 triangles and 160 vertices in 20 mesh instance", "GB",
+                  "limit of 239 triangles", "--max-triangles"},
                  o);
     o = {};
     o.max_vertices = 159;
@@ -1344,7 +1368,8 @@ TEST(GltfAssimpModels, EachLoadsOrFailsCleanly) {
     std::vector<fs::path> files;
     for (const auto &entry : fs::recursive_directory_iterator(root)) {
         const std::string ext = entry.path().extension().string();
-        if (entry.is_regular_file() && (ext == ".gltf" || ext == ".glb")) files.push_back(entry.path());
+        if (entry.is_regular_file() && (ext == ".gltf" || ext == ".glb"))
+            files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
     std::map<std::string, std::string> errors; // relative path -> message
@@ -1375,19 +1400,22 @@ TEST(GltfAssimpModels, EachLoadsOrFailsCleanly) {
           "RecursiveNodes/RecursiveNodes.gltf"}) {
         EXPECT_EQ(errors.count(must_fail), 1u) << must_fail << " should give a GltfError";
     }
-    EXPECT_NE(errors["IndexOutOfRange/IndexOutOfRange.gltf"].find("out of range"), std::string::npos);
+    EXPECT_NE(errors["IndexOutOfRange/IndexOutOfRange.gltf"].find("out of range"),
+              std::string::npos);
     EXPECT_NE(errors["BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb"].find("not finite"),
               std::string::npos);
     EXPECT_NE(errors["RecursiveNodes/RecursiveNodes.gltf"].find("cycle"), std::string::npos);
 
-    for (const char *box : {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF/BoxTextured.gltf",
-                            "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    for (const char *box :
+         {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF/BoxTextured.gltf",
+          "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
         ASSERT_EQ(loaded.count(box), 1u) << box;
         ASSERT_EQ(loaded[box].surfaces.size(), 1u) << box;
         EXPECT_EQ(loaded[box].surfaces[0].num_triangles(), 12u) << box;
         // A closed box, outward: positive volume.
         EXPECT_GT(signed_volume(loaded[box].surfaces[0].positions, loaded[box].surfaces[0].indices),
-                  0.0) << box;
+                  0.0)
+            << box;
     }
     // glTF-Asset-Generator: the same quad as TRIANGLES, STRIP and FAN,
     // indexed or not; all give 2 triangles facing +z (an independent check
@@ -1403,7 +1431,8 @@ TEST(GltfAssimpModels, EachLoadsOrFailsCleanly) {
             const float *a = &s.positions[3 * s.indices[3 * t]];
             const float *b = &s.positions[3 * s.indices[3 * t + 1]];
             const float *c = &s.positions[3 * s.indices[3 * t + 2]];
-            const double nz = double(b[0] - a[0]) * (c[1] - a[1]) - double(b[1] - a[1]) * (c[0] - a[0]);
+            const double nz = double(b[0] - a[0]) * (c[1] - a[1]) -
+                              double(b[1] - a[1]) * (c[0] - a[0]);
             EXPECT_GT(nz, 0.0) << rel << " triangle " << t;
         }
     }
@@ -1422,9 +1451,9 @@ TEST(GltfSharedModels, LoadWithExpectedCounts) {
         bool skinned;
     };
     const Expected models[] = {
-        {"RiggedFigure.glb", 1, 256, 370, true},     {"Fox.glb", 1, 576, 1728, true},
-        {"spot_lowres.glb", 1, 1654, 829, false},    {"RobotExpressive.glb", 14, 3237, 7214, false},
-        {"CesiumMan.glb", 1, 4672, 3273, true},      {"spot.glb", 1, 23062, 11533, false},
+        {"RiggedFigure.glb", 1, 256, 370, true},  {"Fox.glb", 1, 576, 1728, true},
+        {"spot_lowres.glb", 1, 1654, 829, false}, {"RobotExpressive.glb", 14, 3237, 7214, false},
+        {"CesiumMan.glb", 1, 4672, 3273, true},   {"spot.glb", 1, 23062, 11533, false},
         {"koala.glb", 1, 99994, 49999, false},
     };
     for (const Expected &e : models) {
@@ -1454,14 +1483,16 @@ TEST(GltfSharedModels, LoadWithExpectedCounts) {
 // guarantee held through node matrices and skinning.
 TEST(GltfSharedModels, CharactersAreClosedAfterWelding) {
     const fs::path root = svtest::shared_models_dir();
-    const std::pair<const char *, int64_t> models[] = {
-        {"CesiumMan.glb", 2338}, {"Fox.glb", 290}, {"RiggedFigure.glb", 130}, {"spot_lowres.glb", 829}};
+    const std::pair<const char *, int64_t> models[] = {{"CesiumMan.glb", 2338},
+                                                       {"Fox.glb", 290},
+                                                       {"RiggedFigure.glb", 130},
+                                                       {"spot_lowres.glb", 829}};
     for (const auto &[name, welded] : models) {
         const sv::GltfModel m = sv::load_gltf((root / name).string());
         ASSERT_EQ(m.surfaces.size(), 1u) << name;
         const sv::GltfSurface &s = m.surfaces[0];
-        const sv::PreparedSurface p =
-            sv::prepare_surface(s.positions.data(), s.num_vertices(), s.indices.data(), s.indices.size());
+        const sv::PreparedSurface p = sv::prepare_surface(s.positions.data(), s.num_vertices(),
+                                                          s.indices.data(), s.indices.size());
         EXPECT_EQ(p.report.boundary_edges, 0) << name;
         EXPECT_EQ(p.report.non_manifold_edges, 0) << name;
         EXPECT_EQ(p.report.same_direction_edges, 0) << name;
@@ -1477,8 +1508,8 @@ TEST(GltfSharedModels, CharactersAreClosedAfterWelding) {
     int64_t total_boundary = 0, degenerate = 0;
     int skinned = 0;
     for (const auto &s : robot.surfaces) {
-        const sv::PreparedSurface p =
-            sv::prepare_surface(s.positions.data(), s.num_vertices(), s.indices.data(), s.indices.size());
+        const sv::PreparedSurface p = sv::prepare_surface(s.positions.data(), s.num_vertices(),
+                                                          s.indices.data(), s.indices.size());
         const std::string mesh = s.name.substr(0, s.name.find(" @ "));
         const auto it = boundary.find(mesh);
         EXPECT_EQ(p.report.boundary_edges, it == boundary.end() ? 0 : it->second) << s.name;

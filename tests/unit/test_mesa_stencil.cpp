@@ -39,8 +39,7 @@ std::unique_ptr<MesaContext> context(int w, int h) {
 
 #define SV_MESA_CONTEXT(var, w, h)                                                                 \
     auto var = context(w, h);                                                                      \
-    if (!var)                                                                                      \
-    GTEST_SKIP() << "no Mesa GL context"
+    if (!var) GTEST_SKIP() << "no Mesa GL context"
 
 // A job's geometry, owned here; job() points the MesaStencilJob at it.
 struct Scene {
@@ -65,22 +64,19 @@ struct Scene {
     // Triangles of one volume: each Vec4 as given (w 1 or 0).
     void volume(std::vector<Vec4> verts, bool zfail = false) {
         Vol vol{std::move(verts), {}, zfail};
-        for (int k = 0; k < static_cast<int>(vol.v.size()); ++k)
-            vol.i.push_back(k);
+        for (int k = 0; k < static_cast<int>(vol.v.size()); ++k) vol.i.push_back(k);
         volumes.push_back(std::move(vol));
     }
     void receiver(std::vector<float> xyz) {
         Rec r{std::move(xyz), {}};
-        for (int k = 0; k < static_cast<int>(r.p.size() / 3); ++k)
-            r.i.push_back(k);
+        for (int k = 0; k < static_cast<int>(r.p.size() / 3); ++k) r.i.push_back(k);
         receivers.push_back(std::move(r));
     }
     MesaStencilJob job() const {
         MesaStencilJob j;
         j.width = width;
         j.height = height;
-        for (int k = 0; k < 16; ++k)
-            j.view_proj[k] = vp[k];
+        for (int k = 0; k < 16; ++k) j.view_proj[k] = vp[k];
         j.light = light;
         for (const Rec &r : receivers)
             j.receivers.push_back({r.p.data(), static_cast<int>(r.p.size() / 3), r.i.data(),
@@ -96,13 +92,16 @@ struct Scene {
 // positions' own coordinates) at Z with W.
 void quad(std::vector<Vec4> &out, float x0, float y0, float x1, float y1, float z = 0,
           float w = 1) {
-    out.insert(out.end(), {{x0, y0, z, w}, {x1, y0, z, w}, {x1, y1, z, w}, {x0, y0, z, w},
-                           {x1, y1, z, w}, {x0, y1, z, w}});
+    out.insert(out.end(), {{x0, y0, z, w},
+                           {x1, y0, z, w},
+                           {x1, y1, z, w},
+                           {x0, y0, z, w},
+                           {x1, y1, z, w},
+                           {x0, y1, z, w}});
 }
 
 void reverse_winding(std::vector<Vec4> &tris) {
-    for (size_t k = 0; k + 2 < tris.size(); k += 3)
-        std::swap(tris[k + 1], tris[k + 2]);
+    for (size_t k = 0; k + 2 < tris.size(); k += 3) std::swap(tris[k + 1], tris[k + 2]);
 }
 
 // The Everitt-Kilgard infinite projection with epsilon (camera at the
@@ -111,11 +110,11 @@ constexpr double kEps = 1.0 / (1 << 20);
 std::array<double, 16> infinite_perspective(double fovy_deg, double aspect, double n) {
     const double f = 1.0 / std::tan(fovy_deg * M_PI / 360.0);
     std::array<double, 16> p{};
-    p[0] = f / aspect;    // (0,0)
-    p[5] = f;             // (1,1)
-    p[10] = kEps - 1;     // (2,2)
+    p[0] = f / aspect;      // (0,0)
+    p[5] = f;               // (1,1)
+    p[10] = kEps - 1;       // (2,2)
     p[14] = n * (kEps - 2); // (2,3)
-    p[11] = -1;           // (3,2)
+    p[11] = -1;             // (3,2)
     return p;
 }
 
@@ -150,16 +149,15 @@ TEST(MesaStencil, ReadBackRowZeroIsTop) {
     MesaStencilResult r = ctx->run(s.job());
     ASSERT_EQ(r.stencil.size(), static_cast<size_t>(W * H));
     ASSERT_EQ(r.depth.size(), static_cast<size_t>(W * H));
-    EXPECT_EQ(at(r, W, 1, 1), 1);           // top-left corner: inside
-    EXPECT_EQ(at(r, W, 1, W / 2 - 4), 1);   // along the top, near the middle
-    EXPECT_EQ(at(r, W, H / 2 - 4, 1), 1);   // down the left side, near the middle
-    EXPECT_EQ(at(r, W, H - 2, 1), 0);       // bottom-left
-    EXPECT_EQ(at(r, W, 1, W - 2), 0);       // top-right
-    EXPECT_EQ(at(r, W, H - 2, W - 2), 0);   // bottom-right
+    EXPECT_EQ(at(r, W, 1, 1), 1);                 // top-left corner: inside
+    EXPECT_EQ(at(r, W, 1, W / 2 - 4), 1);         // along the top, near the middle
+    EXPECT_EQ(at(r, W, H / 2 - 4, 1), 1);         // down the left side, near the middle
+    EXPECT_EQ(at(r, W, H - 2, 1), 0);             // bottom-left
+    EXPECT_EQ(at(r, W, 1, W - 2), 0);             // top-right
+    EXPECT_EQ(at(r, W, H - 2, W - 2), 0);         // bottom-right
     EXPECT_EQ(at(r, W, H / 2 - 2, W / 2 - 2), 0); // beyond the hypotenuse
     int ones = 0;
-    for (uint8_t v : r.stencil)
-        ones += v == 1;
+    for (uint8_t v : r.stencil) ones += v == 1;
     // Half of a quarter: W*H/8 pixel centres, give or take the diagonal.
     EXPECT_NEAR(ones, W * H / 8, W / 2);
     // Receiver at clip z 0.5: window depth 0.75 in the top half, the
@@ -178,8 +176,7 @@ TEST(MesaStencil, CountsWrapAround) {
     for (int n : {1, 2, 255, 256, 257, 511}) {
         Scene s(W, H);
         std::vector<Vec4> tris;
-        for (int k = 0; k < n; ++k)
-            quad(tris, -1, -1, 1, 1);
+        for (int k = 0; k < n; ++k) quad(tris, -1, -1, 1, 1);
         s.volume(tris);
         MesaStencilResult r = ctx->run(s.job());
         for (size_t p = 0; p < r.stencil.size(); ++p)
@@ -225,9 +222,9 @@ TEST(MesaStencil, ZPassAndZFailAroundAReceiver) {
         int on_receiver, off_receiver;
     };
     const Case cases[] = {
-        {-3, false, false, 1, 1},   {-3, true, false, 0, 0},   {-3, false, true, 255, 255},
-        {-3, true, true, 0, 0},     {-8, false, false, 0, 1},  {-8, true, false, 255, 0},
-        {-8, false, true, 0, 255},  {-8, true, true, 1, 0},
+        {-3, false, false, 1, 1},  {-3, true, false, 0, 0},  {-3, false, true, 255, 255},
+        {-3, true, true, 0, 0},    {-8, false, false, 0, 1}, {-8, true, false, 255, 0},
+        {-8, false, true, 0, 255}, {-8, true, true, 1, 0},
     };
     for (const Case &c : cases) {
         Scene s(W, H);
@@ -237,8 +234,7 @@ TEST(MesaStencil, ZPassAndZFailAroundAReceiver) {
         const float h = -c.z / 2;
         std::vector<Vec4> tris;
         quad(tris, -h, -h, h, h, c.z);
-        if (c.back)
-            reverse_winding(tris);
+        if (c.back) reverse_winding(tris);
         s.volume(tris, c.zfail);
         MesaStencilResult r = ctx->run(s.job());
         const char *what = c.zfail ? "z-fail" : "z-pass";
@@ -297,15 +293,14 @@ double inside_margin(const Expect &e, double px, double py) {
 void expect_lands(const MesaStencilResult &r, int W, int H, const std::array<double, 16> &vp,
                   const Vec4 *dir, const char *what) {
     Expect e = project(vp, dir, W, H);
-    const double area =
-        (e.x[1] - e.x[0]) * (e.y[2] - e.y[0]) - (e.y[1] - e.y[0]) * (e.x[2] - e.x[0]);
+    const double area = (e.x[1] - e.x[0]) * (e.y[2] - e.y[0]) -
+                        (e.y[1] - e.y[0]) * (e.x[2] - e.x[0]);
     const int value = area > 0 ? 1 : 255;
     int inside = 0, wrong = 0;
     for (int row = 0; row < H; ++row)
         for (int col = 0; col < W; ++col) {
             double m = inside_margin(e, col + 0.5, (H - 1 - row) + 0.5);
-            if (std::fabs(m) < 1.0)
-                continue;
+            if (std::fabs(m) < 1.0) continue;
             int want = m > 0 ? value : 0;
             inside += m > 0;
             if (at(r, W, row, col) != want && wrong++ < 5)
@@ -341,8 +336,7 @@ TEST(MesaStencil, ExtrudesWZeroVerticesAwayFromTheLight) {
         // the cleared depth).
         s.volumes[0].zfail = true;
         r = ctx->run(s.job());
-        for (uint8_t v : r.stencil)
-            ASSERT_EQ(v, 0);
+        for (uint8_t v : r.stencil) ASSERT_EQ(v, 0);
     }
     { // Point light: an extruded side, two w = 1 vertices and one w = 0.
         Scene s(W, H);
@@ -532,8 +526,7 @@ struct Window {
         MesaStencilResult r = ctx.run(s.job());
         std::vector<uint8_t> g(static_cast<size_t>(W) * static_cast<size_t>(H));
         for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x)
-                g[static_cast<size_t>(y * W + x)] = at(r, W, H - 1 - y, x);
+            for (int x = 0; x < W; ++x) g[static_cast<size_t>(y * W + x)] = at(r, W, H - 1 - y, x);
         return g;
     }
 };
@@ -553,19 +546,67 @@ TEST(FillRule, TieRuleOnEdgesThroughPixelCentres) {
     struct Case {
         const char *what;
         Window::Tri tri;
-        int cx, cy;       // a pixel whose centre lies on the edge
+        int cx, cy;         // a pixel whose centre lies on the edge
         int out_dx, out_dy; // towards the outside of the triangle
         bool included;
     };
     const Case cases[] = {
-        {"vertical x = 10.5, interior +x (left edge)", {{{10.5, 1}, {50, 30}, {10.5, 60}}}, 10, 30, -1, 0, true},
-        {"vertical x = 40.5, interior -x (right edge)", {{{40.5, 1}, {40.5, 60}, {2, 30}}}, 40, 30, 1, 0, false},
-        {"horizontal y = 7.5, interior +y (bottom edge, y up)", {{{1, 7.5}, {60, 7.5}, {30, 50}}}, 30, 7, 0, -1, true},
-        {"horizontal y = 40.5, interior -y (top edge, y up)", {{{1, 40.5}, {30, 2}, {60, 40.5}}}, 30, 40, 0, 1, false},
-        {"diagonal y = x, interior +x -y (left edge)", {{{10.5, 10.5}, {50.5, 10.5}, {50.5, 50.5}}}, 30, 30, -1, 1, true},
-        {"diagonal y = x, interior -x +y (right edge)", {{{10.5, 10.5}, {50.5, 50.5}, {10.5, 50.5}}}, 30, 30, 1, -1, false},
-        {"diagonal y = -x, interior +x +y (left edge)", {{{10.5, 50.5}, {50.5, 10.5}, {50.5, 50.5}}}, 30, 30, -1, -1, true},
-        {"diagonal y = -x, interior -x -y (right edge)", {{{10.5, 50.5}, {10.5, 10.5}, {50.5, 10.5}}}, 30, 30, 1, 1, false},
+        {"vertical x = 10.5, interior +x (left edge)",
+         {{{10.5, 1}, {50, 30}, {10.5, 60}}},
+         10,
+         30,
+         -1,
+         0,
+         true},
+        {"vertical x = 40.5, interior -x (right edge)",
+         {{{40.5, 1}, {40.5, 60}, {2, 30}}},
+         40,
+         30,
+         1,
+         0,
+         false},
+        {"horizontal y = 7.5, interior +y (bottom edge, y up)",
+         {{{1, 7.5}, {60, 7.5}, {30, 50}}},
+         30,
+         7,
+         0,
+         -1,
+         true},
+        {"horizontal y = 40.5, interior -y (top edge, y up)",
+         {{{1, 40.5}, {30, 2}, {60, 40.5}}},
+         30,
+         40,
+         0,
+         1,
+         false},
+        {"diagonal y = x, interior +x -y (left edge)",
+         {{{10.5, 10.5}, {50.5, 10.5}, {50.5, 50.5}}},
+         30,
+         30,
+         -1,
+         1,
+         true},
+        {"diagonal y = x, interior -x +y (right edge)",
+         {{{10.5, 10.5}, {50.5, 50.5}, {10.5, 50.5}}},
+         30,
+         30,
+         1,
+         -1,
+         false},
+        {"diagonal y = -x, interior +x +y (left edge)",
+         {{{10.5, 50.5}, {50.5, 10.5}, {50.5, 50.5}}},
+         30,
+         30,
+         -1,
+         -1,
+         true},
+        {"diagonal y = -x, interior -x -y (right edge)",
+         {{{10.5, 50.5}, {10.5, 10.5}, {50.5, 10.5}}},
+         30,
+         30,
+         1,
+         1,
+         false},
     };
     for (const Case &c : cases)
         for (bool cw : {false, true}) {
@@ -600,23 +641,20 @@ TEST(FillRule, SubPixelPrecisionIsOneIn256RoundToNearest) {
                     Window::Tri t = left ? Window::Tri{{{e, b0}, {60, b0}, {e, b1}}}
                                          : Window::Tri{{{e, b0}, {e, b1}, {2, b0}}};
                     if (along_y) // transposed: left -> bottom, right -> top edges
-                        for (Window::Pt &p : t)
-                            std::swap(p.x, p.y);
+                        for (Window::Pt &p : t) std::swap(p.x, p.y);
                     tris.push_back(t);
                 }
                 const std::vector<uint8_t> g = w.draw(*ctx, tris);
                 for (int k = 0; k < 256; ++k) {
                     int x = left ? 10 : 40, y = 4 * k + 1;
-                    if (along_y)
-                        std::swap(x, y);
+                    if (along_y) std::swap(x, y);
                     const bool covered = g[static_cast<size_t>(y * w.W + x)] != 0;
                     // Snapped onto the centre (k <= 128): the tie rule.
                     // Beyond it: moved right/up, a left (bottom) edge loses
                     // the centre and a right (top) one gains it; moved
                     // left/down, nothing changes.
                     bool expect = left;
-                    if (k > 128 && sign > 0)
-                        expect = !left;
+                    if (k > 128 && sign > 0) expect = !left;
                     ASSERT_EQ(covered, expect)
                         << (along_y ? (left ? "bottom" : "top") : (left ? "left" : "right"))
                         << " edge moved by " << sign * k << "/65536 pixel";
@@ -649,8 +687,7 @@ int reference_cover(const std::array<std::array<int64_t, 2>, 3> &t, int px, int 
     auto cross = [](int64_t ax, int64_t ay, int64_t bx, int64_t by) { return ax * by - ay * bx; };
     const int64_t area = cross(t[1][0] - t[0][0], t[1][1] - t[0][1], t[2][0] - t[0][0],
                                t[2][1] - t[0][1]);
-    if (area == 0)
-        return 0;
+    if (area == 0) return 0;
     const int order[2][3] = {{0, 1, 2}, {0, 2, 1}};
     const int *o = order[area > 0 ? 0 : 1]; // walk it counter-clockwise
     const int64_t cx = px * 256 + 128, cy = py * 256 + 128;
@@ -659,8 +696,7 @@ int reference_cover(const std::array<std::array<int64_t, 2>, 3> &t, int px, int 
         const int64_t dx = b[0] - a[0], dy = b[1] - a[1];
         const int64_t side = cross(dx, dy, cx - a[0], cy - a[1]); // > 0: interior side
         const bool inclusive = dy < 0 || (dy == 0 && dx > 0);
-        if (side < 0 || (side == 0 && !inclusive))
-            return 0;
+        if (side < 0 || (side == 0 && !inclusive)) return 0;
     }
     return area > 0 ? 1 : -1;
 }
@@ -682,8 +718,7 @@ TEST(FillRule, RandomTrianglesMatchTheReferenceRuleExactly) {
         for (int k = 0; k < 40; ++k) {
             std::array<std::array<int64_t, 2>, 3> t;
             for (auto &v : t)
-                for (auto &c : v)
-                    c = static_cast<int64_t>(next(64 * 256 / grid + 1)) * grid;
+                for (auto &c : v) c = static_cast<int64_t>(next(64 * 256 / grid + 1)) * grid;
             if (k % 13 == 0) { // a degenerate one: the third vertex halfway along the first edge
                 for (int c = 0; c < 2; ++c) {
                     t[1][c] -= (t[1][c] - t[0][c]) % (2 * grid); // an even number of grid steps
@@ -702,14 +737,12 @@ TEST(FillRule, RandomTrianglesMatchTheReferenceRuleExactly) {
         for (int y = 0; y < w.H; ++y)
             for (int x = 0; x < w.W; ++x) {
                 int n = 0;
-                for (const auto &t : tris)
-                    n += reference_cover(t, x, y);
+                for (const auto &t : tris) n += reference_cover(t, x, y);
                 const int want = ((n % 256) + 256) % 256;
                 const int got = g[static_cast<size_t>(y * w.W + x)];
                 if (got != want && wrong++ < 5)
-                    ADD_FAILURE() << "round " << round << " (grid " << grid << "/256): pixel ("
-                                  << x << ", " << y << ") y up: GL " << got << ", the rule "
-                                  << want;
+                    ADD_FAILURE() << "round " << round << " (grid " << grid << "/256): pixel (" << x
+                                  << ", " << y << ") y up: GL " << got << ", the rule " << want;
             }
         ASSERT_EQ(wrong, 0) << "round " << round;
     }
@@ -747,8 +780,7 @@ TEST(FillRule, SharedEdgesCoverEachCentreOnce) {
         }
     std::vector<Window::Tri> both = fan;
     both.insert(both.end(), back.begin(), back.end());
-    for (uint8_t v : w.draw(*ctx, both))
-        ASSERT_EQ(v, 0);
+    for (uint8_t v : w.draw(*ctx, both)) ASSERT_EQ(v, 0);
 }
 
 // The tie rule holds for large triangles too (llvmpipe bins big ones
@@ -824,8 +856,7 @@ TEST(FillRule, WindowCoordinatesFollowGlFloatSteps) {
         for (int r = 0; r < 4; ++r)
             for (int k = 0; k < 4; ++k) {
                 double t = 0;
-                for (int j = 0; j < 4; ++j)
-                    t += A[j * 4 + r] * B[k * 4 + j];
+                for (int j = 0; j < 4; ++j) t += A[j * 4 + r] * B[k * 4 + j];
                 C[k * 4 + r] = t;
             }
     };
@@ -833,8 +864,7 @@ TEST(FillRule, WindowCoordinatesFollowGlFloatSteps) {
     mul(Rx, Ry, V);
     mul(P.data(), V, VP);
     float m[16];
-    for (int i = 0; i < 16; ++i)
-        m[i] = static_cast<float>(VP[i]);
+    for (int i = 0; i < 16; ++i) m[i] = static_cast<float>(VP[i]);
 
     uint64_t rng = 0xf10a7u;
     auto uni = [&rng](float lo, float hi) {
@@ -857,8 +887,7 @@ TEST(FillRule, WindowCoordinatesFollowGlFloatSteps) {
             inside = inside && clip[3] > 0.2 && std::fabs(clip[0] / clip[3]) < 0.98 &&
                      std::fabs(clip[1] / clip[3]) < 0.98;
         }
-        if (inside)
-            tris.insert(tris.end(), v, v + 3);
+        if (inside) tris.insert(tris.end(), v, v + 3);
     }
     sc.volume(tris);
     const MesaStencilResult r = ctx->run(sc.job());
@@ -868,7 +897,8 @@ TEST(FillRule, WindowCoordinatesFollowGlFloatSteps) {
         for (size_t t = 0; t < tris.size(); t += 3) {
             std::array<std::array<int64_t, 2>, 3> f;
             for (int k = 0; k < 3; ++k)
-                f[static_cast<size_t>(k)] = gl_window_fixed(m, tris[t + static_cast<size_t>(k)], W, H, fused);
+                f[static_cast<size_t>(k)] = gl_window_fixed(m, tris[t + static_cast<size_t>(k)], W,
+                                                            H, fused);
             int64_t x0 = W, x1 = 0, y0 = H, y1 = 0;
             for (const auto &v : f) {
                 x0 = std::min<int64_t>(x0, v[0] / 256 - 1);

@@ -148,11 +148,10 @@ void check_structure(const sv::PreparedSurface &s) {
     }
     EXPECT_EQ(dangling, s.report.dangling_sil_edges);
     for (size_t u = 0; u < used.size(); u++) {
-        ASSERT_EQ(used[u], 1) << "use " << u << " (triangle " << u / 3
-                              << ") is in " << used[u] << " SilEdges";
+        ASSERT_EQ(used[u], 1) << "use " << u << " (triangle " << u / 3 << ") is in " << used[u]
+                              << " SilEdges";
     }
 }
-
 
 float rnd(Rng &rng, float lo, float hi) { return lo + (hi - lo) * (float)rng.unit(); }
 
@@ -385,7 +384,7 @@ SV_TIERED_TEST(MeshPrep, TwoTrianglesSharingAnEdgeInTheSameDirection) {
 SV_TIERED_TEST(MeshPrep, DegenerateTrianglesAreDroppedAndCounted) {
     Mesh m = tetrahedron();
     uint32_t dup = m.v(1, 0, 0); // same position as vertex 1
-    m.tri(0, 0, 1);   // two equal indices
+    m.tri(0, 0, 1);              // two equal indices
     m.tri(2, 3, 2);
     m.tri(1, dup, 3); // equal after welding
     m.tri(3, 3, 3);

@@ -70,7 +70,8 @@ void expect_plan_computes_c_ref(const sv_plan &plan) {
     sv::AlignedVector<uint8_t> facing(s.num_triangles() + 1), ref_facing(s.num_triangles() + 1);
     plan.calculate_facing(s.planes.data(), s.num_triangles(), &light, facing.data());
     sv_calculate_facing_c_ref(s.planes.data(), s.num_triangles(), &light, ref_facing.data());
-    ASSERT_EQ(facing, ref_facing) << "calculate_facing " << plan.variant[SV_ROUTINE_CALCULATE_FACING];
+    ASSERT_EQ(facing, ref_facing) << "calculate_facing "
+                                  << plan.variant[SV_ROUTINE_CALCULATE_FACING];
     sv::AlignedVector<int> out(sv_shadow_volume_capacity(s.num_indices(), s.num_sil_edges()));
     sv::AlignedVector<int> ref(out.size());
     const int n = sv_create_shadow_volume_checked(&plan.kernels, out.data(), out.size(),
@@ -105,7 +106,8 @@ TEST_F(PlanTest, SizeClasses) {
     for (int c = 0; c < SV_NUM_SIZE_CLASSES; c++) {
         EXPECT_EQ(sv_size_class(sv_size_class_triangles(c)), c);
     }
-    EXPECT_STREQ(sv_static_variant_name(SV_ROUTINE_CALCULATE_FACING), sv_best_facing_variant()->name);
+    EXPECT_STREQ(sv_static_variant_name(SV_ROUTINE_CALCULATE_FACING),
+                 sv_best_facing_variant()->name);
     EXPECT_STREQ(sv_static_variant_name(SV_ROUTINE_CREATE_SIL_TRIANGLES), sv_best_variant()->name);
     EXPECT_EQ(sv_static_variant_name(SV_NUM_ROUTINES), nullptr);
     EXPECT_EQ(sv_size_class_triangles(-1), 0);
@@ -155,11 +157,12 @@ TEST_F(PlanTest, MeasuredPlanTakesTheFastestOfItsTimingsAndComputesCRef) {
         if (std::strcmp(p->variant[r], stat) == 0 && p->ticks[r] != best) {
             EXPECT_EQ(p->ticks[r], stat_ticks) << sv_routine_name((sv_routine)r);
         } else {
-            EXPECT_EQ(p->ticks[r], best) << sv_routine_name((sv_routine)r)
-                                         << ": the plan is not the fastest";
+            EXPECT_EQ(p->ticks[r], best)
+                << sv_routine_name((sv_routine)r) << ": the plan is not the fastest";
             if (std::strcmp(p->variant[r], stat) != 0 && stat_ticks > 0) {
-                EXPECT_GT(stat_ticks, best * 1.03) << sv_routine_name((sv_routine)r)
-                                                   << ": replaced the static choice within the margin";
+                EXPECT_GT(stat_ticks, best * 1.03)
+                    << sv_routine_name((sv_routine)r)
+                    << ": replaced the static choice within the margin";
             }
         }
     }
@@ -181,13 +184,20 @@ TEST_F(PlanTest, MeasuringTheCallersSurfacePlansItsClass) {
     // Misaligned copies: planes and indices 4 bytes past their alignment.
     std::vector<char> planeBytes(sizeof(Plane) * (size_t)s.num_triangles() + 64);
     std::vector<char> indexBytes(sizeof(int) * (size_t)s.num_indices() + 64);
-    char *pa = planeBytes.data() + (64 - (reinterpret_cast<uintptr_t>(planeBytes.data()) % 64)) % 64 + 4;
-    char *ia = indexBytes.data() + (64 - (reinterpret_cast<uintptr_t>(indexBytes.data()) % 64)) % 64 + 4;
+    char *pa = planeBytes.data() +
+               (64 - (reinterpret_cast<uintptr_t>(planeBytes.data()) % 64)) % 64 + 4;
+    char *ia = indexBytes.data() +
+               (64 - (reinterpret_cast<uintptr_t>(indexBytes.data()) % 64)) % 64 + 4;
     std::memcpy(pa, s.planes.data(), sizeof(Plane) * (size_t)s.num_triangles());
     std::memcpy(ia, s.indices.data(), sizeof(int) * (size_t)s.num_indices());
-    sv_surface v{reinterpret_cast<const Plane *>(pa), reinterpret_cast<const int *>(ia),
-                 s.num_indices(), s.sil_edges.data(), s.num_sil_edges(), pos.data(),
-                 s.num_vertices(), Bounds{}};
+    sv_surface v{reinterpret_cast<const Plane *>(pa),
+                 reinterpret_cast<const int *>(ia),
+                 s.num_indices(),
+                 s.sil_edges.data(),
+                 s.num_sil_edges(),
+                 pos.data(),
+                 s.num_vertices(),
+                 Bounds{}};
     std::vector<sv_plan_timing> t(64);
     const int n = sv_plan_measure_surface(&v, t.data(), (int)t.size());
     ASSERT_GT(n, 0);
@@ -210,8 +220,8 @@ TEST_F(PlanTest, MeasuringABadSurfaceIsRefused) {
         pos[(size_t)i] = {s.positions[3 * (size_t)i], s.positions[3 * (size_t)i + 1],
                           s.positions[3 * (size_t)i + 2], 1};
     }
-    const sv_surface good{s.planes.data(), s.indices.data(), s.num_indices(), s.sil_edges.data(),
-                          s.num_sil_edges(), pos.data(), s.num_vertices(), Bounds{}};
+    const sv_surface good{s.planes.data(),   s.indices.data(), s.num_indices(),  s.sil_edges.data(),
+                          s.num_sil_edges(), pos.data(),       s.num_vertices(), Bounds{}};
     EXPECT_EQ(sv_plan_measure_surface(nullptr, nullptr, 0), -2);
     sv_surface v = good;
     v.numIndices = 0;
@@ -273,7 +283,8 @@ TEST_F(PlanTest, WisdomRoundTripKeepsOtherCpusAndRefusesMalformedFiles) {
     const sv_plan measured = *sv_plan_for(1, SV_PLAN_ESTIMATE);
     ASSERT_EQ(sv_wisdom_save(path.c_str()), 0);
     const std::string text = read_all(path);
-    EXPECT_NE(text.find("cpu OtherVendor 1/2/3 sse2 A CPU that is not this one\nclass 0 count_facing c_ref 10.0\n"),
+    EXPECT_NE(text.find("cpu OtherVendor 1/2/3 sse2 A CPU that is not this one\nclass 0 "
+                        "count_facing c_ref 10.0\n"),
               std::string::npos)
         << text;
     EXPECT_NE(text.find(std::string("cpu ") + key + "\n"), std::string::npos) << text;
@@ -313,7 +324,8 @@ TEST_F(PlanTest, WisdomNamingAVariantThisCpuLacksFallsBack) {
     sv_cpu_model_key(key, sizeof key);
     {
         std::ofstream out(path);
-        out << "shadowvol-wisdom 1\ncpu " << key << "\nclass 0 create_sil_triangles no_such_variant 5\n"
+        out << "shadowvol-wisdom 1\ncpu " << key
+            << "\nclass 0 create_sil_triangles no_such_variant 5\n"
             << "class 0 count_facing c_ref 7\n";
     }
     ASSERT_EQ(sv_wisdom_load(path.c_str()), 1);

@@ -90,15 +90,26 @@ float coordinate(Rng &rng, Scale s) {
     case Scale::huge: return (float)(u * 1e30);
     case Scale::subnormal: return (float)(u * 1e-39);
     case Scale::mixed: {
-        static const double scales[] = {1e-38, 1e-30, 1e-20, 1e-10, 1, 1e10, 1e19, 1e20, 1e30, 3e38};
+        static const double scales[] = {1e-38, 1e-30, 1e-20, 1e-10, 1,
+                                        1e10,  1e19,  1e20,  1e30,  3e38};
         return (float)(u * scales[rng.below(10)]);
     }
     case Scale::nasty: {
-        static const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, FLT_MIN, -FLT_MIN,
-                                        FLT_TRUE_MIN, -FLT_TRUE_MIN, FLT_MAX, -FLT_MAX,
+        static const float special[] = {0.0f,
+                                        -0.0f,
+                                        1.0f,
+                                        -1.0f,
+                                        FLT_MIN,
+                                        -FLT_MIN,
+                                        FLT_TRUE_MIN,
+                                        -FLT_TRUE_MIN,
+                                        FLT_MAX,
+                                        -FLT_MAX,
                                         std::numeric_limits<float>::infinity(),
                                         -std::numeric_limits<float>::infinity(),
-                                        std::numeric_limits<float>::quiet_NaN(), 1e-30f, 1e30f};
+                                        std::numeric_limits<float>::quiet_NaN(),
+                                        1e-30f,
+                                        1e30f};
         if (rng.chance(0.4)) return special[rng.below(sizeof special / sizeof special[0])];
         return (float)(u * 100);
     }
@@ -121,7 +132,7 @@ Mesh random_mesh(Rng &rng, int numVerts, int numTris, Scale s) {
     for (auto &f : m.positions) f = coordinate(rng, s);
     // A few collinear and coincident vertices.
     for (int v = 2; v < numVerts; v++) {
-        if (rng.chance(0.05)) {  // v on the line through v-2 and v-1
+        if (rng.chance(0.05)) { // v on the line through v-2 and v-1
             const float k = (float)rng.below(5);
             for (int c = 0; c < 3; c++) {
                 const float a = m.positions[3 * (v - 2) + c], b = m.positions[3 * (v - 1) + c];
@@ -134,7 +145,7 @@ Mesh random_mesh(Rng &rng, int numVerts, int numTris, Scale s) {
     m.indices.resize(3 * (size_t)numTris);
     for (int t = 0; t < numTris; t++) {
         for (int k = 0; k < 3; k++) m.indices[3 * t + k] = (int)rng.below((uint32_t)numVerts);
-        if (rng.chance(0.05)) m.indices[3 * t + 1] = m.indices[3 * t];  // zero area
+        if (rng.chance(0.05)) m.indices[3 * t + 1] = m.indices[3 * t]; // zero area
         if (rng.chance(0.02)) m.indices[3 * t + 2] = m.indices[3 * t + 1];
     }
     // Vertex 0 and the last vertex are used: the loads nearest the fences.
@@ -175,7 +186,7 @@ void check_mesh(const Mesh &m, const std::vector<const sv_planes_variant *> &var
                        coordinate(rng, Scale::ordinary), 1.0f},
                       {coordinate(rng, Scale::ordinary), 5.0f, -2.0f, 0.0f},
                       {0.0f, 0.0f, 0.0f, 1.0f}};
-    if (n > 0) {  // a light exactly on a vertex: the facing sum is 0
+    if (n > 0) { // a light exactly on a vertex: the facing sum is 0
         const int v = m.indices[0];
         lights[2] = Vec4{m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2], 1.0f};
     }
@@ -188,7 +199,7 @@ void check_mesh(const Mesh &m, const std::vector<const sv_planes_variant *> &var
 
     for (const sv_planes_variant *v : variants) {
         SCOPED_TRACE(what + ", variant " + v->name + ", " + std::to_string(n) + " triangles");
-        const size_t offset = rng.below(16) * 4;  // any float alignment
+        const size_t offset = rng.below(16) * 4; // any float alignment
         GuardedBuffer out((size_t)n * sizeof(Plane), offset);
         out.fill(0xCD);
         v->derive_planes(pos, m.indices.data(), n, reinterpret_cast<Plane *>(out.data()));
@@ -236,15 +247,40 @@ TEST(Planes, TableAndDispatch) {
 }
 
 TEST(Planes, ReferenceDocumentedResults) {
-    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0, 1e-30f, 0, 0, 0, 1e-30f, 0,
-                         std::numeric_limits<float>::quiet_NaN(), 0, 0, 1e30f, 0, 0, 0, 1e30f, 0};
+    const float pos[] = {0,
+                         0,
+                         0,
+                         1,
+                         0,
+                         0,
+                         0,
+                         1,
+                         0,
+                         2,
+                         0,
+                         0,
+                         1e-30f,
+                         0,
+                         0,
+                         0,
+                         1e-30f,
+                         0,
+                         std::numeric_limits<float>::quiet_NaN(),
+                         0,
+                         0,
+                         1e30f,
+                         0,
+                         0,
+                         0,
+                         1e30f,
+                         0};
     // Ordinary: z = 0 plane facing +z; degenerate ones give (0,0,0,0).
-    const int idx[] = {0, 1, 2,   // unit right triangle: (0, 0, 1, 0)
-                       0, 1, 3,   // collinear
-                       0, 0, 2,   // repeated corner
-                       0, 4, 5,   // cross product 1e-60 underflows: zero plane
-                       6, 1, 2,   // NaN corner
-                       0, 7, 8};  // 1e60 overflows: zero plane
+    const int idx[] = {0, 1, 2,  // unit right triangle: (0, 0, 1, 0)
+                       0, 1, 3,  // collinear
+                       0, 0, 2,  // repeated corner
+                       0, 4, 5,  // cross product 1e-60 underflows: zero plane
+                       6, 1, 2,  // NaN corner
+                       0, 7, 8}; // 1e60 overflows: zero plane
     Plane p[6];
     sv_derive_planes_c_ref(pos, idx, 6, p);
     const Plane z{0, 0, 0, 0};
@@ -297,7 +333,8 @@ TEST(Planes, ReferenceAgreesWithTrianglePlane) {
         const double nz = e[0][0] * e[1][1] - e[0][1] * e[1][0];
         const double area2 = std::sqrt(nx * nx + ny * ny + nz * nz);
         double longest = 0;
-        for (auto &ed : e) longest = std::max(longest, std::sqrt(ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2]));
+        for (auto &ed : e)
+            longest = std::max(longest, std::sqrt(ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2]));
         if (area2 < 1e-2 * longest * longest) continue;
         compared++;
         EXPECT_NEAR(p[t].a, q.a, 1e-5);
@@ -312,7 +349,7 @@ SV_TIERED_TEST(Planes, EveryTailEveryScale) {
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("EveryTailEveryScale");
     const auto variants = runnable();
-    const Scale scales[] = {Scale::ordinary, Scale::tiny, Scale::huge,
+    const Scale scales[] = {Scale::ordinary,  Scale::tiny,  Scale::huge,
                             Scale::subnormal, Scale::mixed, Scale::nasty};
     const char *names[] = {"ordinary", "tiny", "huge", "subnormal", "mixed", "nasty"};
     for (int s = 0; s < 6; s++) {
@@ -414,13 +451,17 @@ SV_TIERED_TEST_P(PlanesModels, RealMeshes) {
     Rng rng = svtest::rng_for("RealMeshes");
     const auto variants = runnable();
     std::vector<std::string> files;
-    if (GetParam() == "bundled") files.push_back(std::string(SV_MODELS_DIR) + "/character_1344.glb");
+    if (GetParam() == "bundled")
+        files.push_back(std::string(SV_MODELS_DIR) + "/character_1344.glb");
     std::string missing;
     if (GetParam() == "SharedModels") {
-        for (const char *name : {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb", "RiggedFigure.glb"}) {
+        for (const char *name :
+             {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb", "RiggedFigure.glb"}) {
             const std::string p = svtest::shared_models_dir() + "/" + name;
-            if (access(p.c_str(), R_OK) == 0) files.push_back(p);
-            else missing += " " + p;
+            if (access(p.c_str(), R_OK) == 0)
+                files.push_back(p);
+            else
+                missing += " " + p;
         }
     }
     for (const std::string &f : files) {
@@ -436,4 +477,4 @@ SV_TIERED_TEST_P(PlanesModels, RealMeshes) {
     if (!missing.empty()) GTEST_SKIP() << "not found, not tested:" << missing;
 }
 
-}  // namespace
+} // namespace

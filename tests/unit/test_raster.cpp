@@ -54,7 +54,8 @@ Mesh character_in_view(double yaw, double pitch, double distance, double fov) {
     const sv::Vec3d eye{target.x + distance * std::cos(pitch) * std::sin(yaw),
                         target.y + distance * std::sin(pitch),
                         target.z + distance * std::cos(pitch) * std::cos(yaw)};
-    const sv::Mat4d vp = sv::infinite_projection(fov, 1.25, 0.05) * sv::look_at(eye, target, {0, 1, 0});
+    const sv::Mat4d vp = sv::infinite_projection(fov, 1.25, 0.05) *
+                         sv::look_at(eye, target, {0, 1, 0});
     Mesh m;
     for (int i = 0; i < p.num_vertices(); i++) {
         m.v.push_back(sv::render::to_clip(vp, p.positions[3 * i], p.positions[3 * i + 1],
@@ -93,9 +94,9 @@ SV_TIERED_TEST(Raster, ClosedMeshSumsToZeroAtEveryPixel) {
                     const Mesh m = character_in_view(yaw, pitch, dist, 50);
                     const std::vector<uint8_t> s = closed_mesh_sum(m, k, 160, 128);
                     for (std::size_t i = 0; i < s.size(); i++) {
-                        ASSERT_EQ(s[i], 0) << k->name << " yaw " << yaw << " pitch " << pitch
-                                           << " distance " << dist << " pixel " << i % 160 << ","
-                                           << i / 160;
+                        ASSERT_EQ(s[i], 0)
+                            << k->name << " yaw " << yaw << " pitch " << pitch << " distance "
+                            << dist << " pixel " << i % 160 << "," << i / 160;
                     }
                     views++;
                 }
@@ -141,7 +142,8 @@ SV_TIERED_TEST(Raster, SharedEdgeThroughPixelCentresCoveredOnce) {
                     /* Inside the quad: the bottom and left edges own
                      * their centres, the top and right ones do not. */
                     const bool inside = x >= x0 && x < x1 && y > y0 && y <= y1;
-                    ASSERT_EQ(s != 0, inside) << k->name << " trial " << trial << " at " << x << "," << y;
+                    ASSERT_EQ(s != 0, inside)
+                        << k->name << " trial " << trial << " at " << x << "," << y;
                     if (inside) {
                         ASSERT_TRUE(s == 1 || s == 255) << "covered twice at " << x << "," << y;
                     }
@@ -165,7 +167,8 @@ SV_TIERED_TEST(Raster, BottomLeftRuleAsLlvmpipe) {
             Target t;
             t.resize(w, h);
             PassCounters pc;
-            ClipVertex v[3] = {px(2.5, 2.5, 0.5, w, h), px(10.5, 2.5, 0.5, w, h), px(2.5, 10.5, 0.5, w, h)};
+            ClipVertex v[3] = {px(2.5, 2.5, 0.5, w, h), px(10.5, 2.5, 0.5, w, h),
+                               px(2.5, 10.5, 0.5, w, h)};
             if (reversed) std::swap(v[1], v[2]);
             r.draw_stencil(t, v, StencilMode::zpass, pc);
             for (int y = 0; y < h; y++) {
@@ -179,7 +182,8 @@ SV_TIERED_TEST(Raster, BottomLeftRuleAsLlvmpipe) {
             /* Flipped upside down: (2.5, 10.5), (10.5, 10.5), (2.5, 2.5). */
             t.clear_stencil();
             PassCounters pb;
-            ClipVertex u[3] = {px(2.5, 10.5, 0.5, w, h), px(10.5, 10.5, 0.5, w, h), px(2.5, 2.5, 0.5, w, h)};
+            ClipVertex u[3] = {px(2.5, 10.5, 0.5, w, h), px(10.5, 10.5, 0.5, w, h),
+                               px(2.5, 2.5, 0.5, w, h)};
             if (reversed) std::swap(u[1], u[2]);
             r.draw_stencil(t, u, StencilMode::zpass, pb);
             for (int y = 0; y < h; y++) {
@@ -188,7 +192,8 @@ SV_TIERED_TEST(Raster, BottomLeftRuleAsLlvmpipe) {
                      * from (2.5, 2.5) to (10.5, 10.5) is a right edge). */
                     const bool expect = x >= 2 && y <= 10 && (y + 0.5) - (x + 0.5) > 0;
                     EXPECT_EQ(t.stencil[(std::size_t)y * w + x] != 0, expect)
-                        << k->name << " flipped" << (reversed ? " reversed" : "") << " at " << x << "," << y;
+                        << k->name << " flipped" << (reversed ? " reversed" : "") << " at " << x
+                        << "," << y;
                 }
             }
             EXPECT_EQ(pb.pixels_tested, 8u + 7 + 6 + 5 + 4 + 3 + 2 + 1) << k->name;
@@ -267,7 +272,8 @@ SV_TIERED_TEST(Raster, VertexAtInfinityLandsAtTheVanishingPoint) {
     const sv::Mat4d p = sv::infinite_projection(60, 1, 0.1);
     const auto far = sv::render::to_clip(p, 0, 0, -1, 0);
     EXPECT_DOUBLE_EQ(far.z / far.w, 1 - sv::kInfiniteFarEpsilon);
-    const ClipVertex a = sv::render::to_clip(p, -1, -1, -2, 1), b = sv::render::to_clip(p, 1, -1, -2, 1);
+    const ClipVertex a = sv::render::to_clip(p, -1, -1, -2, 1),
+                     b = sv::render::to_clip(p, 1, -1, -2, 1);
     const ClipVertex v[3] = {a, b, far};
     for (const RowKernels *k : runnable_kernels()) {
         const Rasterizer r(k);
@@ -320,7 +326,8 @@ SV_TIERED_TEST(Raster, DepthDoesNotDependOnCornerOrder) {
             }
             std::vector<float> first;
             Rasterizer::PlaneCoefficients first_plane{};
-            const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}, {1, 0, 2}, {0, 2, 1}};
+            const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                                      {2, 1, 0}, {1, 0, 2}, {0, 2, 1}};
             for (const auto &o : orders) {
                 Target t;
                 t.resize(w, h);
@@ -336,7 +343,8 @@ SV_TIERED_TEST(Raster, DepthDoesNotDependOnCornerOrder) {
                     ASSERT_EQ(0, std::memcmp(first.data(), d.data(), d.size() * sizeof(float)))
                         << k->name << " trial " << trial;
                     ASSERT_EQ(first_plane.ok, pl.ok);
-                    const double a[5] = {first_plane.x0, first_plane.y0, first_plane.z0, first_plane.a, first_plane.b};
+                    const double a[5] = {first_plane.x0, first_plane.y0, first_plane.z0,
+                                         first_plane.a, first_plane.b};
                     const double b[5] = {pl.x0, pl.y0, pl.z0, pl.a, pl.b};
                     if (pl.ok) {
                         ASSERT_EQ(0, std::memcmp(a, b, sizeof a)) << "trial " << trial;
@@ -365,7 +373,8 @@ SV_TIERED_TEST(Raster, SimdKernelsMatchTheCBitForBit) {
         std::vector<std::array<ClipVertex, 3>> tris;
         for (int i = 0; i < 40; i++) {
             const int shape = (int)(rng() % 3);
-            std::array<ClipVertex, 3> t = {random_vertex(shape), random_vertex(shape), random_vertex(shape)};
+            std::array<ClipVertex, 3> t = {random_vertex(shape), random_vertex(shape),
+                                           random_vertex(shape)};
             if (rng() % 4 == 0) { /* a sliver */
                 t[1] = {t[0].x + 1e-3, t[0].y + u(rng), t[0].z, t[0].w == 0 ? 1 : t[0].w};
             }
@@ -392,10 +401,12 @@ SV_TIERED_TEST(Raster, SimdKernelsMatchTheCBitForBit) {
             counters.push_back(c);
         }
         for (std::size_t k = 1; k < ks.size(); k++) {
-            ASSERT_EQ(0, std::memcmp(results[0].depth.data(), results[k].depth.data(), depth0.size() * 4))
+            ASSERT_EQ(0, std::memcmp(results[0].depth.data(), results[k].depth.data(),
+                                     depth0.size() * 4))
                 << ks[k]->name << " trial " << trial;
             ASSERT_TRUE(results[0].ids == results[k].ids) << ks[k]->name << " trial " << trial;
-            ASSERT_TRUE(results[0].stencil == results[k].stencil) << ks[k]->name << " trial " << trial;
+            ASSERT_TRUE(results[0].stencil == results[k].stencil)
+                << ks[k]->name << " trial " << trial;
             ASSERT_EQ(counters[0].pixels_tested, counters[k].pixels_tested) << ks[k]->name;
             ASSERT_EQ(counters[0].pixels_written, counters[k].pixels_written) << ks[k]->name;
         }
@@ -423,17 +434,21 @@ SV_TIERED_TEST(Raster, KernelsWriteNothingOutsideTheSpan) {
                     s.x_end = x1;
                     const RowBuffers b{depth.data() + 40, ids.data() + 40, st.data() + 40};
                     RowCounts n;
-                    if (mode == 0) k->depth(s, b, 9, n);
-                    else (mode == 1 ? k->zpass : k->zfail)(s, b, 1, n);
+                    if (mode == 0)
+                        k->depth(s, b, 9, n);
+                    else
+                        (mode == 1 ? k->zpass : k->zfail)(s, b, 1, n);
                     ASSERT_EQ(n.tested, (uint64_t)(x1 - x0));
                 }
                 for (int i = 0; i < 120; i++) {
                     const bool in = i >= 40 + x0 && i < 40 + x1;
-                    ASSERT_EQ(depth[(std::size_t)i], in ? 0.1f : 0.25f) << k->name << " " << x0 << ".." << x1 << " at " << i;
+                    ASSERT_EQ(depth[(std::size_t)i], in ? 0.1f : 0.25f)
+                        << k->name << " " << x0 << ".." << x1 << " at " << i;
                     ASSERT_EQ(ids[(std::size_t)i], in ? 9 : -5) << k->name;
                     /* z-pass: 0.3 is behind the new depth 0.1, no change;
                      * z-fail: +1 there. */
-                    ASSERT_EQ(st[(std::size_t)i], in ? 78 : 77) << k->name << " " << x0 << ".." << x1 << " at " << i;
+                    ASSERT_EQ(st[(std::size_t)i], in ? 78 : 77)
+                        << k->name << " " << x0 << ".." << x1 << " at " << i;
                 }
             }
         }

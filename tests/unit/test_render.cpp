@@ -139,7 +139,8 @@ TEST(Render, ZPassEqualsZFailWhereZPassIsValid) {
             differ += (fa.lights[li].stencil[i] != 0) != (fb.lights[li].stencil[i] != 0);
         }
         EXPECT_EQ(differ, 0u) << "light " << li << " of " << surface_pixels << " pixels";
-        EXPECT_GT(fb.lights[li].drawn_indices, fa.lights[li].drawn_indices) << "z-fail draws the caps too";
+        EXPECT_GT(fb.lights[li].drawn_indices, fa.lights[li].drawn_indices)
+            << "z-fail draws the caps too";
     }
 }
 
@@ -190,7 +191,8 @@ TEST(Render, CameraInsideAVolumeZPassWrongZFailRight) {
         const Frame zf = render_frame(scene, o);
         const Comparison cf = caster.compare(zf, 0, caster.cast(zf, 0, 2));
         EXPECT_EQ(cf.off_boundary_mismatches, 0u) << mode_name(m);
-        EXPECT_GT(cf.shadowed, cf.compared / 2) << "most of what the camera sees is in the slab's shadow";
+        EXPECT_GT(cf.shadowed, cf.compared / 2)
+            << "most of what the camera sees is in the slab's shadow";
         EXPECT_GE(zf.lights[0].zfail_volumes, 1) << mode_name(m);
     }
 }
@@ -199,7 +201,8 @@ TEST(Render, NearPlaneTestIsConservativeAndNotAlwaysTrue) {
     const Scene far_cam = model_on_ground(SV_MODELS_DIR "/character_1344.glb");
     const std::vector<SceneLight> lights = three_lights(far_cam);
     int safe = 0;
-    for (const SceneLight &l : lights) safe += !near_plane_may_be_shadowed(far_cam.camera, 1.25, far_cam.surfaces[0], l);
+    for (const SceneLight &l : lights)
+        safe += !near_plane_may_be_shadowed(far_cam.camera, 1.25, far_cam.surfaces[0], l);
     EXPECT_EQ(safe, 3);
     /* A directional light from behind the camera: the camera's near
      * rectangle is not in the character's shadow; from in front of it,
@@ -232,7 +235,8 @@ TEST(Render, MesaDrawsTheSameStencil) {
             EXPECT_EQ(g[li].other, 0u) << mode_name(m) << " light " << li;
             /* Differences only where the two rasterisers' rounding meets:
              * a tiny fraction of the frame. */
-            EXPECT_LT(g[li].differing, (uint64_t)(kW * kH / 500)) << mode_name(m) << " light " << li;
+            EXPECT_LT(g[li].differing, (uint64_t)(kW * kH / 500))
+                << mode_name(m) << " light " << li;
             EXPECT_EQ(g[li].differing, g[li].on_edge + g[li].depth_tie + g[li].other);
         }
     }
@@ -296,8 +300,10 @@ TEST(Render, ShadedImageIsLitAndShadowed) {
         f.decode_id(f.target.ids[i], s, t);
         if (!scene.surfaces[(std::size_t)s].ground) continue;
         const double y = f.rgb[3 * i] + f.rgb[3 * i + 1] + f.rgb[3 * i + 2];
-        if (f.lights[0].stencil[i]) shadow += y, ns++;
-        else lit += y, nl++;
+        if (f.lights[0].stencil[i])
+            shadow += y, ns++;
+        else
+            lit += y, nl++;
     }
     ASSERT_GT(ns, 0);
     ASSERT_GT(nl, 0);
@@ -335,15 +341,18 @@ TEST(Scene, BadInputIsRefusedClearly) {
 
     Scene scene = model_on_ground(SV_MODELS_DIR "/character_1344.glb");
     SceneLight at_vertex;
-    at_vertex.position = {scene.surfaces[0].prepared.positions[0], scene.surfaces[0].prepared.positions[1],
+    at_vertex.position = {scene.surfaces[0].prepared.positions[0],
+                          scene.surfaces[0].prepared.positions[1],
                           scene.surfaces[0].prepared.positions[2]};
     scene.lights = {at_vertex};
     EXPECT_THROW(validate_scene(scene), SceneError);
     scene.lights.clear();
     scene.camera.target = scene.camera.eye;
     EXPECT_THROW(validate_scene(scene), SceneError);
-    EXPECT_THROW(add_model(scene, SV_MODELS_DIR "/character_1344.glb", {{0, 0, 0}, 0, 0}), SceneError);
-    EXPECT_THROW(add_model(scene, SV_MODELS_DIR "/character_1344.glb", {{NAN, 0, 0}, 0, 1}), SceneError);
+    EXPECT_THROW(add_model(scene, SV_MODELS_DIR "/character_1344.glb", {{0, 0, 0}, 0, 0}),
+                 SceneError);
+    EXPECT_THROW(add_model(scene, SV_MODELS_DIR "/character_1344.glb", {{NAN, 0, 0}, 0, 1}),
+                 SceneError);
 }
 
 TEST(Scene, NotesALightInsideAClosedSurface) {
@@ -353,7 +362,8 @@ TEST(Scene, NotesALightInsideAClosedSurface) {
     scene.lights = {inside};
     validate_scene(scene);
     bool noted = false;
-    for (const std::string &n : scene.notes) noted |= n.find("inside the closed surface") != std::string::npos;
+    for (const std::string &n : scene.notes)
+        noted |= n.find("inside the closed surface") != std::string::npos;
     EXPECT_TRUE(noted);
     /* And the picture is still right: everything outside is in shadow. */
     RenderOptions o;

@@ -111,9 +111,8 @@ private:
     }
     std::string name() {
         const size_t b = i_;
-        while (i_ < s_.size() &&
-               (std::isalnum((unsigned char)s_[i_]) || s_[i_] == '-' || s_[i_] == '_' ||
-                s_[i_] == ':' || s_[i_] == '.')) {
+        while (i_ < s_.size() && (std::isalnum((unsigned char)s_[i_]) || s_[i_] == '-' ||
+                                  s_[i_] == '_' || s_[i_] == ':' || s_[i_] == '.')) {
             i_++;
         }
         if (i_ == b || std::isdigit((unsigned char)s_[b]) || s_[b] == '-') {
@@ -354,8 +353,8 @@ TEST_F(ScalingRun, ExitsZeroWithEveryTableRowChecked) {
             << l;
     }
     EXPECT_EQ(result_.out.find("FAILED"), std::string::npos);
-    for (const char *field : {"\ncpu ", "\ncaches    L1D", "\ntsc ", "\ntimer ", "\nmeshes ",
-                              "\nlights ", "\nruns "}) {
+    for (const char *field :
+         {"\ncpu ", "\ncaches    L1D", "\ntsc ", "\ntimer ", "\nmeshes ", "\nlights ", "\nruns "}) {
         EXPECT_NE(result_.out.find(field), std::string::npos) << "no '" << field << "'";
     }
 }
@@ -431,8 +430,8 @@ TEST_F(ScalingRun, JsonHasEveryRowChecked) {
             svbench::Routine r;
             ASSERT_TRUE(svbench::routine_by_name(rn, &r));
             for (const std::string &v : runnable_variants(r)) {
-                EXPECT_TRUE(seen.count(m.first + " " + rn + " " + v)) << "missing " << m.first
-                                                                      << " " << rn << " " << v;
+                EXPECT_TRUE(seen.count(m.first + " " + rn + " " + v))
+                    << "missing " << m.first << " " << rn << " " << v;
             }
         }
     }
@@ -517,8 +516,8 @@ TEST(ScalingModel, UsersOwnMeshIsMeasured) {
         out << in.rdbuf();
     }
     const Result r = run_shadowvol("bench --scaling --quick --max-triangles 1344 --routine "
-                                   "count_facing --rounds 3 --model '" + mine + "' --json '" + dir +
-                                       "/s.json'",
+                                   "count_facing --rounds 3 --model '" +
+                                       mine + "' --json '" + dir + "/s.json'",
                                    dir);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("my_own_mesh.glb"), std::string::npos) << r.out;
@@ -538,8 +537,8 @@ TEST(ScalingModel, UsersOwnMeshIsMeasured) {
 
 TEST(WorkingSet, VolumeAtThePapersRatios) {
     using svbench::Routine;
-    const svbench::WorkingSet ws =
-        svbench::working_set(Routine::create_shadow_volume, svbench::paper_shape());
+    const svbench::WorkingSet ws = svbench::working_set(Routine::create_shadow_volume,
+                                                        svbench::paper_shape());
     /* 1 facing + 12 indices + 1.5 x 16 SilEdges + 1.5 x 0.2 x 24 + 0.5 x 24 */
     EXPECT_NEAR(ws.total, 56.2, 1e-9);
     EXPECT_EQ(svbench::working_set_formula(ws),
@@ -551,12 +550,10 @@ TEST(WorkingSet, VolumeAtThePapersRatios) {
               "1 facing byte per triangle");
     EXPECT_NEAR(svbench::working_set(Routine::calculate_facing, svbench::paper_shape()).total, 17,
                 1e-9);
-    EXPECT_NEAR(
-        svbench::working_set(Routine::create_sil_triangles, svbench::paper_shape()).total, 32.2,
-        1e-9);
-    EXPECT_NEAR(
-        svbench::working_set(Routine::create_cap_triangles, svbench::paper_shape()).total, 25,
-        1e-9);
+    EXPECT_NEAR(svbench::working_set(Routine::create_sil_triangles, svbench::paper_shape()).total,
+                32.2, 1e-9);
+    EXPECT_NEAR(svbench::working_set(Routine::create_cap_triangles, svbench::paper_shape()).total,
+                25, 1e-9);
     /* Culling turns triangles facing: fewer caps. */
     svbench::MeshShape culled = svbench::paper_shape();
     culled.culled = 0.25;
@@ -583,12 +580,13 @@ TEST(CacheInfo, SysfsSizes) {
 }
 
 TEST(SvgPlot, EscapesTextAndReplacesWhatXmlForbids) {
-    EXPECT_EQ(svplot::xml_escape("a<b & \"c\" 'd'>"), "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;");
-    EXPECT_EQ(svplot::xml_escape("x\x01y"), "x\xef\xbf\xbdy");          /* control character */
-    EXPECT_EQ(svplot::xml_escape("\xff"), "\xef\xbf\xbd");              /* not UTF-8 */
+    EXPECT_EQ(svplot::xml_escape("a<b & \"c\" 'd'>"),
+              "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;");
+    EXPECT_EQ(svplot::xml_escape("x\x01y"), "x\xef\xbf\xbdy");             /* control character */
+    EXPECT_EQ(svplot::xml_escape("\xff"), "\xef\xbf\xbd");                 /* not UTF-8 */
     EXPECT_EQ(svplot::xml_escape("\xc0\xaf"), "\xef\xbf\xbd\xef\xbf\xbd"); /* overlong '/' */
     EXPECT_EQ(svplot::xml_escape("\xed\xa0\x80"),
-              "\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd");                  /* a surrogate */
+              "\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd"); /* a surrogate */
     EXPECT_EQ(svplot::xml_escape("caf\xc3\xa9 \xe2\x86\x92"), "caf\xc3\xa9 \xe2\x86\x92");
 }
 

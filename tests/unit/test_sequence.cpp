@@ -38,7 +38,8 @@ SequenceOptions demo() {
 int find(const Scene &s, const std::string &suffix) {
     for (std::size_t i = 0; i < s.surfaces.size(); i++) {
         const std::string &n = s.surfaces[i].name;
-        if (n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
+        if (n.size() >= suffix.size() &&
+            n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
             return (int)i;
         }
     }
@@ -73,7 +74,8 @@ TEST(Sequence, OnlyTheCharacterMovesAndTimesClamp) {
     EXPECT_EQ(a.surfaces_moved, 1);
     EXPECT_EQ(a.planes_derived, seq.scene().surfaces[(std::size_t)ch].prepared.num_triangles());
     for (std::size_t i = 0; i < rev.size(); i++) {
-        EXPECT_EQ(seq.scene().surfaces[i].revision, rev[i] + ((int)i == ch)) << seq.scene().surfaces[i].name;
+        EXPECT_EQ(seq.scene().surfaces[i].revision, rev[i] + ((int)i == ch))
+            << seq.scene().surfaces[i].name;
     }
     /* The same time again: nothing moves. */
     EXPECT_EQ(seq.set_time(0.25).surfaces_moved, 0);

@@ -43,8 +43,8 @@ void translate(SceneSurface &s, double dx, double dy, double dz) {
     for (int t = 0; t < p.num_triangles(); t++) {
         const int *i = &p.indices[3 * (std::size_t)t];
         p.planes[(std::size_t)t] = triangle_plane(&p.positions[3 * (std::size_t)i[0]],
-                                                 &p.positions[3 * (std::size_t)i[1]],
-                                                 &p.positions[3 * (std::size_t)i[2]]);
+                                                  &p.positions[3 * (std::size_t)i[1]],
+                                                  &p.positions[3 * (std::size_t)i[2]]);
     }
     s.lo = {s.lo.x + dx, s.lo.y + dy, s.lo.z + dz};
     s.hi = {s.hi.x + dx, s.hi.y + dy, s.hi.z + dz};
@@ -208,10 +208,12 @@ TEST(Shortcuts, DirectionalDarkCapDrawsNothing) {
     EXPECT_LT(a.lights[0].drawn_indices, b.lights[0].drawn_indices);
     /* The dropped triangles are ones that drew nothing in the full frame
      * (zero area, or their one point outside the view). */
-    const raster::PassCounters &ca = a.lights[0].stencil_counters, &cb = b.lights[0].stencil_counters;
+    const raster::PassCounters &ca = a.lights[0].stencil_counters,
+                               &cb = b.lights[0].stencil_counters;
     EXPECT_EQ(cb.triangles - ca.triangles,
               (uint64_t)(b.lights[0].drawn_indices - a.lights[0].drawn_indices) / 3);
-    EXPECT_EQ(cb.triangles_degenerate + cb.triangles_outside - ca.triangles_degenerate - ca.triangles_outside,
+    EXPECT_EQ(cb.triangles_degenerate + cb.triangles_outside - ca.triangles_degenerate -
+                  ca.triangles_outside,
               cb.triangles - ca.triangles);
     EXPECT_EQ(ca.pixels_tested, cb.pixels_tested);
 }
@@ -276,12 +278,15 @@ TEST(Shortcuts, SameBytesAtEveryThreadCount) {
         const Frame many = render_frame(scene, o);
         EXPECT_EQ(many.threads, threads);
         EXPECT_EQ(one.rgb, many.rgb) << threads;
-        EXPECT_TRUE(std::equal(one.target.depth.begin(), one.target.depth.end(), many.target.depth.begin()));
-        EXPECT_TRUE(std::equal(one.target.ids.begin(), one.target.ids.end(), many.target.ids.begin()));
+        EXPECT_TRUE(std::equal(one.target.depth.begin(), one.target.depth.end(),
+                               many.target.depth.begin()));
+        EXPECT_TRUE(
+            std::equal(one.target.ids.begin(), one.target.ids.end(), many.target.ids.begin()));
         EXPECT_EQ(one.depth_counters.pixels_written, many.depth_counters.pixels_written);
         EXPECT_EQ(one.depth_counters.triangles_clipped, many.depth_counters.triangles_clipped);
         for (std::size_t li = 0; li < one.lights.size(); li++) {
-            EXPECT_EQ(one.lights[li].stencil, many.lights[li].stencil) << threads << " light " << li;
+            EXPECT_EQ(one.lights[li].stencil, many.lights[li].stencil)
+                << threads << " light " << li;
             EXPECT_EQ(one.lights[li].stencil_counters.pixels_tested,
                       many.lights[li].stencil_counters.pixels_tested);
             EXPECT_EQ(one.lights[li].drawn_indices, many.lights[li].drawn_indices);

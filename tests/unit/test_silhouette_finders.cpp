@@ -60,15 +60,16 @@ struct Finders {
     int check(const std::vector<uint8_t> &facing, const std::string &what) {
         SCOPED_TRACE(what);
         std::vector<DirectedEdge> buf(sv::silhouette_capacity(mesh) + 1);
-        const std::size_t nref = sv::silhouette_from_sil_edges(
-            s->sil_edges.data(), s->num_sil_edges(), facing.data(), buf.data());
+        const std::size_t nref = sv::silhouette_from_sil_edges(s->sil_edges.data(),
+                                                               s->num_sil_edges(), facing.data(),
+                                                               buf.data());
         const std::vector<DirectedEdge> exact = sv::canonical_silhouette(buf.data(), nref);
         const std::vector<DirectedEdge> net = sv::net_silhouette(buf.data(), nref);
         const int need = sv::hash_columns_needed(mesh);
         for (const sv::ConnectivityVariant &v : sv::connectivity_variants()) {
             if (!svtest::in_this_run(v.isa, v.name)) continue;
-            const std::size_t n =
-                v.fn(conn, s->indices.data(), s->num_triangles(), facing.data(), buf.data());
+            const std::size_t n = v.fn(conn, s->indices.data(), s->num_triangles(), facing.data(),
+                                       buf.data());
             EXPECT_EQ(sv::canonical_silhouette(buf.data(), n), exact) << v.name;
         }
         if (run_classic) {
@@ -172,8 +173,8 @@ SV_TIERED_TEST_P(SilhouetteModels, QuadraticAndLinearTablesAgreeWithTheSilEdges)
         for (const sv::PreparedSurface &s : svtest::prepared_surfaces(path)) {
             SCOPED_TRACE(path);
             const int nt = s.num_triangles();
-            const sv::ConnectivityTable lin =
-                sv::connectivity_linear(s.indices.data(), nt, s.num_vertices());
+            const sv::ConnectivityTable lin = sv::connectivity_linear(s.indices.data(), nt,
+                                                                      s.num_vertices());
             if (nt <= kBigSurface) {
                 const sv::ConnectivityTable quad = sv::connectivity_quadratic(s.indices.data(), nt);
                 EXPECT_TRUE(quad.neighbour == lin.neighbour);
@@ -219,19 +220,22 @@ SV_TIERED_TEST(SilhouetteFinders, RandomSoupsWithNonManifoldEdges) {
         for (int t = 0; t < n; t++) {
             for (int c = 0; c < 3; c++) idx.push_back(rng.below((uint32_t)nv));
         }
-        const sv::PreparedSurface s = sv::prepare_surface(pos.data(), (std::size_t)nv, idx.data(), idx.size());
-        const sv::ConnectivityTable quad =
-            sv::connectivity_quadratic(s.indices.data(), s.num_triangles());
+        const sv::PreparedSurface s = sv::prepare_surface(pos.data(), (std::size_t)nv, idx.data(),
+                                                          idx.size());
+        const sv::ConnectivityTable quad = sv::connectivity_quadratic(s.indices.data(),
+                                                                      s.num_triangles());
         Finders f(s, true);
         EXPECT_TRUE(quad.neighbour == f.conn.neighbour) << "n " << n;
         for (int rep = 0; rep < 6; rep++) {
             std::vector<uint8_t> facing((std::size_t)s.num_triangles() + 4, 1);
             const double p = rep == 0 ? 0.0 : rep == 1 ? 1.0 : rng.unit();
             for (int t = 0; t < s.num_triangles(); t++) facing[(std::size_t)t] = rng.chance(p);
-            overflowed += f.check(facing, "soup n " + std::to_string(n) + " rep " + std::to_string(rep));
+            overflowed += f.check(facing,
+                                  "soup n " + std::to_string(n) + " rep " + std::to_string(rep));
             std::vector<DirectedEdge> buf(s.num_sil_edges() + 1);
-            const std::size_t m = sv::silhouette_from_sil_edges(s.sil_edges.data(), s.num_sil_edges(),
-                                                                facing.data(), buf.data());
+            const std::size_t m = sv::silhouette_from_sil_edges(s.sil_edges.data(),
+                                                                s.num_sil_edges(), facing.data(),
+                                                                buf.data());
             differ += sv::net_silhouette(buf.data(), m) != sv::canonical_silhouette(buf.data(), m);
         }
     }
@@ -257,7 +261,8 @@ TEST(SilhouetteFinders, HashOverflowIsReportedNeverWrong) {
     }
     std::vector<uint32_t> idx;
     for (int i = 0; i < k; i++) idx.insert(idx.end(), {0u, 1u + i, 1u + (i + 1) % k});
-    const sv::PreparedSurface s = sv::prepare_surface(pos.data(), pos.size() / 3, idx.data(), idx.size());
+    const sv::PreparedSurface s = sv::prepare_surface(pos.data(), pos.size() / 3, idx.data(),
+                                                      idx.size());
     const sv::SilhouetteMesh m = sv::silhouette_mesh(s);
     EXPECT_EQ(sv::hash_columns_needed(m), k);
     std::vector<uint8_t> alternate((std::size_t)k + 4, 1), single((std::size_t)k + 4, 0);

@@ -61,8 +61,7 @@ TEST(WindingVolume, TetrahedronIsOneInsideZeroOutside) {
     ASSERT_EQ(rev.winding({0.1, 0.1, 0.1}, rng, &w, nullptr), sv::WindingVolume::Status::ok);
     EXPECT_EQ(w, -1);
     // On a face: reported, not guessed.
-    EXPECT_EQ(vol.winding({0.2, 0.2, 0}, rng, &w, nullptr),
-              sv::WindingVolume::Status::on_boundary);
+    EXPECT_EQ(vol.winding({0.2, 0.2, 0}, rng, &w, nullptr), sv::WindingVolume::Status::on_boundary);
 }
 
 TEST(Closure, FindsTheOpenEdgeAndBadIndices) {
@@ -71,8 +70,8 @@ TEST(Closure, FindsTheOpenEdgeAndBadIndices) {
     sv::ClosureResult r = sv::check_closure(tet, 9, 4);
     EXPECT_FALSE(r.closed);
     EXPECT_NE(r.problem.find("open"), std::string::npos) << r.problem;
-    EXPECT_FALSE(sv::check_closure(tet, 12, 3).closed);  // index 6 >= 2 * 3
-    EXPECT_FALSE(sv::check_closure(tet, 11, 4).closed);  // not whole triangles
+    EXPECT_FALSE(sv::check_closure(tet, 12, 3).closed); // index 6 >= 2 * 3
+    EXPECT_FALSE(sv::check_closure(tet, 11, 4).closed); // not whole triangles
     // Two copies of one triangle, opposite windings: closed (degenerate).
     const int pair[] = {0, 2, 4, 4, 2, 0};
     EXPECT_TRUE(sv::check_closure(pair, 6, 3).closed);
@@ -242,8 +241,7 @@ namespace {
 
 bool crosses(const Point3 &p, const Point3 &r, double s_max, const Point3 &a, const Point3 &e1,
              const Point3 &e2) {
-    const Point3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
-                   e1.x * e2.y - e1.y * e2.x};
+    const Point3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
     const double rn = r.x * n.x + r.y * n.y + r.z * n.z;
     if (rn == 0) return false;
     const double s = ((a.x - p.x) * n.x + (a.y - p.y) * n.y + (a.z - p.z) * n.z) / rn;
@@ -286,7 +284,7 @@ TEST(RayTriangles, CandidatesContainEveryCrossing) {
         Point3 r{tr.a[k].x + 0.01 * rnd() - p.x, tr.a[k].y + 0.01 * rnd() - p.y,
                  tr.a[k].z + 0.01 * rnd() - p.z};
         const double len = std::sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
-        r = {r.x / len, r.y / len, r.z / len};  // odd rays: to infinity; even: segments
+        r = {r.x / len, r.y / len, r.z / len}; // odd rays: to infinity; even: segments
         const double s_max = ray % 2 ? HUGE_VAL : len;
         std::vector<char> seen(tr.size(), 0);
         tr.for_each_candidate(p, r, s_max, [&](uint32_t t) {
@@ -302,7 +300,7 @@ TEST(RayTriangles, CandidatesContainEveryCrossing) {
             }
         }
     }
-    EXPECT_GT(crossings, 1000);                   // the rays do cross the mesh
+    EXPECT_GT(crossings, 1000);                            // the rays do cross the mesh
     EXPECT_LT(candidates, 2000 * (int64_t)tr.size() / 10); // and it prunes
 }
 

@@ -36,8 +36,8 @@ int sv_count_facing_c_branchless(const uint8_t *facing, int numTriangles) {
  * (-c) >> 31 is then all ones (c is 1..255, so -c is negative), else 0. The
  * right shift of a negative int is arithmetic on every compiler this
  * project supports (GCC and Clang document it). */
-int sv_count_facing_cull_c_branchless(uint8_t *facing, int numTriangles,
-                                      const int *indices, const uint8_t *cullBits) {
+int sv_count_facing_cull_c_branchless(uint8_t *facing, int numTriangles, const int *indices,
+                                      const uint8_t *cullBits) {
     int i, n = 0;
 
     for (i = 0; i < numTriangles; i++) {

@@ -35,10 +35,9 @@ void sv_calculate_facing_c_ref(const Plane *planes, int numTriangles, const Vec4
         return;
     }
     for (i = 0; i < numTriangles; i++) {
-        facing[i] = planes[i].a * light->x +
-                    planes[i].b * light->y +
-                    planes[i].c * light->z +
-                    planes[i].d * light->w > 0.0f;
+        facing[i] = planes[i].a * light->x + planes[i].b * light->y + planes[i].c * light->z +
+                        planes[i].d * light->w >
+                    0.0f;
     }
     facing[numTriangles] = 1; /* for dangling edges to reference */
 }
@@ -53,17 +52,14 @@ _Static_assert(NUM_LIGHT_PLANES <= sizeof(uint8_t) * 8, "one cull bit per light 
  * is in front of plane i. The first half of appendix B, shared with the
  * SIMD variants (src/core/facing_internal.h) so that all of them decide
  * "completely inside" from the same bits. */
-int sv_cull_front_bits(const Bounds *surfaceBounds,
-                       const Plane lightPlanes[SV_NUM_LIGHT_PLANES]) {
+int sv_cull_front_bits(const Bounds *surfaceBounds, const Plane lightPlanes[SV_NUM_LIGHT_PLANES]) {
     int i, frontBits = 0;
 
     /* cull the triangle surface bounding box */
     for (i = 0; i < NUM_LIGHT_PLANES; i++) {
         const Plane *plane = &lightPlanes[i];
-        float d1 = plane->a * surfaceBounds->center.x +
-                   plane->b * surfaceBounds->center.y +
-                   plane->c * surfaceBounds->center.z +
-                   plane->d;
+        float d1 = plane->a * surfaceBounds->center.x + plane->b * surfaceBounds->center.y +
+                   plane->c * surfaceBounds->center.z + plane->d;
         float d2 = fabsf(plane->a * surfaceBounds->extents.x) +
                    fabsf(plane->b * surfaceBounds->extents.y) +
                    fabsf(plane->c * surfaceBounds->extents.z);
@@ -75,10 +71,8 @@ int sv_cull_front_bits(const Bounds *surfaceBounds,
     return frontBits;
 }
 
-int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
-                                 const Bounds *surfaceBounds,
-                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
-                                 uint8_t *cullBits) {
+int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
+                                 const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits) {
     int i, j, frontBits;
 
     if (numVerts < 0) {
@@ -103,10 +97,9 @@ int sv_calculate_cull_bits_c_ref(const Vec4 *positions, int numVerts,
         }
         const Plane *plane = &lightPlanes[i];
         for (j = 0; j < numVerts; j++) {
-            int bit = plane->a * positions[j].x +
-                      plane->b * positions[j].y +
-                      plane->c * positions[j].z +
-                      plane->d < CULL_EPSILON;
+            int bit = plane->a * positions[j].x + plane->b * positions[j].y +
+                          plane->c * positions[j].z + plane->d <
+                      CULL_EPSILON;
             cullBits[j] |= (uint8_t)(bit << i);
         }
     }

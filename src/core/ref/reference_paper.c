@@ -32,8 +32,8 @@ int sv_count_facing_c_ref(const uint8_t *facing, int numTriangles) {
 }
 
 /* Section 5. */
-int sv_count_facing_cull_c_ref(uint8_t *facing, int numTriangles,
-                               const int *indices, const uint8_t *cullBits) {
+int sv_count_facing_cull_c_ref(uint8_t *facing, int numTriangles, const int *indices,
+                               const uint8_t *cullBits) {
     int i, n;
 
     n = 0;
@@ -94,8 +94,8 @@ int sv_create_sil_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
 }
 
 /* Section 7. */
-int sv_create_cap_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
-                                  const int *indices, int numIndices) {
+int sv_create_cap_triangles_c_ref(int *shadowIndices, const uint8_t *facing, const int *indices,
+                                  int numIndices) {
     int i, j;
     int *si;
 

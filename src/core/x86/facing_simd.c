@@ -96,22 +96,22 @@ int sv_calculate_facing_count_c(const Plane *planes, int numTriangles, const Vec
 /* ---- SSE2 ---------------------------------------------------------------- */
 
 /* Four 16-byte rows -> columns (the classic 4x4 transpose). */
-#define TRANSPOSE4(r0, r1, r2, r3, c0, c1, c2, c3)                                  \
-    do {                                                                            \
-        __m128 t0_ = _mm_unpacklo_ps(r0, r1), t1_ = _mm_unpacklo_ps(r2, r3);        \
-        __m128 t2_ = _mm_unpackhi_ps(r0, r1), t3_ = _mm_unpackhi_ps(r2, r3);        \
-        (c0) = _mm_movelh_ps(t0_, t1_);                                             \
-        (c1) = _mm_movehl_ps(t1_, t0_);                                             \
-        (c2) = _mm_movelh_ps(t2_, t3_);                                             \
-        (c3) = _mm_movehl_ps(t3_, t2_);                                             \
+#define TRANSPOSE4(r0, r1, r2, r3, c0, c1, c2, c3)                                                 \
+    do {                                                                                           \
+        __m128 t0_ = _mm_unpacklo_ps(r0, r1), t1_ = _mm_unpacklo_ps(r2, r3);                       \
+        __m128 t2_ = _mm_unpackhi_ps(r0, r1), t3_ = _mm_unpackhi_ps(r2, r3);                       \
+        (c0) = _mm_movelh_ps(t0_, t1_);                                                            \
+        (c1) = _mm_movehl_ps(t1_, t0_);                                                            \
+        (c2) = _mm_movelh_ps(t2_, t3_);                                                            \
+        (c3) = _mm_movehl_ps(t3_, t2_);                                                            \
     } while (0)
 
 /* Four facing tests of four planes at P: the compare mask, one dword of
  * all-ones or zero per plane. */
 static inline __m128i facing4_sse2(const float *p, __m128 lx, __m128 ly, __m128 lz, __m128 lw) {
     __m128 a, b, c, d;
-    TRANSPOSE4(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8), _mm_loadu_ps(p + 12),
-               a, b, c, d);
+    TRANSPOSE4(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8), _mm_loadu_ps(p + 12), a,
+               b, c, d);
     __m128 s = _mm_add_ps(_mm_mul_ps(a, lx), _mm_mul_ps(b, ly));
     s = _mm_add_ps(s, _mm_mul_ps(c, lz));
     s = _mm_add_ps(s, _mm_mul_ps(d, lw));
@@ -129,7 +129,8 @@ static inline int facing_sse2(const Plane *planes, int numTriangles, const Vec4 
     const __m128 lx = _mm_set1_ps(light->x), ly = _mm_set1_ps(light->y);
     const __m128 lz = _mm_set1_ps(light->z), lw = _mm_set1_ps(light->w);
     const __m128i one = _mm_set1_epi8(1);
-    const float *p = (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
+    const float *p =
+        (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
     int i = 0;
     /* Sixteen triangles per iteration: the four compare masks (dwords of
      * 0 or -1) are packed with signed saturation to words, then to bytes,
@@ -143,8 +144,7 @@ static inline int facing_sse2(const Plane *planes, int numTriangles, const Vec4 
         const __m128i m1 = facing4_sse2(p + 16, lx, ly, lz, lw);
         const __m128i m2 = facing4_sse2(p + 32, lx, ly, lz, lw);
         const __m128i m3 = facing4_sse2(p + 48, lx, ly, lz, lw);
-        const __m128i bytes =
-            _mm_packs_epi16(_mm_packs_epi32(m0, m1), _mm_packs_epi32(m2, m3));
+        const __m128i bytes = _mm_packs_epi16(_mm_packs_epi32(m0, m1), _mm_packs_epi32(m2, m3));
         const __m128i b01 = _mm_and_si128(bytes, one);
         _mm_storeu_si128((__m128i *)(facing + i), b01);
         if (wantCount) sums = _mm_add_epi64(sums, _mm_sad_epu8(b01, _mm_setzero_si128()));
@@ -176,8 +176,7 @@ int sv_calculate_facing_count_sse2(const Plane *planes, int numTriangles, const 
 }
 
 int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bounds *surfaceBounds,
-                                const Plane lightPlanes[SV_NUM_LIGHT_PLANES],
-                                uint8_t *cullBits) {
+                                const Plane lightPlanes[SV_NUM_LIGHT_PLANES], uint8_t *cullBits) {
     if (numVerts < 0) return 0;
     CullSetup cs;
     if (cull_setup(surfaceBounds, lightPlanes, &cs)) return 1;
@@ -210,8 +209,8 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
                 __m128 s = _mm_add_ps(_mm_mul_ps(pa[k], x), _mm_mul_ps(pb[k], y));
                 s = _mm_add_ps(s, _mm_mul_ps(pc[k], z));
                 s = _mm_add_ps(s, pd[k]);
-                bits = _mm_or_si128(
-                    bits, _mm_and_si128(_mm_castps_si128(_mm_cmplt_ps(s, zero)), bit[k]));
+                bits = _mm_or_si128(bits,
+                                    _mm_and_si128(_mm_castps_si128(_mm_cmplt_ps(s, zero)), bit[k]));
             }
             acc[h] = bits;
         }
@@ -240,18 +239,14 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
 /* Rows r0..r3 each hold two structures (low lane: s, high lane: s + 4);
  * an in-lane transpose gives 8 lanes of a, b, c, d in the order
  * (0 1 2 3 | 4 5 6 7). */
-#define TRANSPOSE4x2(r0, r1, r2, r3, c0, c1, c2, c3)                                \
-    do {                                                                            \
-        __m256 t0_ = _mm256_unpacklo_ps(r0, r1), t1_ = _mm256_unpacklo_ps(r2, r3);  \
-        __m256 t2_ = _mm256_unpackhi_ps(r0, r1), t3_ = _mm256_unpackhi_ps(r2, r3);  \
-        (c0) = _mm256_castpd_ps(                                                    \
-            _mm256_unpacklo_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_)));      \
-        (c1) = _mm256_castpd_ps(                                                    \
-            _mm256_unpackhi_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_)));      \
-        (c2) = _mm256_castpd_ps(                                                    \
-            _mm256_unpacklo_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_)));      \
-        (c3) = _mm256_castpd_ps(                                                    \
-            _mm256_unpackhi_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_)));      \
+#define TRANSPOSE4x2(r0, r1, r2, r3, c0, c1, c2, c3)                                               \
+    do {                                                                                           \
+        __m256 t0_ = _mm256_unpacklo_ps(r0, r1), t1_ = _mm256_unpacklo_ps(r2, r3);                 \
+        __m256 t2_ = _mm256_unpackhi_ps(r0, r1), t3_ = _mm256_unpackhi_ps(r2, r3);                 \
+        (c0) = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_))); \
+        (c1) = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(t0_), _mm256_castps_pd(t1_))); \
+        (c2) = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_))); \
+        (c3) = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(t2_), _mm256_castps_pd(t3_))); \
     } while (0)
 
 /* Structures s and s + 4 of the 16-float rows at P, one per lane. */
@@ -262,11 +257,10 @@ SV_TARGET_AVX2 static inline __m256 load_pair(const float *p, int s) {
 
 /* Eight facing tests of the eight planes at P: the compare mask, one
  * dword of all-ones or zero per plane, in the order (0 1 2 3 | 4 5 6 7). */
-SV_TARGET_AVX2 static inline __m256i facing8_avx2(const float *p, __m256 lx, __m256 ly,
-                                                  __m256 lz, __m256 lw) {
+SV_TARGET_AVX2 static inline __m256i facing8_avx2(const float *p, __m256 lx, __m256 ly, __m256 lz,
+                                                  __m256 lw) {
     __m256 a, b, c, d;
-    TRANSPOSE4x2(load_pair(p, 0), load_pair(p, 1), load_pair(p, 2), load_pair(p, 3), a, b, c,
-                 d);
+    TRANSPOSE4x2(load_pair(p, 0), load_pair(p, 1), load_pair(p, 2), load_pair(p, 3), a, b, c, d);
     __m256 s = _mm256_add_ps(_mm256_mul_ps(a, lx), _mm256_mul_ps(b, ly));
     s = _mm256_add_ps(s, _mm256_mul_ps(c, lz));
     s = _mm256_add_ps(s, _mm256_mul_ps(d, lw));
@@ -286,7 +280,8 @@ SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangl
      * 24 | 4, 12, 20, 28), so triangles 4k .. 4k + 3 are in dword order[k];
      * vpermd gathers them in triangle order. */
     const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
-    const float *p = (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
+    const float *p =
+        (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
     int i = 0;
     /* 32 triangles per iteration, packed to bytes in registers (dwords ->
      * words -> bytes, signed saturation keeps 0 and -1), one 32-byte
@@ -296,8 +291,8 @@ SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangl
         const __m256i m1 = facing8_avx2(p + 32, lx, ly, lz, lw);
         const __m256i m2 = facing8_avx2(p + 64, lx, ly, lz, lw);
         const __m256i m3 = facing8_avx2(p + 96, lx, ly, lz, lw);
-        const __m256i bytes =
-            _mm256_packs_epi16(_mm256_packs_epi32(m0, m1), _mm256_packs_epi32(m2, m3));
+        const __m256i bytes = _mm256_packs_epi16(_mm256_packs_epi32(m0, m1),
+                                                 _mm256_packs_epi32(m2, m3));
         const __m256i b01 = _mm256_and_si256(_mm256_permutevar8x32_epi32(bytes, order), one);
         _mm256_storeu_si256((__m256i *)(facing + i), b01);
         if (wantCount) sums = _mm256_add_epi64(sums, _mm256_sad_epu8(b01, _mm256_setzero_si256()));
@@ -318,7 +313,8 @@ SV_TARGET_AVX2 static inline int facing_avx2(const Plane *planes, int numTriangl
         SV_VZEROUPPER_IF_UNOPTIMISED();
         return 0;
     }
-    const __m128i s2 = _mm_add_epi64(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
+    const __m128i s2 = _mm_add_epi64(_mm256_castsi256_si128(sums),
+                                     _mm256_extracti128_si256(sums, 1));
     const int total = count + _mm_cvtsi128_si32(s2) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(s2, s2));
     SV_VZEROUPPER_IF_UNOPTIMISED();
     return total;
@@ -352,8 +348,8 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
     int j = 0;
     for (; j <= numVerts - 8; j += 8, v += 32) {
         __m256 x, y, z, w;
-        TRANSPOSE4x2(load_pair(v, 0), load_pair(v, 1), load_pair(v, 2), load_pair(v, 3), x, y,
-                     z, w);
+        TRANSPOSE4x2(load_pair(v, 0), load_pair(v, 1), load_pair(v, 2), load_pair(v, 3), x, y, z,
+                     w);
         (void)w;
         unsigned long long bytes = 0;
         for (int k = 0; k < cs.nlive; k++) {
@@ -378,12 +374,10 @@ SV_TARGET_AVX2 int sv_calculate_cull_bits_avx2(const Vec4 *positions, int numVer
  * vpermt2ps gathers, from each pair of registers, the a and b (resp. c and
  * d) of 8 structures; level 2: shuf_f32x4 joins the halves. */
 SV_TARGET_AVX512 static inline void transpose16(__m512 r0, __m512 r1, __m512 r2, __m512 r3,
-                                                __m512 *c0, __m512 *c1, __m512 *c2,
-                                                __m512 *c3) {
-    const __m512i ab = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25,
-                                         29);
-    const __m512i cd = _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23,
-                                         27, 31);
+                                                __m512 *c0, __m512 *c1, __m512 *c2, __m512 *c3) {
+    const __m512i ab = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29);
+    const __m512i cd = _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27,
+                                         31);
     const __m512 ab01 = _mm512_permutex2var_ps(r0, ab, r1); /* a0..a7 | b0..b7 */
     const __m512 cd01 = _mm512_permutex2var_ps(r0, cd, r1);
     const __m512 ab23 = _mm512_permutex2var_ps(r2, ab, r3); /* a8..a15 | b8..b15 */
@@ -407,9 +401,8 @@ SV_TARGET_AVX512 static inline void load16(const float *p, int n, __m512 r[4]) {
 
 /* The facing decisions of the 16 planes in R (their 64 floats as loaded):
  * bit t of the mask for plane t; lanes outside LIVE are 0. */
-SV_TARGET_AVX512 static inline __mmask16 facing16_avx512(const __m512 r[4], __mmask16 live,
-                                                         __m512 lx, __m512 ly, __m512 lz,
-                                                         __m512 lw) {
+SV_TARGET_AVX512 static inline __mmask16
+facing16_avx512(const __m512 r[4], __mmask16 live, __m512 lx, __m512 ly, __m512 lz, __m512 lw) {
     __m512 a, b, c, d;
     transpose16(r[0], r[1], r[2], r[3], &a, &b, &c, &d);
     __m512 s = _mm512_add_ps(_mm512_mul_ps(a, lx), _mm512_mul_ps(b, ly));
@@ -435,7 +428,8 @@ SV_TARGET_AVX512 static inline int facing_avx512(const Plane *planes, int numTri
     const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
     const __m128i one = _mm_set1_epi8(1);
     const __m256i one32 = _mm256_set1_epi8(1);
-    const float *p = (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
+    const float *p =
+        (const float *)planes; /* no member access: planes may be NULL when the count is 0 */
     const size_t total = (size_t)numTriangles;
     size_t i = 0;
     /* Whole blocks first, 32 triangles a step: plain loads (no masks to

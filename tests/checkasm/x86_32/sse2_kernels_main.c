@@ -10,21 +10,24 @@
 #include "shadowvol.h"
 
 int sv_count_facing_sse2_paper(const uint8_t *facing, int numTriangles);
-int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles,
-                                    const int *indices, const uint8_t *cullBits);
+int sv_count_facing_cull_sse2_paper(uint8_t *facing, int numTriangles, const int *indices,
+                                    const uint8_t *cullBits);
 int sv_create_sil_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
                                        const SilEdge *silEdges, int numSilEdges);
 int sv_create_cap_triangles_sse2_paper(int *shadowIndices, const uint8_t *facing,
                                        const int *indices, int numIndices);
 
 static uint32_t rng = 12345;
-static uint32_t next(void) { rng = rng * 1664525u + 1013904223u; return rng >> 8; }
+static uint32_t next(void) {
+    rng = rng * 1664525u + 1013904223u;
+    return rng >> 8;
+}
 
 int main(void) {
     enum { MAXT = 3000, NV = 500 };
     static uint8_t facing_a[MAXT + 64] __attribute__((aligned(16)));
     static uint8_t facing_b[MAXT + 64] __attribute__((aligned(16)));
-    static int indices[3 * MAXT] __attribute__((aligned(16)));   /* App. F: movdqa */
+    static int indices[3 * MAXT] __attribute__((aligned(16))); /* App. F: movdqa */
     static SilEdge edges[MAXT];
     static int out_a[6 * MAXT + 8] __attribute__((aligned(16)));
     static int out_b[6 * MAXT + 8] __attribute__((aligned(16)));
@@ -37,10 +40,15 @@ int main(void) {
         int want = sv_count_facing_c_ref(facing_a, n);
         int got = sv_count_facing_sse2_paper(facing_a, n);
         cases++;
-        if (got != want) { printf("count_facing n=%d: %d, want %d\n", n, got, want); fails++; }
+        if (got != want) {
+            printf("count_facing n=%d: %d, want %d\n", n, got, want);
+            fails++;
+        }
 
         for (int i = 0; i < 3 * n; i++) indices[i] = (int)(next() % NV);
-        for (int v = 0; v < NV; v++) cull[v] = (uint8_t)((next() & 3) ? next() & 0x7F : 0); /* bits 0-6: the listing's contract */
+        for (int v = 0; v < NV; v++)
+            cull[v] = (uint8_t)((next() & 3) ? next() & 0x7F
+                                             : 0); /* bits 0-6: the listing's contract */
         memcpy(facing_b, facing_a, sizeof facing_a);
         want = sv_count_facing_cull_c_ref(facing_a, n, indices, cull);
         got = sv_count_facing_cull_sse2_paper(facing_b, n, indices, cull);
