@@ -19,6 +19,17 @@ namespace sv::render {
 
 using namespace detail;
 
+namespace {
+
+/* The cache's key compares bits, not values: any change of a light or its
+ * planes, -0 against +0 included, rebuilds the volume. Vec4 and Plane are
+ * four floats with no padding. */
+template <class T> bool same_bits(const T &a, const T &b) {
+    return std::memcmp(&a, &b, sizeof a) == 0; // NOLINT(bugprone-suspicious-memory-comparison)
+}
+
+} // namespace
+
 /* What a (light, surface) pair keeps from frame to frame. */
 struct VolumeCache::Entry {
     bool valid = false;
@@ -107,16 +118,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
                                fault.drop_dark_cap_always;
         const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
                                 (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u);
-        /* The key compares bits (memcmp), not values: any change of the
-         * light or its planes, -0 against +0 included, rebuilds; Vec4
-         * and Plane are four floats with no padding. */
-        const bool same_light = e.valid &&
-                                std::memcmp(&e.light, &L, sizeof L) ==
-                                    0 && // NOLINT(bugprone-suspicious-memory-comparison)
-                                e.has_planes == has_planes &&
-                                (!has_planes ||
-                                 std::memcmp(e.planes, planes, sizeof planes) ==
-                                     0); // NOLINT(bugprone-suspicious-memory-comparison)
+        const bool same_light = e.valid && same_bits(e.light, L) && e.has_planes == has_planes &&
+                                (!has_planes || same_bits(e.planes, planes));
         const bool reuse = sc.reuse_static && e.valid && same_light && e.variant == variant &&
                            e.facing_variant == facing_v && e.config == config &&
                            (e.revision == s.revision || fault.reuse_ignores_motion);
@@ -254,12 +257,8 @@ std::vector<const uint8_t *> lit_facing(const Scene &scene, const std::vector<Li
         for (int si = 0; si < num_surfaces; si++) {
             const SceneSurface &s = scene.surfaces[(std::size_t)si];
             const VolumeCache::Entry &e = cache.entries()[(std::size_t)li * num_surfaces + si];
-            /* (The cache key's bits, as in volume_pass.) */
             if (light_reaches_box(scene.lights[(std::size_t)li], s.lo, s.hi) && e.valid &&
-                e.revision == s.revision &&
-                std::memcmp(&e.light, &L, sizeof L) ==
-                    0 && // NOLINT(bugprone-suspicious-memory-comparison)
-                !e.facing.empty()) {
+                e.revision == s.revision && same_bits(e.light, L) && !e.facing.empty()) {
                 out[(std::size_t)li * num_surfaces + si] = e.facing.data();
             }
         }
