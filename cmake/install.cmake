@@ -3,6 +3,7 @@
 #   P/include/shadowvol.h, shadowvol_planes.h,  the C API (routines; per-frame planes;
 #     shadowvol_plan.h                          dispatch by measurement)
 #   P/include/shadowvol_mesh.h                  the C++ mesh preparation
+#   P/include/shadowvol_casters.h               shells and the caster rule (issue 27)
 #   P/lib/libshadowvol.a                        static (imported shadowvol::shadowvol)
 #   P/lib/libshadowvol.so.<version>             shared (imported shadowvol::shadowvol_shared)
 #   P/lib/cmake/shadowvol/                      find_package(shadowvol) config
@@ -60,7 +61,8 @@ set(SV_STATIC_LINK_LIBS stdc++ m)
 set_property(TARGET shadowvol APPEND PROPERTY INTERFACE_LINK_LIBRARIES
   $<INSTALL_INTERFACE:stdc++> $<INSTALL_INTERFACE:m>)
 
-install(FILES include/shadowvol.h include/shadowvol_mesh.h include/shadowvol_planes.h
+install(FILES include/shadowvol.h include/shadowvol_mesh.h include/shadowvol_casters.h
+              include/shadowvol_planes.h
               include/shadowvol_plan.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS shadowvol shadowvol_shared EXPORT shadowvolTargets

@@ -7,9 +7,10 @@
 #   tools/pin_bytes.sh --check [BUILD_DIR] [--set bundled|shared|all]
 #
 # What it runs (BUILD_DIR default: build):
-#   - for every model, the bundled models/character_1344.glb and every
+#   - for every model, the bundled models/character_1344.glb, every
 #     *.glb at the top of the shared models folder (../shared/models, or
-#     --models DIR), in z-pass and in z-fail:
+#     --models DIR) and every *.glb of its open/ folder (keys
+#     shared/open/...), in z-pass and in z-fail:
 #       shadowvol render --add MODEL --ground --light point:auto
 #         --light spot:auto --light dir:auto --size 320x256 --mode M --no-gl
 #     and records the sha256 of every PNG it writes (shaded, stencil,
@@ -156,9 +157,12 @@ now="$work/now.txt"
     scene_lines
   fi
   if [ $want_shared = 1 ]; then
-    # The top level only: models/open/ and other subfolders are not pinned here.
     for m in "$models"/*.glb; do
       [ -f "$m" ] && render_lines shared/render "$m"
+    done
+    # The open and non-manifold characters (issue 27), under their own prefix.
+    for m in "$models"/open/*.glb; do
+      [ -f "$m" ] && render_lines shared/open/render "$m"
     done
   fi
 } | sort >"$now"
@@ -194,7 +198,8 @@ if [ "$action" = write ]; then
 #   indices of that volume and their FNV-1a 64 (the JSON's index_lists);
 #   exit the command's exit status.
 # scene/demo_scene/...: shadowvol scene (the build's demo scene), 4 frames at 320x256.
-# shared/...: the same for every *.glb at the top of ../shared/models.
+# shared/...: the same for every *.glb at the top of ../shared/models, and
+# shared/open/... for every *.glb of ../shared/models/open (issue 27).
 # Check: tools/pin_bytes.sh --check [BUILD_DIR] (ctest -R pinned_bytes).
 # Regenerate: tools/pin_bytes.sh --write [BUILD_DIR], in the same commit as
 # the intended change, with the reason in the commit message.

@@ -26,6 +26,7 @@
 #include "cli_args.h"
 #include "model_load.h"
 #include "shadowvol_gltf.h"
+#include "shadowvol_casters.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_verify.h"
 
@@ -255,6 +256,31 @@ int inspect_main(int argc, char **argv) {
         const std::string c = std::to_string(closed) + "/" + std::to_string(m.surfaces.size());
         row("total", std::to_string(prims), "", total, c.c_str());
     }
+    /* Shells and the caster rule each gets under --caster-rule auto
+     * (shadowvol_casters.h): closed shells the paper's volume, the others
+     * the general rule. */
+    std::vector<sv::ShellMap> shell_maps;
+    shell_maps.reserve(m.surfaces.size());
+    for (const Surface &s : m.surfaces) shell_maps.push_back(sv::find_shells(s.prepared));
+    std::fprintf(out, "\nshells (the caster rule under --caster-rule auto):\n");
+    constexpr std::size_t kShellsShown = 12;
+    for (std::size_t i = 0; i < m.surfaces.size(); i++) {
+        const sv::ShellMap &sm = shell_maps[i];
+        std::fprintf(out, "%s: %zu shell%s, %lld closed\n",
+                     shorten(m.surfaces[i].source.name, 60).c_str(), sm.shells.size(),
+                     sm.shells.size() == 1 ? "" : "s", (long long)sm.closed_shells());
+        for (std::size_t k = 0; k < sm.shells.size() && k < kShellsShown; k++) {
+            const sv::Shell &sh = sm.shells[k];
+            std::fprintf(out, "  shell %zu: %lld triangles, %s rule: %s\n", k,
+                         (long long)sh.triangles,
+                         sv::shell_uses_general_rule(sh, sv::CasterRule::automatic) ? "general"
+                                                                                    : "paper's",
+                         sh.reason().c_str());
+        }
+        if (sm.shells.size() > kShellsShown)
+            std::fprintf(out, "  ... %zu more shells (all in --json)\n",
+                         sm.shells.size() - kShellsShown);
+    }
     for (const std::string &n : m.notes) std::fprintf(out, "note: %s\n", n.c_str());
 
     if (json.f) {
@@ -270,7 +296,19 @@ int inspect_main(int argc, char **argv) {
                          s.source.node_index, s.source.primitives,
                          s.source.mirrored ? "true" : "false", s.source.skinned ? "true" : "false");
             json_report(json.f, s.prepared.report);
-            std::fprintf(json.f, "}");
+            std::fprintf(json.f, ", \"shells\": [");
+            const sv::ShellMap &sm = shell_maps[i];
+            for (std::size_t k = 0; k < sm.shells.size(); k++) {
+                const sv::Shell &sh = sm.shells[k];
+                std::fprintf(json.f,
+                             "%s{\"triangles\": %lld, \"closed\": %s, \"rule\": \"%s\", "
+                             "\"reason\": %s}",
+                             k ? ", " : "", (long long)sh.triangles, sh.closed() ? "true" : "false",
+                             sv::shell_uses_general_rule(sh, sv::CasterRule::automatic) ? "general"
+                                                                                        : "closed",
+                             json_string(sh.reason()).c_str());
+            }
+            std::fprintf(json.f, "]}");
         }
         std::fprintf(json.f, "],\n \"total\": ");
         json_report(json.f, total);

@@ -58,6 +58,28 @@ bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil) 
     return true;
 }
 
+bool parse_caster_rule_option(ArgReader &a, sv::CasterRule &rule) {
+    if (!a.is("--caster-rule")) return false;
+    const std::string r = a.value();
+    if (!sv::caster_rule_by_name(r, rule))
+        usage_error("--caster-rule needs auto, closed or general, not '" + quoted(r) + "'");
+    return true;
+}
+
+bool parse_mode_option(ArgReader &a, sv::render::ModeChoice &mode) {
+    if (!a.is("--mode")) return false;
+    const std::string m = a.value();
+    if (m == "zpass")
+        mode = sv::render::ModeChoice::zpass;
+    else if (m == "zfail")
+        mode = sv::render::ModeChoice::zfail;
+    else if (m == "auto")
+        mode = sv::render::ModeChoice::automatic;
+    else
+        usage_error("--mode needs zpass, zfail or auto, not '" + quoted(m) + "'");
+    return true;
+}
+
 RenderArgs parse_render_args(int argc, char **argv, bool &help) {
     RenderArgs r;
     ArgReader a(argc, argv);
@@ -67,20 +89,12 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
             return r;
         } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
                                               r.has_camera) ||
-                   parse_render_pass_option(a, r.stencil)) {
-            /* the options scene shares: --add, --ground, --light, --camera; --stencil */
+                   parse_render_pass_option(a, r.stencil) ||
+                   parse_caster_rule_option(a, r.caster_rule) || parse_mode_option(a, r.mode)) {
+            /* the options scene shares: --add, --ground, --light, --camera; --stencil;
+             * --caster-rule; --mode */
         } else if (a.is("--size")) {
             parse_frame_size(a.value(), r.width, r.height);
-        } else if (a.is("--mode")) {
-            const std::string m = a.value();
-            if (m == "zpass")
-                r.mode = sv::render::ModeChoice::zpass;
-            else if (m == "zfail")
-                r.mode = sv::render::ModeChoice::zfail;
-            else if (m == "auto")
-                r.mode = sv::render::ModeChoice::automatic;
-            else
-                usage_error("--mode needs zpass, zfail or auto, not '" + quoted(m) + "'");
         } else if (a.is("--out")) {
             r.out_dir = a.value();
         } else if (a.is("--json")) {

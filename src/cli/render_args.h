@@ -26,6 +26,7 @@ struct RenderArgs {
     int width = 1280, height = 1024;
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
+    sv::CasterRule caster_rule = sv::CasterRule::automatic;
     std::string out_dir = "shadowvol-render";
     std::string json_path;
     std::string kernels, variant;
@@ -53,6 +54,14 @@ bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &a
  * when A is one of them; false (nothing consumed) otherwise. Throws
  * UsageError for a value no method has. */
 bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil);
+
+/* --caster-rule auto|closed|general (shadowvol_casters.h), shared by
+ * render, scene and bench --scene. As parse_render_pass_option. */
+bool parse_caster_rule_option(ArgReader &a, sv::CasterRule &rule);
+
+/* --mode zpass|zfail|auto, shared by render and scene. As
+ * parse_render_pass_option. */
+bool parse_mode_option(ArgReader &a, sv::render::ModeChoice &mode);
 
 /* "WxH" -> width, height, each 1..kMaxFrameSide and at most kMaxFramePixels
  * in all; UsageError otherwise. */

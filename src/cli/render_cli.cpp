@@ -86,7 +86,8 @@ void render_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
-        "                        [--stencil bf] [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
+        "                        [--stencil bf] [--caster-rule auto|closed|general]\n"
+        "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
         "\n"
         "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
         "rasteriser, and checks every pixel against ray-cast truth and against Mesa's\n"
@@ -115,6 +116,9 @@ void render_usage(FILE *out) {
         "                    rectangle may lie inside it)\n"
         "  --stencil S       how the stencil pass fills: bf (brute force: every volume\n"
         "                    triangle walked per pixel; the reference, and the default)\n"
+        "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
+        "                    non-manifold shells the general rule, exact for any caster),\n"
+        "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
         "  --kernels K       the rasteriser's row kernels: c, avx2, avx512 (default: best)\n"
         "  --variant NAME    the library's volume kernels (default: best)\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -226,6 +230,7 @@ int render_main(int argc, char **argv) {
     opt.height = args.height;
     opt.mode = args.mode;
     opt.stencil = args.stencil;
+    opt.caster_rule = args.caster_rule;
     opt.kernels = kernels;
     opt.variant = variant;
     opt.threads = args.threads; /* 0: every core; the same bytes at any count */
@@ -407,6 +412,7 @@ int render_main(int argc, char **argv) {
         j.key("width"), j.value(frame.width);
         j.key("height"), j.value(frame.height);
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
+        j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
         j.key("stencil"), j.value(frame.stencil_method);
         j.key("row_kernels"), j.value(frame.kernels);
         j.key("volume_kernels"), j.value(frame.variant);

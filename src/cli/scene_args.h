@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "frame.h"
 #include "sequence.h"
 #include "stencil_method.h"
 
@@ -24,6 +25,8 @@ struct SceneArgs {
     int threads = 0;   /* 0: every core */
     bool full = false; /* render with no shortcuts */
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
+    sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
+    sv::CasterRule caster_rule = sv::CasterRule::automatic;
     bool check = true; /* render the full frame beside and compare */
     bool truth = true;
     int width = 640, height = 512;

@@ -183,7 +183,8 @@ void scene_usage(FILE *out) {
         out,
         "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]]] [--add FILE[@...]] [--animation A]\n"
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
-        "                       [--size WxH] [--stencil bf] [--out DIR] [--json FILE]\n"
+        "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf]\n"
+        "                       [--caster-rule auto|closed|general] [--out DIR] [--json FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
         "KHR_lights_punctual lights and its camera, frame by frame. Each frame builds only\n"
@@ -214,6 +215,11 @@ void scene_usage(FILE *out) {
         "  --threads T       worker threads (default: every core); the same bytes at any T\n"
         "  --stencil S       how the stencil pass fills: bf (brute force, the reference;\n"
         "                    the default)\n"
+        "  --mode M          zpass, zfail or auto (default: z-fail only where the near\n"
+        "                    plane may be in shadow)\n"
+        "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
+        "                    non-manifold shells the general rule, exact for any caster),\n"
+        "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
         "  --full            render with no shortcut at all (what the check compares with)\n"
         "  --no-check        skip the full frame beside each frame\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -320,11 +326,14 @@ int scene_main(int argc, char **argv) {
     fast.height = args.height;
     fast.threads = threads;
     fast.stencil = args.stencil;
+    fast.mode = args.mode;
+    fast.caster_rule = args.caster_rule;
     sv::render::VolumeCache cache;
     fast.cache = &cache;
     if (args.full) fast.shortcuts = sv::render::Shortcuts::none();
     sv::render::RenderOptions full = fast;
     full.shortcuts = sv::render::Shortcuts::none();
+    full.mode = sv::render::ModeChoice::automatic; /* with no shortcut: z-fail, both caps */
     full.cache = nullptr;
 
     std::vector<FrameRow> rows;
@@ -528,6 +537,8 @@ int scene_main(int argc, char **argv) {
         j.key("threads"), j.value(threads);
         j.key("shortcuts"), j.value(!args.full);
         j.key("stencil"), j.value(sv::render::stencil_method_name(args.stencil));
+        j.key("mode"), j.value(sv::render::mode_name(args.mode));
+        j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
         j.key("tsc_hz"), j.value(hz);
         j.key("surfaces"), j.value((long long)scene.surfaces.size());
         j.key("triangles"), j.value((long long)scene.triangles());

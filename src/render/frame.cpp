@@ -141,6 +141,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         vin.view_proj = f.view_proj;
         vin.aspect = aspect;
         vin.mode = opt.mode;
+        vin.caster_rule = opt.caster_rule;
         vin.shortcuts = opt.shortcuts;
         vin.faults = opt.faults;
         vin.variant = variant;

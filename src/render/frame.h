@@ -19,6 +19,7 @@
 
 #include "rasterizer.h"
 #include "reach.h"
+#include "shadowvol_casters.h"
 #include "shadowvol_scene.h"
 #include "stencil_method.h"
 
@@ -96,6 +97,7 @@ struct VolumeDecision {
     bool cull_bits = false; /* the culling routine ran (or its result was reused) */
     bool zfail = false;     /* drawn in z-fail with caps */
     bool dark_cap_dropped = false;
+    bool general_rule = false; /* some shell cast under the general rule (shadowvol_casters.h) */
     int64_t indices_built = 0; /* written by the routines this frame (0 when reused) */
     int64_t indices_drawn = 0;
 };
@@ -110,6 +112,9 @@ public:
     /* Sized for NUM_LIGHTS x NUM_SURFACES; cleared when that changes. */
     void fit(int num_lights, int num_surfaces);
     struct Entry;
+    /* Per surface: its caster under the frame's rule (shadowvol_casters.h). */
+    struct CasterEntry;
+    std::vector<CasterEntry> &casters() { return *casters_; }
     ~VolumeCache();
     VolumeCache();
     VolumeCache(const VolumeCache &) = delete;
@@ -119,12 +124,17 @@ public:
 
 private:
     std::vector<Entry> *entries_;
+    std::vector<CasterEntry> *casters_;
 };
 
 struct RenderOptions {
     int width = 1280, height = 1024;
     ModeChoice mode = ModeChoice::automatic;
     StencilMethod stencil = StencilMethod::brute_force; /* how the stencil pass fills */
+    /* Which volume each shell casts: auto (closed shells the paper's
+     * rule, the others the general rule: exact for any caster), closed
+     * (the paper's everywhere) or general (docs/CASTERS.md). */
+    CasterRule caster_rule = CasterRule::automatic;
     Shortcuts shortcuts;
     ShortcutFaults faults;
     /* Worker threads (oneTBB): 0 = every core; 1 = none. The pictures and

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "frame_math.h"
@@ -52,10 +53,24 @@ struct VolumeCache::Entry {
     bool dark_cap_dropped = false;
 };
 
-VolumeCache::VolumeCache() : entries_(new std::vector<Entry>) {}
-VolumeCache::~VolumeCache() { delete entries_; }
+/* What a surface keeps from frame to frame: its shells and the mesh its
+ * volumes are built from (nullptr: the surface itself). */
+struct VolumeCache::CasterEntry {
+    bool valid = false;
+    uint64_t revision = 0;
+    CasterRule rule = CasterRule::automatic;
+    std::shared_ptr<const PreparedSurface> caster;
+};
+
+VolumeCache::VolumeCache()
+    : entries_(new std::vector<Entry>), casters_(new std::vector<CasterEntry>) {}
+VolumeCache::~VolumeCache() {
+    delete entries_;
+    delete casters_;
+}
 void VolumeCache::clear() {
     entries_->clear();
+    casters_->clear();
     lights = surfaces = 0;
 }
 
@@ -65,6 +80,7 @@ void VolumeCache::fit(int num_lights, int num_surfaces) {
     lights = num_lights;
     surfaces = num_surfaces;
     entries_->resize((std::size_t)num_lights * (std::size_t)num_surfaces);
+    casters_->resize((std::size_t)num_surfaces);
 }
 
 uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
@@ -87,17 +103,36 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
         lf.decisions.resize((std::size_t)num_surfaces);
     }
     const uint64_t k_jobs = ticks();
+    /* Each surface's caster under the rule: the surface itself where
+     * every shell keeps the paper's rule (closed shells under auto: no
+     * extra work at all), else the surface with its general shells made
+     * two-sided (shadowvol_casters.h). Kept while the surface stands. */
+    parallel(num_surfaces, [&](int si) {
+        const SceneSurface &s = scene.surfaces[(std::size_t)si];
+        VolumeCache::CasterEntry &c = cache.casters()[(std::size_t)si];
+        if (c.valid && c.revision == s.revision && c.rule == in.caster_rule) return;
+        c.valid = true;
+        c.revision = s.revision;
+        c.rule = in.caster_rule;
+        c.caster = in.caster_rule == CasterRule::closed
+                       ? nullptr
+                       : two_sided_caster(s.prepared, find_shells(s.prepared), in.caster_rule);
+    });
     parallel(num_lights * num_surfaces, [&](int job) {
         const int li = job / num_surfaces, si = job % num_surfaces;
         LightFrame &lf = lights[(std::size_t)li];
         const SceneSurface &s = scene.surfaces[(std::size_t)si];
-        const PreparedSurface &p = s.prepared;
+        const VolumeCache::CasterEntry &caster = cache.casters()[(std::size_t)si];
+        /* The caster's first triangles are the surface's: its facing bytes
+         * serve the lighting pass as the surface's own. */
+        const PreparedSurface &p = caster.caster ? *caster.caster : s.prepared;
         const SceneLight &light = lf.light;
         const Vec4 L = lf.shadow_light;
         VolumeDecision &d = lf.decisions[(std::size_t)si];
         VolumeCache::Entry &e = cache.entries()[(std::size_t)job];
         auto &tk = job_ticks[(std::size_t)job];
         d.surface = si;
+        d.general_rule = caster.caster != nullptr;
         /* 1 and 2: no volume at all. */
         if (sc.light_reach && !light_reaches_box(light, s.lo, s.hi, fault.light_reach_scale)) {
             d.fate = VolumeFate::out_of_reach;
@@ -117,7 +152,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
                                 light.kind == LightKind::directional) ||
                                fault.drop_dark_cap_always;
         const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
-                                (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u);
+                                (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u) |
+                                ((unsigned)in.caster_rule << 4);
         const bool same_light = e.valid && same_bits(e.light, L) && e.has_planes == has_planes &&
                                 (!has_planes || same_bits(e.planes, planes));
         const bool reuse = sc.reuse_static && e.valid && same_light && e.variant == variant &&

@@ -24,6 +24,7 @@ struct VolumePassInputs {
     Mat4d view_proj;
     double aspect = 1; /* the frame's width / height */
     ModeChoice mode = ModeChoice::automatic;
+    CasterRule caster_rule = CasterRule::automatic;
     Shortcuts shortcuts;
     ShortcutFaults faults;
     const sv_variant *variant = nullptr;       /* the volume routines */

@@ -25,6 +25,7 @@ check_model() {
     err "inspect $name: $(cat "$tmp/err")"; return
   fi
   grep -qE '^surface +prims' "$tmp/inspect" || err "inspect $name: no table"
+  grep -q '^shells (the caster rule under --caster-rule auto):' "$tmp/inspect" || err "inspect $name: no shells and caster rules"
   echo "== shadowvol inspect $name"; cat "$tmp/inspect"
   local t0=$SECONDS
   "$sv" verify "$m" --lights "$lights" --points "$points" --seed 7 >"$tmp/verify" 2>"$tmp/err"

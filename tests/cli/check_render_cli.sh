@@ -61,6 +61,8 @@ expect 2 --mode sideways
 expect 2 --stencil sideways
 grep -q -- '--stencil needs bf' "$tmp/err" || err "--stencil sideways: the message does not list the methods: $(cat "$tmp/err")"
 expect 2 --stencil
+expect 2 --caster-rule sideways
+grep -q -- '--caster-rule needs auto, closed or general' "$tmp/err" || err "--caster-rule sideways: the message does not list the rules: $(cat "$tmp/err")"
 expect 2 --light point:nan,1,1
 expect 2 --light point:1,inf,1
 expect 2 --light point:1e39,5,0
@@ -85,6 +87,7 @@ expect 3 --add "$tmp/empty.gltf"
 "$sv" render --help >"$tmp/out" 2>&1 || err "render --help failed"
 grep -q -- '--light spot:' "$tmp/out" || err "render --help does not describe --light"
 grep -q -- '--stencil S' "$tmp/out" || err "render --help does not describe --stencil"
+grep -q -- '--caster-rule R' "$tmp/out" || err "render --help does not describe --caster-rule"
 
 [ $fail -eq 0 ] && echo "PASSED: render CLI"
 exit $fail

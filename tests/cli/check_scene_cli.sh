@@ -27,6 +27,26 @@ if [ "$set" = shared ]; then
     tail -4 "$tmp/out"
     [ $rc -eq 0 ] || err "scene $m exited $rc: $(tail -5 "$tmp/out") $(cat "$tmp/err")"
   done
+  # The open character (issue 27, ../shared/models/open): two frames of each
+  # of its 16 animations under one point light, z-pass and z-fail by turns,
+  # under --caster-rule auto; the paper's rule (closed) must fail it.
+  f="$shared/open/Zombie_Basic.glb"
+  if [ -f "$f" ]; then
+    for a in $(seq 0 15); do
+      mode=zpass; [ $((a % 2)) -eq 1 ] && mode=zfail
+      "$sv" scene "$f" --ground --animation $a --frames 2 --fps 2 --light point:auto --mode $mode \
+          --size "$size" --out "$tmp/zombie$a" >"$tmp/out" 2>"$tmp/err"
+      rc=$?
+      [ $rc -eq 0 ] || err "scene Zombie_Basic --animation $a --mode $mode exited $rc: $(tail -5 "$tmp/out") $(cat "$tmp/err")"
+    done
+    echo "Zombie_Basic: 16 animations, 2 frames each, passed under --caster-rule auto"
+    "$sv" scene "$f" --ground --animation 3 --frames 2 --fps 2 --light point:auto --caster-rule closed \
+        --size "$size" --no-check --out "$tmp/zombie_closed" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 1 ] || err "scene Zombie_Basic --caster-rule closed exited $rc, not 1 (the paper's rule should fail an open character)"
+  else
+    err "missing $f"
+  fi
   exit $fail
 fi
 
@@ -39,6 +59,7 @@ grep -q '^PASSED' "$tmp/out" || err "the demo scene did not print PASSED"
 grep -q '"schema": "shadowvol-scene/1"' "$tmp/demo.json" || err "JSON without its schema"
 grep -q '"passed": true' "$tmp/demo.json" || err "JSON does not say passed"
 grep -q '"stencil": "bf"' "$tmp/demo.json" || err "JSON does not name the stencil method (bf by default)"
+grep -q '"caster_rule": "auto"' "$tmp/demo.json" || err "JSON does not name the caster rule (auto by default)"
 for f in frame_000 frame_003 contact; do
   [ "$(head -c 8 "$tmp/demo/$f.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] \
     || err "demo/$f.png is not a PNG"
@@ -91,6 +112,8 @@ expect 2 --animation ""
 expect 2 --light spot:0,3,0,0,-1,0,50,40
 expect 2 --sideways
 expect 2 --stencil sideways
+expect 2 --caster-rule sideways
+expect 2 --mode sideways
 expect 3 "$tmp/missing.glb"
 expect 3 --animation no-such-walk
 expect 3 --add "$tmp/missing.glb"

@@ -71,19 +71,23 @@ void expect_truth_holds(const Scene &scene, const Frame &f, const std::string &w
     }
 }
 
+/* Every .glb of ../shared/models and of its open/ folder (the open and
+ * non-manifold characters of issue 27). */
 std::vector<std::string> shared_models() {
     std::vector<std::string> out;
-    const std::string dir = svtest::shared_models_dir();
-    DIR *d = opendir(dir.c_str());
-    if (!d) {
-        ADD_FAILURE() << dir << " cannot be read";
-        return out;
+    for (const std::string &dir :
+         {svtest::shared_models_dir(), svtest::shared_models_dir() + "/open"}) {
+        DIR *d = opendir(dir.c_str());
+        if (!d) {
+            ADD_FAILURE() << dir << " cannot be read";
+            continue;
+        }
+        while (dirent *e = readdir(d)) {
+            const std::string n = e->d_name;
+            if (n.size() > 4 && n.substr(n.size() - 4) == ".glb") out.push_back(dir + "/" + n);
+        }
+        closedir(d);
     }
-    while (dirent *e = readdir(d)) {
-        const std::string n = e->d_name;
-        if (n.size() > 4 && n.substr(n.size() - 4) == ".glb") out.push_back(dir + "/" + n);
-    }
-    closedir(d);
     std::sort(out.begin(), out.end());
     return out;
 }

@@ -1,0 +1,82 @@
+/*
+ * shadowvol: shadows right for any caster (issue 27). A prepared surface
+ * splits into connected shells; a shell is CLOSED when every one of its
+ * edges is run by exactly two triangles in opposite directions and it
+ * encloses a positive volume. The paper's volume (the back-facing
+ * triangles, dangling edges completed by the facing[numTriangles] = 1
+ * sentinel) is the exact shadow only of closed shells; every other shell
+ * (open, non-manifold, inconsistently wound, inside out) needs the general
+ * rule, which counts the triangles between a point and the light. The
+ * general rule is built here the cheap way: the shell made two-sided (each
+ * triangle followed, after the surface's own triangles, by its reverse), so
+ * that the paper's routines, unchanged, build the general volume. The
+ * derivation and its limits are in docs/CASTERS.md.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SHADOWVOL_CASTERS_H
+#define SHADOWVOL_CASTERS_H
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shadowvol_mesh.h"
+
+namespace sv {
+
+/* Which volume a shell casts. */
+enum class CasterRule {
+    automatic, /* closed shells the paper's rule, the others the general rule */
+    closed,    /* the paper's rule everywhere (exact only for closed shells) */
+    general,   /* the general rule everywhere (exact for any triangle set) */
+};
+const char *caster_rule_name(CasterRule r);
+/* "auto", "closed" or "general"; false for anything else. */
+bool caster_rule_by_name(const std::string &name, CasterRule &out);
+
+/* One connected shell: the triangles reachable from each other across
+ * shared edges (sharing only a vertex does not connect). */
+struct Shell {
+    int64_t triangles = 0;
+    int64_t boundary_edges = 0;       /* run by one triangle */
+    int64_t same_direction_edges = 0; /* run by two triangles the same way */
+    int64_t non_manifold_edges = 0;   /* run by three or more triangles */
+    double signed_volume = 0;         /* sum of the triangles' tetrahedra to the origin */
+    double volume_magnitude = 0;      /* the same sum of absolute values (its rounding scale) */
+    /* Every edge run twice, in opposite directions, and a volume that is
+     * not negative (an inside-out closed shell counts -1 per layer, which
+     * could cancel another shell's +1 at a pixel). */
+    bool closed() const;
+    /* Why the shell is (not) closed, in words. */
+    std::string reason() const;
+};
+
+struct ShellMap {
+    std::vector<int> triangle_shell; /* per kept triangle of the surface */
+    std::vector<Shell> shells;       /* numbered by their first triangle */
+    int64_t closed_shells() const;
+};
+
+/* The shells of S. O(n log n). */
+ShellMap find_shells(const PreparedSurface &s);
+
+/* Does shell SHELL get the general rule under RULE? */
+bool shell_uses_general_rule(const Shell &shell, CasterRule rule);
+
+/* The surface the volume routines take for S under RULE: nullptr when S
+ * itself is (every shell gets the paper's rule), else S's triangles in
+ * their order (so facing bytes 0 .. n-1 are S's own, for the lighting
+ * pass) followed by the reverse (c, b, a) of every triangle (a, b, c) of
+ * a shell under the general rule, prepared again. The reverse's near cap
+ * is (a, b, c), S's own triangle in its own vertex order, so a lit
+ * triangle and the cap of its dark twin rasterise to the same depths.
+ * The caster's vertices are S's, numbered the same (S's positions are
+ * welded already), so a volume's indices address S's shadow vertices. */
+std::shared_ptr<const PreparedSurface> two_sided_caster(const PreparedSurface &s,
+                                                        const ShellMap &shells, CasterRule rule);
+
+} // namespace sv
+
+#endif /* SHADOWVOL_CASTERS_H */
