@@ -65,6 +65,11 @@ ShellMap find_shells(const PreparedSurface &s);
 /* Does shell SHELL get the general rule under RULE? */
 bool shell_uses_general_rule(const Shell &shell, CasterRule rule);
 
+/* Shell SHELL of S alone: its triangles in their order, prepared again
+ * (S's vertices, numbered the same). What `shadowvol verify` proves the
+ * general rule on, one shell at a time. */
+PreparedSurface shell_surface(const PreparedSurface &s, const ShellMap &shells, int shell);
+
 /* The surface the volume routines take for S under RULE: nullptr when S
  * itself is (every shell gets the paper's rule), else S's triangles in
  * their order (so facing bytes 0 .. n-1 are S's own, for the lighting

@@ -31,6 +31,7 @@
 #include "json_writer.h"
 #include "seed_bench.h"
 #include "sequence.h"
+#include "shadowvol_casters.h"
 
 #ifndef SV_DEMO_SCENE
 #define SV_DEMO_SCENE "models/demo_scene.glb"
@@ -52,6 +53,7 @@ struct Run {
     std::vector<std::vector<uint8_t>> rgb;
     int64_t indices_built = 0;
     uint64_t stencil_pixels = 0;
+    sv::CasterRule rule = sv::CasterRule::automatic; /* set after the braces above */
     double median_ms() const {
         std::vector<double> v = ms;
         std::sort(v.begin(), v.end());
@@ -70,6 +72,7 @@ void play(const sv::SequenceOptions &so, int frames, int width, int height, doub
     o.width = width, o.height = height;
     o.threads = run.threads;
     o.shortcuts = run.shortcuts;
+    o.caster_rule = run.rule;
     o.cache = &cache;
     RenderOptions full = o;
     full.shortcuts = Shortcuts::none();
@@ -161,6 +164,10 @@ int run_scene_bench(const SeedCommand &cmd) {
         runs[1] = {"full", Shortcuts::none(), 1, {}, {}, 0, 0};
         runs[2] = {"shortcuts", Shortcuts{}, cores, {}, {}, 0, 0};
         runs[3] = {"full", Shortcuts::none(), cores, {}, {}, 0, 0};
+        sv::CasterRule rule = sv::CasterRule::automatic;
+        if (!sv::caster_rule_by_name(cmd.casterRule, rule))
+            throw std::runtime_error("--caster-rule " + cmd.casterRule + ": no such rule");
+        for (Run &r : runs) r.rule = rule;
         std::vector<sv::render::FrameDifference> proof;
         for (std::size_t i = 0; i < runs.size(); i++) {
             play(so, frames, width, height, hz, runs[i], i == 0 ? &proof : nullptr);
@@ -214,6 +221,7 @@ int run_scene_bench(const SeedCommand &cmd) {
             a.run.shortcuts = Shortcuts{};
             a.run.shortcuts.*a.flag = false;
             a.run.threads = cores;
+            a.run.rule = rule;
             play(so, frames, width, height, hz, a.run, nullptr);
             bool same = true;
             for (int k = 0; k < frames; k++)
@@ -228,6 +236,37 @@ int run_scene_bench(const SeedCommand &cmd) {
             out,
             "(each row: every shortcut but that one; +ms is what the shortcut saves per frame, "
             "=all: the same pictures as with all)\n\n");
+
+        /* 2b. The caster rule (issue 27, docs/CASTERS.md): the paper's
+         * volume everywhere against auto, where the open surfaces (the
+         * terrain, the ground) take the general rule. The same pictures
+         * here (nothing open stands between a lit point and a light in the
+         * demo), the cost in indices, stencil pixels and time. */
+        std::fprintf(out, "%-22s %10s %12s %14s %8s\n", "caster rule", "ms/frame", "indices",
+                     "stencil px", "=closed");
+        std::vector<Run> rule_runs(2);
+        const sv::CasterRule rules[2] = {sv::CasterRule::closed, sv::CasterRule::automatic};
+        for (int i = 0; i < 2; i++) {
+            Run &r = rule_runs[(std::size_t)i];
+            r.name = sv::caster_rule_name(rules[i]);
+            r.threads = cores;
+            r.rule = rules[i];
+            play(so, frames, width, height, hz, r, nullptr);
+        }
+        for (const Run &r : rule_runs) {
+            const bool same = r.rgb == rule_runs[0].rgb;
+            std::fprintf(out, "%-22s %10.2f %12lld %14llu %8s\n", r.name.c_str(), r.median_ms(),
+                         (long long)r.indices_built / frames,
+                         (unsigned long long)r.stencil_pixels / frames, same ? "yes" : "no");
+        }
+        std::fprintf(out,
+                     "(every shortcut, every core; auto / closed: %.2fx the time, %.2fx the "
+                     "indices, %.2fx the stencil pixels)\n\n",
+                     rule_runs[1].median_ms() / rule_runs[0].median_ms(),
+                     (double)rule_runs[1].indices_built /
+                         (double)std::max<int64_t>(1, rule_runs[0].indices_built),
+                     (double)rule_runs[1].stencil_pixels /
+                         (double)std::max<uint64_t>(1, rule_runs[0].stencil_pixels));
 
         /* 3. The culling decision on both sides. */
         sv::SceneSequence seq(so);
@@ -319,6 +358,20 @@ int run_scene_bench(const SeedCommand &cmd) {
         for (const Run &r : runs) {
             j.begin_object(true);
             j.key("config"), j.value(r.name);
+            j.key("threads"), j.value(r.threads);
+            j.key("median_ms"), j.value(r.median_ms());
+            j.key("indices_per_frame"), j.value((long long)r.indices_built / frames);
+            j.key("stencil_pixels_per_frame"),
+                j.value((unsigned long long)r.stencil_pixels / frames);
+            j.end_object();
+        }
+        j.end_array();
+        j.key("caster_rule"), j.value(cmd.casterRule);
+        j.key("caster_rules");
+        j.begin_array();
+        for (const Run &r : rule_runs) {
+            j.begin_object(true);
+            j.key("rule"), j.value(r.name);
             j.key("threads"), j.value(r.threads);
             j.key("median_ms"), j.value(r.median_ms());
             j.key("indices_per_frame"), j.value((long long)r.indices_built / frames);

@@ -32,9 +32,10 @@ struct SeedCommand {
     bool quick = false;
     std::string json; /* --json FILE: "" none, "-" standard output */
     TimerKind timer = TimerKind::rdtscp;
-    long maxTriangles = 0;    /* --max-triangles: leave out larger meshes (0: none) */
-    uint64_t seed = 1;        /* the lights' jitter */
-    std::string sharedModels; /* the real characters' folder */
+    long maxTriangles = 0;           /* --max-triangles: leave out larger meshes (0: none) */
+    uint64_t seed = 1;               /* the lights' jitter */
+    std::string sharedModels;        /* the real characters' folder */
+    std::string casterRule = "auto"; /* --caster-rule of --scene (shadowvol_casters.h) */
 };
 /* Exit status as bench_main's: 0 done, 1 a row failed its check (or the
  * document could not be written), 2 --json names a file that cannot be

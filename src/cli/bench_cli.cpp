@@ -23,6 +23,7 @@
 #include "output_file.h"
 #include "planes_bench.h"
 #include "scene_bench.h"
+#include "shadowvol_casters.h"
 #include "routines.h"
 #include "compare.h"
 #include "scaling_cli.h"
@@ -189,6 +190,7 @@ struct CliOptions {
     bool backface = false;    /* --backface: seed 001's culling (backface_bench.cpp) */
     bool planes = false;      /* --planes: per-frame planes (planes_bench.cpp) */
     bool scene = false;       /* --scene: the demo scene per frame (scene_bench.cpp) */
+    std::string casterRule;   /* --caster-rule R (with --scene); "" the default, auto */
     std::string plot;         /* --plot FILE (with --scaling) */
     long maxTriangles = 0;    /* --max-triangles N (with --scaling) */
     bool regimeGiven = false; /* options the scaling run has no use for */
@@ -312,6 +314,12 @@ CliOptions parse(int argc, char **argv) {
             c.planes = true;
         } else if (opt == "--scene" && !hasValue) {
             c.scene = true;
+        } else if (opt == "--caster-rule") {
+            c.casterRule = need();
+            sv::CasterRule r;
+            if (!sv::caster_rule_by_name(c.casterRule, r)) {
+                bad("--caster-rule needs auto, closed or general, not '" + c.casterRule + "'");
+            }
         } else if (opt == "--limits" && !hasValue) {
             c.limits = true;
         } else if (opt == "--plot") {
@@ -345,8 +353,10 @@ CliOptions parse(int argc, char **argv) {
             c.targets.silhouette != LightTargets{}.silhouette) {
             bad(mode + " takes --quick, --json, --max-triangles, --seed, --timer and --isa only");
         }
+        if (!c.casterRule.empty() && !c.scene) bad("--caster-rule is an option of --scene");
         return c;
     }
+    if (!c.casterRule.empty()) bad("--caster-rule is an option of --scene");
     if (!c.scaling && !c.plot.empty()) {
         bad("--plot draws the scaling run: add --scaling");
     }
@@ -451,6 +461,7 @@ SeedCommand seed_command(const CliOptions &c) {
     cmd.maxTriangles = c.maxTriangles;
     cmd.seed = c.seed;
     cmd.sharedModels = SV_SHARED_MODELS_DIR;
+    if (!c.casterRule.empty()) cmd.casterRule = c.casterRule;
     return cmd;
 }
 
@@ -588,12 +599,14 @@ void bench_usage(FILE *out) {
         "100,352-triangle grid; every call bit-identical to the C references (docs/PLANES.md).\n"
         "JSON schema shadowvol-planes/1. --quick: the character and a small grid.\n"
         "\n"
-        "Per frame: shadowvol bench --scene [--quick] [--json FILE]\n"
+        "Per frame: shadowvol bench --scene [--quick] [--caster-rule R] [--json FILE]\n"
         "The demo scene's frames (8 at 640x512; --quick 4 at 320x256) with only what each\n"
         "requires and with everything, on 1 thread and every core, as ratios of one run;\n"
         "each shortcut alone switched off; the culling decision timed on both sides for\n"
         "the terrain under a headlight and the character inside the lamp. Every frame\n"
         "checked against its full frame and across thread counts (docs/SCENES.md).\n"
+        "--caster-rule R (auto, closed, general; default auto) for those runs; then the\n"
+        "frames under closed against auto (docs/CASTERS.md): the open terrain's cost.\n"
         "JSON schema shadowvol-scene-bench/1.\n"
         "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"

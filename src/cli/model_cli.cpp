@@ -471,6 +471,8 @@ int verify_main(int argc, char **argv) {
     /* Progress (surface and light) on a terminal only: logs stay clean. */
     const bool progress = isatty(2);
     std::vector<SurfaceVerdict> verdicts;
+    SurfaceVerdict general; /* the general rule's shells, all surfaces */
+    int general_shells = 0;
     std::string failure, undecided;
     std::size_t failed_surface = 0, undecided_surface = 0;
     for (std::size_t si = 0; si < m.surfaces.size() && failure.empty(); si++) {
@@ -520,6 +522,56 @@ int verify_main(int argc, char **argv) {
                      (long long)v.counts.lit, (long long)v.counts.crossing_checked,
                      (long long)v.counts.inside_mesh, (long long)v.counts.skipped, v.seconds);
         verdicts.push_back(v);
+        /* The general rule (issue 27, docs/CASTERS.md), shell by shell:
+         * each shell that auto gives it, made two-sided, through the same
+         * proof. Of a triangle and its reverse exactly one casts, with the
+         * light behind it (+1), so the proof's identity reads "winding
+         * number = the shell's triangles crossed by the segment to the
+         * light": the general rule's count. */
+        const sv::ShellMap shells = sv::find_shells(s.prepared);
+        for (std::size_t k = 0; k < shells.shells.size() && failure.empty(); k++) {
+            if (!sv::shell_uses_general_rule(shells.shells[k], sv::CasterRule::automatic)) continue;
+            const sv::PreparedSurface one = sv::shell_surface(s.prepared, shells, (int)k);
+            const auto caster = sv::two_sided_caster(one, sv::find_shells(one),
+                                                     sv::CasterRule::general);
+            SurfaceVerdict g;
+            const auto g0 = std::chrono::steady_clock::now();
+            for (std::size_t li = 0; li < ls.size() && caster; li++) {
+                const sv::LightResult r =
+                    sv::verify_light(*caster, ls[li], variants, options,
+                                     surface_seed ^ (k + 7) * 0x9E3779B97F4A7C15ull ^ (li + 1));
+                g.lights++;
+                g.volumes += r.variants_checked;
+                g.distinct_volumes += r.distinct_volumes;
+                g.volume_triangles += r.volume_triangles;
+                g.counts.add(r.counts);
+                if (!r.ok) {
+                    failure = "shell " + std::to_string(k) + " (general rule): " + r.failure;
+                    failed_surface = si;
+                    break;
+                }
+                if (r.undecided && undecided.empty()) {
+                    undecided = "shell " + std::to_string(k) + ": " + r.undecided_reason;
+                    undecided_surface = si;
+                }
+            }
+            g.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
+            const std::string label = "  shell " + std::to_string(k) + ", general rule";
+            std::fprintf(
+                out, "%-34s %8lld %6s %6d %7lld %9lld %9lld %9lld %9lld %8lld %7lld %7lld %7.1f\n",
+                label.c_str(), (long long)one.report.triangles, "no", g.lights,
+                (long long)g.volumes,
+                (long long)(g.volume_triangles / std::max<int64_t>(g.distinct_volumes, 1)),
+                (long long)g.counts.points, (long long)g.counts.in_shadow, (long long)g.counts.lit,
+                (long long)g.counts.crossing_checked, (long long)g.counts.inside_mesh,
+                (long long)g.counts.skipped, g.seconds);
+            general_shells++;
+            general.volumes += g.volumes;
+            general.distinct_volumes += g.distinct_volumes;
+            general.counts.add(g.counts);
+            general.seconds += g.seconds;
+        }
     }
     SurfaceVerdict t;
     for (const SurfaceVerdict &v : verdicts) {
@@ -533,6 +585,10 @@ int verify_main(int argc, char **argv) {
         t.counts.add(v.counts);
         t.seconds += v.seconds;
     }
+    t.volumes += general.volumes;
+    t.distinct_volumes += general.distinct_volumes;
+    t.counts.add(general.counts);
+    t.seconds += general.seconds;
     std::fprintf(out,
                  "\n%d lights (%d point, %d of them culled by a light box, %d directional); "
                  "%lld volumes built and checked closed (%lld distinct index lists); %lld "
@@ -546,6 +602,10 @@ int verify_main(int argc, char **argv) {
                  (long long)t.counts.crossing_checked, (long long)t.counts.inside_mesh,
                  (long long)t.counts.skipped, (long long)t.counts.ray_retries,
                  (long long)t.counts.inverted_prisms);
+    std::fprintf(out,
+                 "general rule (two-sided, docs/CASTERS.md): %d open or non-manifold shell%s "
+                 "proved on their own, %lld volumes (in the counts above).\n",
+                 general_shells, general_shells == 1 ? "" : "s", (long long)general.volumes);
     if (!failure.empty()) {
         std::fprintf(out, "FAILED: surface %s: %s\n",
                      m.surfaces[failed_surface].source.name.c_str(), failure.c_str());
@@ -574,9 +634,10 @@ int verify_main(int argc, char **argv) {
             std::fprintf(json.f, "%s%s", i ? ", " : "", json_string(variants[i]->name).c_str());
         }
         std::fprintf(json.f,
-                     "],\n \"passed\": %s, \"verdict\": \"%s\", \"failure\": %s, "
+                     "],\n \"general_rule_shells\": %d, \"passed\": %s, \"verdict\": \"%s\", "
+                     "\"failure\": %s, "
                      "\"undecided\": %s,\n \"surfaces\": [",
-                     failure.empty() && undecided.empty() ? "true" : "false",
+                     general_shells, failure.empty() && undecided.empty() ? "true" : "false",
                      !failure.empty()     ? "failed"
                      : !undecided.empty() ? "undecided"
                                           : "passed",

@@ -163,6 +163,16 @@ bool shell_uses_general_rule(const Shell &shell, CasterRule rule) {
     return true;
 }
 
+PreparedSurface shell_surface(const PreparedSurface &s, const ShellMap &shells, int shell) {
+    std::vector<uint32_t> idx;
+    for (int t = 0; t < s.num_triangles(); t++) {
+        if (shells.triangle_shell[(std::size_t)t] != shell) continue;
+        for (int c = 0; c < 3; c++) idx.push_back((uint32_t)s.indices[3 * (std::size_t)t + c]);
+    }
+    return prepare_surface(s.positions.data(), (std::size_t)s.num_vertices(), idx.data(),
+                           idx.size());
+}
+
 std::shared_ptr<const PreparedSurface> two_sided_caster(const PreparedSurface &s,
                                                         const ShellMap &shells, CasterRule rule) {
     const int nt = s.num_triangles();

@@ -89,6 +89,15 @@ grep -q 'check: 4 of 4 frames equal their full frame, 4 of 4 the same bytes' "$t
 grep -q '^terrain under a headlight .* straddles | cull ' "$tmp/out" || err "the terrain was not culled"
 grep -q '^character inside the lamp .* inside | no cull ' "$tmp/out" || err "the character was culled"
 grep -q '"schema": "shadowvol-scene-bench/1"' "$tmp/bench.json" || err "bench JSON without its schema"
+# The caster rule (issue 27): closed against auto, the same pictures.
+grep -qE '^closed +[0-9.]+ +[0-9]+ +[0-9]+ +yes$' "$tmp/out" || err "bench --scene: no caster-rule row for closed"
+grep -qE '^auto +[0-9.]+ +[0-9]+ +[0-9]+ +yes$' "$tmp/out" \
+  || err "bench --scene: auto's frames differ from closed's, or no row"
+grep -q '"caster_rules"' "$tmp/bench.json" || err "bench JSON without its caster_rules"
+"$sv" bench --scene --caster-rule sideways >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] || err "bench --scene --caster-rule sideways did not exit 2"
+"$sv" bench --caster-rule closed >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] || err "bench --caster-rule without --scene did not exit 2"
 
 # expect STATUS ARGS...: exits STATUS with a message on stderr.
 expect() {
