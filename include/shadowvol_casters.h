@@ -74,13 +74,22 @@ PreparedSurface shell_surface(const PreparedSurface &s, const ShellMap &shells, 
  * itself is (every shell gets the paper's rule), else S's triangles in
  * their order (so facing bytes 0 .. n-1 are S's own, for the lighting
  * pass) followed by the reverse (c, b, a) of every triangle (a, b, c) of
- * a shell under the general rule, prepared again. The reverse's near cap
- * is (a, b, c), S's own triangle in its own vertex order, so a lit
- * triangle and the cap of its dark twin rasterise to the same depths.
- * The caster's vertices are S's, numbered the same (S's positions are
- * welded already), so a volume's indices address S's shadow vertices. */
-std::shared_ptr<const PreparedSurface> two_sided_caster(const PreparedSurface &s,
-                                                        const ShellMap &shells, CasterRule rule);
+ * a shell under the general rule; triangle_source[n + j] names the
+ * triangle reverse j comes from. The reverse's near cap is (a, b, c), S's
+ * own triangle in its own vertex order, so a lit triangle and the cap of
+ * its dark twin rasterise to the same depths. The caster's vertices are
+ * S's, numbered the same (nothing is welded again), so a volume's indices
+ * address S's shadow vertices; its planes are S's, and each reverse's is
+ * its source's negated. */
+std::shared_ptr<PreparedSurface> two_sided_caster(const PreparedSurface &s, const ShellMap &shells,
+                                                  CasterRule rule);
+
+/* Was CASTER built by two_sided_caster from a surface with S's vertex
+ * count and triangles? Then a moved S (the same topology, new positions
+ * and planes: a posed skin) needs only refresh_two_sided_caster. */
+bool two_sided_caster_fits(const PreparedSurface &s, const PreparedSurface &caster);
+/* CASTER's positions and planes from S's (O(n), no sorting). */
+void refresh_two_sided_caster(const PreparedSurface &s, PreparedSurface &caster);
 
 } // namespace sv
 

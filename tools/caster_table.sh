@@ -5,8 +5,14 @@
 # truth (off the shadow boundary / all), indices drawn, stencil pixels
 # tested, and the volume job's TSC ticks per triangle (facing + culling +
 # volume routines, the minimum of REPEATS runs on one thread, both rules
-# in the same run, like for like). The caster's preparation (once per
-# surface revision, kept in the VolumeCache) is not in these ticks.
+# in the same run). The caster's preparation (once per surface revision,
+# kept in the VolumeCache) is not in these ticks. CAVEAT: each render is
+# one cold frame in a fresh process, so the ticks include first-touch page
+# faults of the volume buffers; under auto the caster's preparation has
+# already grown the heap, so closed pays more of them (measured on spot.glb:
+# 680k against 200k volume ticks for the same kernel work). Take the
+# tk/tri column as an upper bound, not a like-for-like kernel ratio: that
+# needs warm repeats inside one process (the next stop's benchmark).
 #
 # usage: tools/caster_table.sh [BUILD_DIR] [--mode zpass|zfail] [--size WxH] [--repeats N] [MODEL...]
 # (default: the bundled character, every *.glb of ../shared/models and of

@@ -173,10 +173,11 @@ PreparedSurface shell_surface(const PreparedSurface &s, const ShellMap &shells, 
                            idx.size());
 }
 
-std::shared_ptr<const PreparedSurface> two_sided_caster(const PreparedSurface &s,
-                                                        const ShellMap &shells, CasterRule rule) {
+std::shared_ptr<PreparedSurface> two_sided_caster(const PreparedSurface &s, const ShellMap &shells,
+                                                  CasterRule rule) {
     const int nt = s.num_triangles();
     std::vector<uint32_t> idx(s.indices.begin(), s.indices.end());
+    std::vector<int> reversed_of; /* the surface's triangle each reverse comes from */
     for (int t = 0; t < nt; t++) {
         const Shell &sh = shells.shells[(std::size_t)shells.triangle_shell[(std::size_t)t]];
         if (!shell_uses_general_rule(sh, rule)) continue;
@@ -185,22 +186,62 @@ std::shared_ptr<const PreparedSurface> two_sided_caster(const PreparedSurface &s
         idx.push_back((uint32_t)s.indices[i + 2]);
         idx.push_back((uint32_t)s.indices[i + 1]);
         idx.push_back((uint32_t)s.indices[i]);
+        reversed_of.push_back(t);
     }
-    if (idx.size() == s.indices.size()) return nullptr;
-    /* prepare_surface pairs an edge's opposite uses in the order of their
+    if (reversed_of.empty()) return nullptr;
+    /* The topology from the indices alone: every vertex at a distinct
+     * stand-in position, so that nothing welds (a posed surface may put
+     * two of its vertices at one point; its numbering must stay). The
+     * positions and planes are the surface's (refresh_two_sided_caster).
+     * prepare_surface pairs an edge's opposite uses in the order of their
      * triangles, so the surface's own triangles pair with each other first
      * and the reverses with the reverses: a triangle meets its own reverse
      * only across an edge nothing else pairs (a boundary edge, the extra
      * uses of a non-manifold one). Pairing every triangle with its own
      * reverse would be exact too, at about three times the quads. */
+    const int nv = s.num_vertices();
+    std::vector<float> stand_in(3 * (std::size_t)nv);
+    for (int v = 0; v < nv; v++) {
+        stand_in[3 * (std::size_t)v] = (float)(v & 0xFFFFFF); /* exact in float */
+        stand_in[3 * (std::size_t)v + 1] = (float)(v >> 24);
+        stand_in[3 * (std::size_t)v + 2] = 0.0f;
+    }
     auto caster = std::make_shared<PreparedSurface>(
-        prepare_surface(s.positions.data(), (std::size_t)s.num_vertices(), idx.data(), idx.size()));
-    /* S's positions are welded and S has no degenerate triangle: the
-     * caster keeps S's vertex numbers and its first n triangles are S's. */
-    if (caster->num_vertices() != s.num_vertices() ||
-        caster->num_triangles() != (int)idx.size() / 3)
+        prepare_surface(stand_in.data(), (std::size_t)nv, idx.data(), idx.size()));
+    if (caster->num_vertices() != nv || caster->num_triangles() != (int)idx.size() / 3)
         throw PrepareError("two_sided_caster: the caster does not keep the surface's vertices");
+    for (std::size_t j = 0; j < reversed_of.size(); j++)
+        caster->triangle_source[(std::size_t)nt + j] = reversed_of[j];
+    refresh_two_sided_caster(s, *caster);
     return caster;
+}
+
+bool two_sided_caster_fits(const PreparedSurface &s, const PreparedSurface &caster) {
+    /* Built from exactly S's triangle count: its triangle n - 1 is its own
+     * source, its triangle n (the first reverse) comes from before n. */
+    const int nt = s.num_triangles();
+    const std::vector<int> &src = caster.triangle_source;
+    return nt > 0 && caster.num_vertices() == s.num_vertices() && caster.num_triangles() > nt &&
+           src[(std::size_t)nt - 1] == nt - 1 && src[(std::size_t)nt] < nt &&
+           std::equal(s.indices.begin(), s.indices.end(), caster.indices.begin());
+}
+
+void refresh_two_sided_caster(const PreparedSurface &s, PreparedSurface &caster) {
+    const int nt = s.num_triangles();
+    caster.positions = s.positions;
+    caster.planes.resize((std::size_t)caster.num_triangles());
+    caster.report.zero_normal_triangles = 0;
+    for (int t = 0; t < caster.num_triangles(); t++) {
+        /* The surface's own planes, bit for bit (the lighting pass reads
+         * the caster's facing bytes as the surface's); a reverse's plane
+         * is its source's negated, so that exactly one of the two faces
+         * the light whenever the light is off their plane. */
+        const Plane &p =
+            s.planes[(std::size_t)(t < nt ? t : caster.triangle_source[(std::size_t)t])];
+        caster.planes[(std::size_t)t] = t < nt ? p : Plane{-p.a, -p.b, -p.c, -p.d};
+        if (p.a == 0.0f && p.b == 0.0f && p.c == 0.0f && p.d == 0.0f)
+            caster.report.zero_normal_triangles++;
+    }
 }
 
 } // namespace sv

@@ -7,6 +7,7 @@
  */
 #include "volume_pass.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <memory>
@@ -59,7 +60,10 @@ struct VolumeCache::CasterEntry {
     bool valid = false;
     uint64_t revision = 0;
     CasterRule rule = CasterRule::automatic;
-    std::shared_ptr<const PreparedSurface> caster;
+    std::shared_ptr<PreparedSurface> caster;
+    /* The surface's triangles when no shell needed the caster (to tell a
+     * moved surface from a new one without sorting again). */
+    std::vector<int> indices;
 };
 
 VolumeCache::VolumeCache()
@@ -111,12 +115,28 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
         const SceneSurface &s = scene.surfaces[(std::size_t)si];
         VolumeCache::CasterEntry &c = cache.casters()[(std::size_t)si];
         if (c.valid && c.revision == s.revision && c.rule == in.caster_rule) return;
+        /* The same triangles moved (a posed skin): the shells and their
+         * rules stay as decided on the first pose (find_shells sorts; a
+         * frame should not); only the positions and planes follow. */
+        const bool same_topology = c.valid && c.rule == in.caster_rule &&
+                                   (c.caster ? two_sided_caster_fits(s.prepared, *c.caster)
+                                             : c.indices.size() == s.prepared.indices.size() &&
+                                                   std::equal(c.indices.begin(), c.indices.end(),
+                                                              s.prepared.indices.begin()));
         c.valid = true;
         c.revision = s.revision;
         c.rule = in.caster_rule;
+        if (same_topology) {
+            if (c.caster) refresh_two_sided_caster(s.prepared, *c.caster);
+            return;
+        }
         c.caster = in.caster_rule == CasterRule::closed
                        ? nullptr
                        : two_sided_caster(s.prepared, find_shells(s.prepared), in.caster_rule);
+        if (c.caster)
+            c.indices.clear();
+        else
+            c.indices.assign(s.prepared.indices.begin(), s.prepared.indices.end());
     });
     parallel(num_lights * num_surfaces, [&](int job) {
         const int li = job / num_surfaces, si = job % num_surfaces;

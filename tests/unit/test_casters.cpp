@@ -227,6 +227,27 @@ TEST(Casters, ShellsOfAClosedBoxAndAnOpenFlap) {
     EXPECT_EQ(c->indices[last + 2], p.indices[last - 3]);
     /* Every use of the doubled caster pairs up: no dangling SilEdge. */
     EXPECT_EQ(c->report.dangling_sil_edges, 0);
+    /* The caster refreshed after the surface moved: its planes follow,
+     * the reverses' negated; a surface with other triangles does not fit. */
+    EXPECT_TRUE(two_sided_caster_fits(p, *c));
+    EXPECT_EQ(c->triangle_source.back(), p.num_triangles() - 1);
+    const Plane &flap = c->planes.back();
+    const Plane &src = p.planes.back();
+    EXPECT_EQ(flap.a, -src.a);
+    EXPECT_EQ(flap.d, -src.d);
+    PreparedSurface moved = p;
+    for (float &f : moved.positions) f += 0.5f;
+    moved.planes[moved.planes.size() - 1].d += 1.0f;
+    PreparedSurface refreshed = *c;
+    refresh_two_sided_caster(moved, refreshed);
+    EXPECT_EQ(refreshed.positions, moved.positions);
+    EXPECT_EQ(refreshed.planes.back().d, -moved.planes.back().d);
+    EXPECT_EQ(refreshed.sil_edges.size(), c->sil_edges.size());
+    Soup more = s;
+    more.tri(more.vertex(5, 0, 0), more.vertex(6, 0, 0), more.vertex(5, 1, 0));
+    const PreparedSurface q = prepare_surface(more.pos.data(), more.pos.size() / 3, more.idx.data(),
+                                              more.idx.size());
+    EXPECT_FALSE(two_sided_caster_fits(q, *c));
     /* general: both shells doubled; closed: none. */
     EXPECT_EQ(two_sided_caster(p, m, CasterRule::general)->num_triangles(), 2 * p.num_triangles());
     EXPECT_FALSE(two_sided_caster(p, m, CasterRule::closed));
