@@ -86,7 +86,7 @@ void render_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
-        "                        [--stencil bf] [--caster-rule auto|closed|general]\n"
+        "                        [--stencil bf|db|hier] [--caster-rule auto|closed|general]\n"
         "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
         "\n"
         "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
@@ -115,7 +115,9 @@ void render_usage(FILE *out) {
         "                    (default: z-fail for a volume only where the camera's near\n"
         "                    rectangle may lie inside it)\n"
         "  --stencil S       how the stencil pass fills: bf (brute force: every volume\n"
-        "                    triangle walked per pixel; the reference, and the default)\n"
+        "                    triangle walked per pixel; the reference, and the default),\n"
+        "                    db (behind per-volume depth bounds) or hier (8x8 tiles\n"
+        "                    classified per volume, seed 004); all leave the same bytes\n"
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"

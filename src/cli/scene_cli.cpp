@@ -183,7 +183,7 @@ void scene_usage(FILE *out) {
         out,
         "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]]] [--add FILE[@...]] [--animation A]\n"
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
-        "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf]\n"
+        "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
         "                       [--caster-rule auto|closed|general] [--out DIR] [--json FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
@@ -214,7 +214,8 @@ void scene_usage(FILE *out) {
         "  --size WxH        default 640x512\n"
         "  --threads T       worker threads (default: every core); the same bytes at any T\n"
         "  --stencil S       how the stencil pass fills: bf (brute force, the reference;\n"
-        "                    the default)\n"
+        "                    the default), db (depth bounds) or hier (tiles, seed 004);\n"
+        "                    the same bytes by each\n"
         "  --mode M          zpass, zfail or auto (default: z-fail only where the near\n"
         "                    plane may be in shadow)\n"
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"

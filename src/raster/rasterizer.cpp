@@ -214,7 +214,7 @@ void Target::clear_stencil() { std::fill(stencil.begin(), stencil.end(), 0); }
 Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
 
 void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
-                       std::vector<SetupTriangle> &out) const {
+                       std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents) const {
     c.triangles++;
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
     int n = 3;
@@ -276,11 +276,20 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
         st.x_last = (int)std::min<int64_t>(width - 1, floor_div(max_x - half, sub));
         st.y_first = (int)std::max<int64_t>(0, floor_div(min_y - half + sub - 1, sub));
         st.y_last = (int)std::min<int64_t>(height - 1, floor_div(max_y - half, sub));
-        if (st.x_first > st.x_last || st.y_first > st.y_last) continue;
+        if (!extents && (st.x_first > st.x_last || st.y_first > st.y_last)) continue;
         st.x0 = dp.x0, st.y0 = dp.y0, st.z0 = dp.z0, st.a = dp.a, st.b = dp.b;
         st.id = id;
         st.front = front;
         out.push_back(st);
+        if (extents) {
+            extents->push_back({min_x,
+                                max_x,
+                                min_y,
+                                max_y,
+                                {t[0].X, t[1].X, t[2].X},
+                                {t[0].Y, t[1].Y, t[2].Y},
+                                !inside_all});
+        }
     }
     if (!drew) c.triangles_degenerate++;
 }
@@ -377,6 +386,23 @@ void Rasterizer::walk_stencil(const SetupTriangle &tri, const float *depth, uint
             }
         } else {
             (mode == StencilMode::zpass ? kernels_->zpass : kernels_->zfail)(span, b, delta, r);
+        }
+    });
+}
+
+void Rasterizer::walk_stencil_bounded(const SetupTriangle &tri, const float *depth,
+                                      uint8_t *stencil, int width, RowBand band, StencilMode mode,
+                                      DepthBounds bounds, RowCounts &r) const {
+    const uint8_t delta = ((mode == StencilMode::zpass) == tri.front) ? 1 : 255;
+    walk_rows(tri, band, [&](const RowSpan &span, int y) {
+        const std::size_t row = (std::size_t)y * (std::size_t)width;
+        const RowBuffers b{const_cast<float *>(depth) + row, nullptr, stencil + row};
+        if (mode == StencilMode::zpass) {
+            c_rows::stencil_bounded_c<false>(span, b, delta, bounds.skip_at_or_below,
+                                             bounds.skip_above, r);
+        } else {
+            c_rows::stencil_bounded_c<true>(span, b, delta, bounds.skip_at_or_below,
+                                            bounds.skip_above, r);
         }
     });
 }

@@ -119,6 +119,23 @@ struct SetupTriangle {
     bool front;
 };
 
+/* A piece as snapped, in 1/256 pixel (y down), before its pixel bounds
+ * are clamped to the frame: what a tile classifier needs to know where the
+ * piece lies between pixel centres too (a sliver that covers no centre of
+ * a tile can still cross the tile's box). */
+struct PieceExtent {
+    int64_t min_x, max_x, min_y, max_y;
+    int64_t X[3], Y[3]; /* its corners */
+    bool from_clipped;  /* a piece of a polygon that clipping cut */
+};
+
+/* Depth bounds for a stencil walk (the depth-bounds test): a pixel whose
+ * stored depth d has !(d > skip_at_or_below) or d > skip_above is not
+ * tested at all. */
+struct DepthBounds {
+    float skip_at_or_below, skip_above;
+};
+
 /* A band of rows [row_begin, row_end) of a target. */
 struct RowBand {
     int row_begin, row_end;
@@ -142,15 +159,22 @@ public:
     /* Set-up of one input triangle: clipping, snapping, edge functions and
      * the depth plane; appends 0 to 6 pieces to OUT (none when it is
      * outside, degenerate or covers no pixel centre's box). Counts the
-     * triangle in C (triangles, clipped, outside, degenerate). */
+     * triangle in C (triangles, clipped, outside, degenerate). With
+     * EXTENTS, pieces that cover no pixel centre are kept too (empty pixel
+     * bounds) and each piece's extent is appended there, one per piece. */
     void setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
-               std::vector<SetupTriangle> &out) const;
+               std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents = nullptr) const;
     /* The rows of T inside BAND: depth pass into T's depth and ids. */
     void walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &r) const;
     /* The rows of TRI inside BAND: stencil pass against DEPTH into
      * STENCIL (both WIDTH pixels per row, with kFrameSlack after them). */
     void walk_stencil(const SetupTriangle &tri, const float *depth, uint8_t *stencil, int width,
                       int height, RowBand band, StencilMode mode, RowCounts &r) const;
+    /* walk_stencil with the depth-bounds test BOUNDS first (the C rows:
+     * the same bits for the pixels it tests). */
+    void walk_stencil_bounded(const SetupTriangle &tri, const float *depth, uint8_t *stencil,
+                              int width, RowBand band, StencilMode mode, DepthBounds bounds,
+                              RowCounts &r) const;
     /* Adds a pass's pixel counts R to C (bytes as the draw_* functions
      * count them). */
     static void add_depth_counts(const RowCounts &r, PassCounters &c);

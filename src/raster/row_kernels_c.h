@@ -60,6 +60,30 @@ inline void stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowC
     n.written += written;
 }
 
+/* stencil_c behind a depth-bounds test on the STORED depth d (as
+ * EXT_depth_bounds_test): pixels with !(d > lo) or d > hi are neither
+ * tested nor counted. */
+template <bool kFail>
+inline void stencil_bounded_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, float lo,
+                              float hi, RowCounts &n) {
+    uint64_t tested = 0, written = 0;
+    int64_t e0 = s.e[0], e1 = s.e[1], e2 = s.e[2];
+    for (int x = s.x_begin; x < s.x_end; x++) {
+        const float d = b.depth[x];
+        if ((e0 | e1 | e2) >= 0 && d > lo && !(d > hi)) {
+            tested++;
+            const bool less = depth_at(s, x) < d;
+            if (less != kFail) {
+                b.stencil[x] = (uint8_t)(b.stencil[x] + delta);
+                written++;
+            }
+        }
+        e0 += s.step[0], e1 += s.step[1], e2 += s.step[2];
+    }
+    n.tested += tested;
+    n.written += written;
+}
+
 } // namespace sv::raster::c_rows
 
 #endif

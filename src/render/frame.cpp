@@ -157,6 +157,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             sin.view_proj = f.view_proj;
             sin.rast = &rast;
             sin.target = &f.target;
+            sin.tile = opt.stencil_tile;
+            sin.faults = opt.stencil_faults;
             StencilPassResult st = stencil_pass(opt.stencil, sin);
             lf.stencil = std::move(st.stencil);
             lf.stencil_counters = st.counters;

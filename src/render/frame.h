@@ -131,6 +131,8 @@ struct RenderOptions {
     int width = 1280, height = 1024;
     ModeChoice mode = ModeChoice::automatic;
     StencilMethod stencil = StencilMethod::brute_force; /* how the stencil pass fills */
+    int stencil_tile = kDefaultStencilTile;             /* hier's tile side: 4, 8, 16, 32 */
+    StencilFaults stencil_faults;                       /* tests only */
     /* Which volume each shell casts: auto (closed shells the paper's
      * rule, the others the general rule: exact for any caster), closed
      * (the paper's everywhere) or general (docs/CASTERS.md). */

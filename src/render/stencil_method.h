@@ -16,7 +16,26 @@ enum class StencilMethod {
     /* "bf", brute force: every volume triangle set up and walked row by
      * row over every pixel it covers (the reference). */
     brute_force,
+    /* "db", depth bounds: brute force behind a per-volume depth-bounds
+     * test (seed 004's DB), bounds from the volume's drawn pieces. */
+    depth_bounds,
+    /* "hier", hierarchical (seed 004, Aila and Akenine-Moeller 2004):
+     * tiles classified per volume against their depth range; only the
+     * tiles a volume's surface crosses are walked per pixel. */
+    hierarchical,
 };
+
+/* Deliberately wrong versions of the hierarchical method's tests, for the
+ * tests that show the equality with brute force catches them (as
+ * ShortcutFaults, frame.h). Never set outside tests. */
+struct StencilFaults {
+    bool tile_box_test_too_tight = false; /* the plane's depth at the tile's centre only */
+    bool sample_outside_tile = false;     /* the tile's sample point in the next tile */
+};
+
+/* The hierarchical method's tile side in pixels (4, 8, 16 or 32). */
+constexpr int kDefaultStencilTile = 8;
+bool valid_stencil_tile(int side);
 
 /* The method's name on the command line and in the JSON report. */
 const char *stencil_method_name(StencilMethod m);

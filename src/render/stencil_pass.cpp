@@ -17,6 +17,8 @@ struct MethodName {
 };
 constexpr MethodName kMethods[] = {
     {StencilMethod::brute_force, "bf"},
+    {StencilMethod::depth_bounds, "db"},
+    {StencilMethod::hierarchical, "hier"},
 };
 
 } // namespace
@@ -44,9 +46,13 @@ std::string stencil_method_names() {
     return s;
 }
 
+bool valid_stencil_tile(int side) { return side == 4 || side == 8 || side == 16 || side == 32; }
+
 StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in) {
     switch (method) {
     case StencilMethod::brute_force: return stencil_pass_brute_force(in);
+    case StencilMethod::depth_bounds: return stencil_pass_depth_bounds(in);
+    case StencilMethod::hierarchical: return stencil_pass_hierarchical(in);
     }
     return stencil_pass_brute_force(in); /* (every method is a case above) */
 }

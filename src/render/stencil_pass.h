@@ -28,6 +28,8 @@ struct StencilPassInputs {
     Mat4d view_proj;
     const raster::Rasterizer *rast = nullptr;
     const raster::Target *target = nullptr; /* its depth, after the depth pass */
+    int tile = kDefaultStencilTile;         /* hierarchical: the tile side */
+    StencilFaults faults;                   /* tests only */
 };
 
 struct StencilPassResult {
@@ -35,6 +37,10 @@ struct StencilPassResult {
     raster::PassCounters counters;
     uint64_t ticks = 0; /* wall TSC ticks */
     double seconds = 0;
+    /* Hierarchical: (tile, volume) pairs classified, and those walked per
+     * pixel (the volume's surface crosses the tile's box); tiles with at
+     * least one such volume. */
+    uint64_t tile_volume_pairs = 0, boundary_pairs = 0, boundary_tiles = 0, tiles = 0;
 };
 
 /* Runs on the calling task arena's threads. */
@@ -42,6 +48,8 @@ StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in
 
 /* The methods (one file each). */
 StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in);
+StencilPassResult stencil_pass_depth_bounds(const StencilPassInputs &in);
+StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in);
 
 } // namespace sv::render
 

@@ -44,6 +44,19 @@ for mode in zpass zfail; do
 done
 [ -s "$tmp/small/stencil.png" ] || err "--out was not used"
 
+# Every stencil method leaves brute force's stencil: the same PNGs, an odd
+# size (edge tiles), 3 threads; the JSON names the method.
+for m in bf db hier; do
+  "$sv" render --add "$models/character_1344.glb@0.5,0,0,90,1.5" --ground --light point:auto \
+      --light dir:0.3,-1,0.2 --size 157x93 --threads 3 --no-gl --stencil $m --out "$tmp/m_$m" \
+      --json "$tmp/m_$m.json" >"$tmp/out" 2>"$tmp/err" || err "--stencil $m exited $?: $(cat "$tmp/err")"
+  grep -q "\"stencil\": \"$m\"" "$tmp/m_$m.json" || err "--stencil $m: the JSON does not name it"
+done
+for m in db hier; do
+  cmp -s "$tmp/m_bf/stencil.png" "$tmp/m_$m/stencil.png" || err "--stencil $m: stencil.png differs from bf's"
+  cmp -s "$tmp/m_bf/shaded.png" "$tmp/m_$m/shaded.png" || err "--stencil $m: shaded.png differs from bf's"
+done
+
 # expect STATUS ARGS...: exits STATUS with a message on stderr.
 expect() {
   local want=$1; shift

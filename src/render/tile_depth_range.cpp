@@ -1,0 +1,43 @@
+/*
+ * Per-tile depth ranges (tile_depth_range.h).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "tile_depth_range.h"
+
+#include <algorithm>
+
+#include "pass_bins.h"
+
+namespace sv::render::detail {
+
+TileGrid tile_depth_ranges(const float *depth, int width, int height, int side) {
+    TileGrid g;
+    g.side = side;
+    g.width = width;
+    g.height = height;
+    g.tiles_x = (width + side - 1) / side;
+    g.tiles_y = (height + side - 1) / side;
+    const std::size_t n = (std::size_t)g.tiles_x * (std::size_t)g.tiles_y;
+    g.z_min.assign(n, 1.0f);
+    g.z_max.assign(n, 0.0f);
+    parallel(g.tiles_y, [&](int ty) {
+        float *lo = g.z_min.data() + (std::size_t)ty * (std::size_t)g.tiles_x;
+        float *hi = g.z_max.data() + (std::size_t)ty * (std::size_t)g.tiles_x;
+        for (int y = g.y0(ty); y < g.y1(ty); y++) {
+            const float *row = depth + (std::size_t)y * (std::size_t)width;
+            for (int tx = 0; tx < g.tiles_x; tx++) {
+                float a = lo[tx], b = hi[tx];
+                for (int x = g.x0(tx); x < g.x1(tx); x++) {
+                    a = std::min(a, row[x]);
+                    b = std::max(b, row[x]);
+                }
+                lo[tx] = a;
+                hi[tx] = b;
+            }
+        }
+    });
+    return g;
+}
+
+} // namespace sv::render::detail

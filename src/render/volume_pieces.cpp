@@ -1,0 +1,186 @@
+/*
+ * The volumes' pieces for the classifying stencil methods
+ * (volume_pieces.h): set-up in chunks of triangles in parallel as the
+ * brute-force method does, then per volume its open edges.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "volume_pieces.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "frame_math.h"
+#include "open_edges.h"
+#include "pass_bins.h"
+
+namespace sv::render::detail {
+namespace {
+
+/* Signed distance of V to clip plane P (>= 0 inside), as the rasteriser's. */
+inline double plane_distance(int p, const raster::ClipVertex &v) {
+    switch (p) {
+    case 0: return v.z + v.w;
+    case 1: return v.x + v.w;
+    case 2: return v.w - v.x;
+    case 3: return v.y + v.w;
+    default: return v.w - v.y;
+    }
+}
+
+/* The part of segment A-B inside the view, in window pixels: 1, or 0 when
+ * none is, or -1 when it cannot be projected (a point at w = 0 left). */
+int visible_segment(const raster::ClipVertex &a, const raster::ClipVertex &b, int width, int height,
+                    VolumePieces::Segment &out) {
+    double t0 = 0, t1 = 1;
+    for (int p = 0; p < 5; p++) {
+        const double da = plane_distance(p, a), db = plane_distance(p, b);
+        if (da < 0 && db < 0) return 0;
+        if (da < 0) t0 = std::max(t0, da / (da - db));
+        if (db < 0) t1 = std::min(t1, da / (da - db));
+    }
+    if (t0 > t1) return 0;
+    auto window = [&](double t, double &x, double &y) {
+        const double cx = a.x + t * (b.x - a.x), cy = a.y + t * (b.y - a.y),
+                     cw = a.w + t * (b.w - a.w);
+        if (!(cw > 0)) return false;
+        x = (cx / cw + 1) * 0.5 * width;
+        y = (1 - cy / cw) * 0.5 * height;
+        return std::isfinite(x) && std::isfinite(y);
+    };
+    return window(t0, out.x0, out.y0) && window(t1, out.x1, out.y1) ? 1 : -1;
+}
+
+} // namespace
+
+VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
+    const Scene &scene = *in.scene;
+    const std::vector<Volume> &volumes = *in.volumes;
+    const raster::Rasterizer &rast = *in.rast;
+    const int width = in.target->width, height = in.target->height;
+    const Vec4 L = in.light;
+    struct Chunk {
+        int volume, first, last;
+    };
+    std::vector<Chunk> chunks;
+    for (int vi = 0; vi < (int)volumes.size(); vi++) {
+        const int n = volumes[(std::size_t)vi].drawn_indices() / 3;
+        for (int t = 0; t < n; t += kSetupChunk)
+            chunks.push_back({vi, t, std::min(n, t + kSetupChunk)});
+    }
+    std::vector<std::vector<raster::ClipVertex>> sv_clip(volumes.size());
+    parallel((int)volumes.size(), [&](int vi) {
+        const Volume &vol = volumes[(std::size_t)vi];
+        const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
+        auto &out = sv_clip[(std::size_t)vi];
+        out.resize(2 * (std::size_t)p.num_vertices());
+        for (int v = 0; v < p.num_vertices(); v++) {
+            out[2 * (std::size_t)v] = (*in.receivers)[(std::size_t)vol.surface][(std::size_t)v];
+            out[2 * (std::size_t)v + 1] = shadow_vertex_to_clip(in.view_proj, p, 2 * v + 1, L);
+        }
+    });
+    /* Per chunk: its pieces, extents, the triangle each came from, and per
+     * triangle whether it drew nothing (skipped by the open-edge count)
+     * and whether the near plane cut it. */
+    struct ChunkOut {
+        std::vector<raster::SetupTriangle> pieces;
+        std::vector<raster::PieceExtent> extents;
+        std::vector<int> triangle;
+        raster::PassCounters counters;
+    };
+    std::vector<ChunkOut> co(chunks.size());
+    std::vector<std::vector<uint8_t>> degenerate(volumes.size()), near_cut(volumes.size());
+    for (std::size_t vi = 0; vi < volumes.size(); vi++) {
+        degenerate[vi].assign((std::size_t)volumes[vi].drawn_indices() / 3, 0);
+        near_cut[vi].assign((std::size_t)volumes[vi].drawn_indices() / 3, 0);
+    }
+    parallel((int)chunks.size(), [&](int c) {
+        const Chunk &ch = chunks[(std::size_t)c];
+        const Volume &vol = volumes[(std::size_t)ch.volume];
+        const auto &cv = sv_clip[(std::size_t)ch.volume];
+        ChunkOut &o = co[(std::size_t)c];
+        for (int t = ch.first; t < ch.last; t++) {
+            const raster::ClipVertex v[3] = {cv[(std::size_t)vol.indices[3 * (std::size_t)t]],
+                                             cv[(std::size_t)vol.indices[3 * (std::size_t)t + 1]],
+                                             cv[(std::size_t)vol.indices[3 * (std::size_t)t + 2]]};
+            const uint64_t degenerate_before = o.counters.triangles_degenerate;
+            rast.setup(v, width, height, 0, o.counters, o.pieces, &o.extents);
+            o.triangle.resize(o.pieces.size(), t);
+            degenerate[(std::size_t)ch.volume][(std::size_t)t] = o.counters.triangles_degenerate !=
+                                                                 degenerate_before;
+            /* Cut by the near plane (or wholly behind it): the cut edge is
+             * an edge of no other triangle. */
+            near_cut[(std::size_t)ch.volume][(std::size_t)t] = v[0].z + v[0].w < 0 ||
+                                                               v[1].z + v[1].w < 0 ||
+                                                               v[2].z + v[2].w < 0;
+        }
+    });
+    std::vector<std::vector<uint8_t>> open_tri(volumes.size());
+    parallel((int)volumes.size(), [&](int vi) {
+        const Volume &vol = volumes[(std::size_t)vi];
+        open_tri[(std::size_t)vi] = triangles_on_open_edges(vol.indices.data(),
+                                                            vol.drawn_indices() / 3,
+                                                            degenerate[(std::size_t)vi], L.w == 0);
+    });
+    VolumePieces vp;
+    vp.closed.assign(volumes.size(), 1);
+    vp.zfail.resize(volumes.size());
+    vp.first_piece.assign(volumes.size() + 1, 0);
+    for (std::size_t vi = 0; vi < volumes.size(); vi++) {
+        vp.zfail[vi] = volumes[vi].zfail;
+        const auto &o = open_tri[vi];
+        const auto &nc = near_cut[vi];
+        for (std::size_t t = 0; t < o.size(); t++) {
+            if ((o[t] || nc[t]) && !degenerate[vi][t]) vp.closed[vi] = 0;
+        }
+    }
+    std::size_t total = 0;
+    for (const ChunkOut &o : co) total += o.pieces.size();
+    vp.pieces.reserve(total);
+    vp.extents.reserve(total);
+    vp.volume.reserve(total);
+    vp.delta.reserve(total);
+    vp.open.reserve(total);
+    for (std::size_t c = 0; c < chunks.size(); c++) {
+        const int vi = chunks[c].volume;
+        const ChunkOut &o = co[c];
+        vp.counters.add(o.counters);
+        const bool zfail = volumes[(std::size_t)vi].zfail;
+        for (std::size_t i = 0; i < o.pieces.size(); i++) {
+            const std::size_t t = (std::size_t)o.triangle[i];
+            vp.pieces.push_back(o.pieces[i]);
+            vp.extents.push_back(o.extents[i]);
+            vp.volume.push_back(vi);
+            /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
+            vp.delta.push_back((!zfail == o.pieces[i].front) ? 1 : 255);
+            const uint8_t edges = open_tri[(std::size_t)vi][t];
+            bool whole = near_cut[(std::size_t)vi][t] != 0;
+            const std::size_t first_segment = vp.open_segments.size();
+            if (edges && !whole) {
+                const int *ix = &volumes[(std::size_t)vi].indices[3 * t];
+                const auto &cv = sv_clip[(std::size_t)vi];
+                for (int k = 0; k < 3; k++) {
+                    if (!(edges >> k & 1)) continue;
+                    VolumePieces::Segment seg{};
+                    const int seen = visible_segment(cv[(std::size_t)ix[k]],
+                                                     cv[(std::size_t)ix[(k + 1) % 3]], width,
+                                                     height, seg);
+                    if (seen > 0) vp.open_segments.push_back(seg);
+                    whole |= seen < 0;
+                }
+            }
+            if (whole) vp.open_segments.resize(first_segment);
+            vp.open.push_back(whole ? kOpenWhole : edges ? 1 : 0);
+            vp.open_first.push_back((int)first_segment);
+        }
+        vp.first_piece[(std::size_t)vi + 1] = (int)vp.pieces.size();
+    }
+    vp.open_first.push_back((int)vp.open_segments.size());
+    /* Volumes with no chunk (no drawn triangle) start where the last ended. */
+    for (std::size_t vi = 1; vi <= volumes.size(); vi++) {
+        vp.first_piece[vi] = std::max(vp.first_piece[vi], vp.first_piece[vi - 1]);
+    }
+    return vp;
+}
+
+} // namespace sv::render::detail

@@ -1,0 +1,55 @@
+/*
+ * A light's shadow volumes set up once for the stencil methods that skip
+ * pixels (depth bounds, hierarchical; internal to src/render): every drawn
+ * triangle through the paper's vertex program and the rasteriser's set-up,
+ * each piece kept with its extent, its volume, its stencil delta and
+ * whether the argument that lets a method skip pixels holds for it
+ * (open_edges.h; a triangle cut by the near plane is open there too).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_RENDER_VOLUME_PIECES_H
+#define SV_RENDER_VOLUME_PIECES_H
+
+#include <cstdint>
+#include <vector>
+
+#include "rasterizer.h"
+#include "stencil_pass.h"
+
+namespace sv::render::detail {
+
+constexpr uint8_t kOpenWhole = 8;
+
+struct VolumePieces {
+    /* In submission order (volume by volume, triangle by triangle), pieces
+     * that cover no pixel centre included (empty pixel bounds). */
+    std::vector<raster::SetupTriangle> pieces;
+    std::vector<raster::PieceExtent> extents;
+    std::vector<int> volume;    /* per piece */
+    std::vector<uint8_t> delta; /* per piece: 1 or 255, by facing and the volume's mode */
+    /* Per piece: 1 where its triangle has an open edge, kOpenWhole where
+     * the near plane cut it (the cut is open, and no edge of another
+     * piece); the open edges' visible parts, as the view clips them, in
+     * window pixels (y down): segments [open_first[q], open_first[q + 1]). */
+    std::vector<uint8_t> open;
+    struct Segment {
+        double x0, y0, x1, y1;
+    };
+    std::vector<Segment> open_segments;
+    std::vector<int> open_first;  /* per piece, and one past the last */
+    std::vector<int> first_piece; /* per volume, and one past the last */
+    /* Per volume: no open piece, so its count is 0 wherever every one of
+     * its triangles passes the depth test, and wherever every one fails. */
+    std::vector<uint8_t> closed;
+    std::vector<uint8_t> zfail;    /* per volume */
+    raster::PassCounters counters; /* triangle counts of the set-up */
+};
+
+/* Runs on the calling task arena's threads; the same result at every
+ * thread count. */
+VolumePieces set_up_volume_pieces(const StencilPassInputs &in);
+
+} // namespace sv::render::detail
+
+#endif
