@@ -18,8 +18,10 @@
 #include <vector>
 
 #include "frame.h"
+#include "row_kernels.h"
 #include "sequence.h"
 #include "shadowvol_scene.h"
+#include "test_conditions.h"
 
 namespace {
 
@@ -175,6 +177,27 @@ TEST(StencilMethods, EqualBruteForceOnEveryTestSceneModeAndThreadCount) {
                         EXPECT_EQ(f.rgb, bf.rgb) << c.name << ", " << stencil_method_name(m);
                     }
                 }
+            }
+        }
+    }
+}
+
+/* Every row kernel this entry's tier runs: hier's per-pixel stage and db
+ * leave bf's bytes through it too. */
+SV_TIERED_TEST(StencilMethods, EqualBruteForceWithEveryRowKernel) {
+    int n = 0;
+    const raster::RowKernels *const *all = raster::row_kernels_all(&n);
+    const Scene scene = crowd();
+    for (int i = 0; i < n; i++) {
+        if (!svtest::in_this_run(all[i]->isa, all[i]->name)) continue;
+        for (ModeChoice mode : {ModeChoice::zpass, ModeChoice::zfail}) {
+            RenderOptions o = options(kOddW, kOddH, StencilMethod::brute_force, mode, 2);
+            o.kernels = all[i];
+            const Frame bf = render_frame(scene, o);
+            for (StencilMethod m : {StencilMethod::depth_bounds, StencilMethod::hierarchical}) {
+                o.stencil = m;
+                EXPECT_EQ(stencil_differences(render_frame(scene, o), bf), 0u)
+                    << all[i]->name << ", " << stencil_method_name(m) << ", " << mode_name(mode);
             }
         }
     }
