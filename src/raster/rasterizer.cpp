@@ -246,6 +246,14 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
         c.triangles_degenerate++;
         return;
     }
+    double off_plane = 0;
+    if (extents && n > 3) {
+        for (int i = 0; i < n; i++) {
+            const double z = dp.z0 + dp.a * ((double)s[i].X / kSubPixel - dp.x0) +
+                             dp.b * ((double)s[i].Y / kSubPixel - dp.y0);
+            off_plane = std::max(off_plane, std::fabs(z - s[i].z));
+        }
+    }
     bool drew = false;
     for (int k = 1; k + 1 < n; k++) {
         Snapped t[3] = {s[0], s[k], s[k + 1]};
@@ -288,7 +296,7 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
                                 max_y,
                                 {t[0].X, t[1].X, t[2].X},
                                 {t[0].Y, t[1].Y, t[2].Y},
-                                !inside_all});
+                                off_plane});
         }
     }
     if (!drew) c.triangles_degenerate++;

@@ -126,7 +126,10 @@ struct SetupTriangle {
 struct PieceExtent {
     int64_t min_x, max_x, min_y, max_y;
     int64_t X[3], Y[3]; /* its corners */
-    bool from_clipped;  /* a piece of a polygon that clipping cut */
+    /* How far the polygon's corners (snapped, with their own depth) are
+     * from the depth plane (chosen through three of them): 0 for a
+     * triangle, a little for a clipped polygon. */
+    double off_plane;
 };
 
 /* Depth bounds for a stencil walk (the depth-bounds test): a pixel whose

@@ -125,8 +125,24 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                 for (int tx = first; tx <= last; tx++) {
                     uint8_t &st = state[(std::size_t)tx];
                     if (st == 2) continue;
-                    const TileSide side = classify_piece(p, e, grid, tx, ty, in.faults);
+                    TileSide side = classify_piece(p, e, grid, tx, ty, in.faults);
                     if (side == TileSide::misses) continue;
+                    if (vp.receiver[(std::size_t)q]) {
+                        /* The receiver's own triangle fails its test at every
+                         * pixel it covers: "behind" in every tile, except
+                         * where an edge at which the receiver's triangles do
+                         * not close meets the tile (the other pieces on it may
+                         * count otherwise). */
+                        side = TileSide::behind;
+                        for (int si = vp.cap_first[(std::size_t)q];
+                             si < vp.cap_first[(std::size_t)q + 1]; si++) {
+                            const VolumePieces::Segment &sg = vp.cap_segments[(std::size_t)si];
+                            if (segment_meets_tile(sg.x0, sg.y0, sg.x1, sg.y1, grid, tx, ty)) {
+                                side = TileSide::crosses;
+                                break;
+                            }
+                        }
+                    }
                     if (st == 0) {
                         st = 1;
                         count[(std::size_t)tx] = 0;

@@ -50,11 +50,11 @@ inline int64_t edge_at_corner(const raster::SetupTriangle &p, int e, int x, int 
  * inside square [X0, X1] x [Y0, Y1] (pixels): the piece clipped to the
  * square (widened by 1/1024 pixel, so rounding cannot lose a point that is
  * inside), the plane at the clipped corners; MARGIN for the plane's
- * rounding and, for a piece of a clipped polygon, for its corners off the
- * plane (the plane goes through the polygon's three corners of largest
- * area; the others, snapped to 1/256 pixel like them, are off it by less
- * than (|a| + |b|) / 128 in depth: the polygon lies within twice that
- * triangle). False: nothing of the piece is inside the square. */
+ * rounding and for the corners of a clipped polygon that are off its plane
+ * (PieceExtent::off_plane): where two pieces share a point their planes
+ * differ by no more than the two margins, so one cannot be "front" while
+ * the other is "behind" there. False: nothing of the piece is inside the
+ * square. */
 inline bool depth_range_in_square(const raster::SetupTriangle &p, const raster::PieceExtent &ext,
                                   int X0, int X1, int Y0, int Y1, double &lo, double &hi,
                                   double &margin) {
@@ -103,7 +103,7 @@ inline bool depth_range_in_square(const raster::SetupTriangle &p, const raster::
     /* The clipped corners are rounded too: up to the widening's worth of
      * slope, plus the plane's own rounding. */
     margin = 1e-9 + 1e-12 * size + (std::fabs(p.a) + std::fabs(p.b)) * kWiden;
-    if (ext.from_clipped) margin += (std::fabs(p.a) + std::fabs(p.b)) / 32;
+    margin += ext.off_plane * (1 + 1e-9);
     return true;
 }
 

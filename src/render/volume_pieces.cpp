@@ -31,9 +31,9 @@ inline double plane_distance(int p, const raster::ClipVertex &v) {
 /* The part of segment A-B inside the view, in window pixels: 1, or 0 when
  * none is, or -1 when it cannot be projected (a point at w = 0 left). */
 int visible_segment(const raster::ClipVertex &a, const raster::ClipVertex &b, int width, int height,
-                    VolumePieces::Segment &out) {
+                    VolumePieces::Segment &out, int first_plane = 0) {
     double t0 = 0, t1 = 1;
-    for (int p = 0; p < 5; p++) {
+    for (int p = first_plane; p < 5; p++) {
         const double da = plane_distance(p, a), db = plane_distance(p, b);
         if (da < 0 && db < 0) return 0;
         if (da < 0) t0 = std::max(t0, da / (da - db));
@@ -122,6 +122,47 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
                                                             vol.drawn_indices() / 3,
                                                             degenerate[(std::size_t)vi], L.w == 0);
     });
+    /* Per volume: which triangles are the receiver's own, and the edges
+     * where those do not close among themselves. */
+    std::vector<std::vector<uint8_t>> on_receiver(volumes.size()), cap_open(volumes.size());
+    parallel((int)volumes.size(), [&](int vi) {
+        const Volume &vol = volumes[(std::size_t)vi];
+        const int n = vol.drawn_indices() / 3;
+        auto &mine = on_receiver[(std::size_t)vi];
+        mine.assign((std::size_t)n, 0);
+        const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
+        if (p.num_vertices() >= (1 << 21)) return; /* the keys below hold 21 bits each */
+        auto key = [](int a, int b, int c) {
+            int v[3] = {a, b, c};
+            std::sort(v, v + 3);
+            return ((uint64_t)v[0] << 42) | ((uint64_t)v[1] << 21) | (uint64_t)v[2];
+        };
+        std::vector<uint64_t> wanted;
+        for (int t = 0; t < n; t++) {
+            const int *i = &vol.indices[3 * (std::size_t)t];
+            if (((i[0] | i[1] | i[2]) & 1) == 0)
+                wanted.push_back(key(i[0] / 2, i[1] / 2, i[2] / 2));
+        }
+        if (wanted.empty()) return;
+        std::sort(wanted.begin(), wanted.end());
+        std::vector<uint64_t> found;
+        for (int t = 0; t < p.num_triangles(); t++) {
+            const int *i = &p.indices[3 * (std::size_t)t];
+            const uint64_t k = key(i[0], i[1], i[2]);
+            if (std::binary_search(wanted.begin(), wanted.end(), k)) found.push_back(k);
+        }
+        std::sort(found.begin(), found.end());
+        std::vector<uint8_t> skip((std::size_t)n, 1);
+        for (int t = 0; t < n; t++) {
+            const int *i = &vol.indices[3 * (std::size_t)t];
+            if (((i[0] | i[1] | i[2]) & 1) != 0) continue;
+            mine[(std::size_t)t] = std::binary_search(found.begin(), found.end(),
+                                                      key(i[0] / 2, i[1] / 2, i[2] / 2));
+            skip[(std::size_t)t] = !mine[(std::size_t)t] ||
+                                   degenerate[(std::size_t)vi][(std::size_t)t];
+        }
+        cap_open[(std::size_t)vi] = triangles_on_open_edges(vol.indices.data(), n, skip, false);
+    });
     VolumePieces vp;
     vp.closed.assign(volumes.size(), 1);
     vp.zfail.resize(volumes.size());
@@ -154,28 +195,77 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
             /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
             vp.delta.push_back((!zfail == o.pieces[i].front) ? 1 : 255);
             const uint8_t edges = open_tri[(std::size_t)vi][t];
-            bool whole = near_cut[(std::size_t)vi][t] != 0;
+            const bool cut = near_cut[(std::size_t)vi][t] != 0;
+            bool whole = false;
             const std::size_t first_segment = vp.open_segments.size();
-            if (edges && !whole) {
+            const int *ix = &volumes[(std::size_t)vi].indices[3 * t];
+            const auto &cv = sv_clip[(std::size_t)vi];
+            for (int k = 0; k < 3 && edges && !whole; k++) {
+                if (!(edges >> k & 1)) continue;
+                VolumePieces::Segment seg{};
+                const int seen = visible_segment(cv[(std::size_t)ix[k]],
+                                                 cv[(std::size_t)ix[(k + 1) % 3]], width, height,
+                                                 seg);
+                if (seen > 0) vp.open_segments.push_back(seg);
+                whole |= seen < 0;
+            }
+            if (cut && !whole) {
+                /* The near plane's cut: from the point where one edge leaves
+                 * the near side to where another comes back (each computed
+                 * from its inside end, as the clipper does). */
+                raster::ClipVertex ends[2];
+                int found = 0;
+                for (int k = 0; k < 3; k++) {
+                    const raster::ClipVertex &a = cv[(std::size_t)ix[k]],
+                                             &b = cv[(std::size_t)ix[(k + 1) % 3]];
+                    const double da = a.z + a.w, db = b.z + b.w;
+                    if ((da >= 0) == (db >= 0) || found == 2) continue;
+                    const raster::ClipVertex &in = da >= 0 ? a : b, &out = da >= 0 ? b : a;
+                    const double di = da >= 0 ? da : db, dout = da >= 0 ? db : da;
+                    const double u = di / (di - dout);
+                    ends[found++] = {in.x + u * (out.x - in.x), in.y + u * (out.y - in.y),
+                                     in.z + u * (out.z - in.z), in.w + u * (out.w - in.w)};
+                }
+                /* On the near plane by construction: only the side planes
+                 * clip it (a test against the near plane could lose it to
+                 * rounding). */
+                VolumePieces::Segment seg{};
+                const int seen = found == 2
+                                     ? visible_segment(ends[0], ends[1], width, height, seg, 1)
+                                     : -1;
+                if (seen > 0) vp.open_segments.push_back(seg);
+                whole |= seen < 0;
+            }
+            if (whole) vp.open_segments.resize(first_segment);
+            const bool any_open = edges || cut;
+            vp.open.push_back(whole ? kOpenWhole : any_open ? 1 : 0);
+            vp.open_first.push_back((int)first_segment);
+            /* The receiver's own triangle, and its edges that are open among
+             * the receiver's triangles (not projectable: not used). */
+            bool receiver = on_receiver[(std::size_t)vi][t] != 0;
+            const std::size_t first_cap = vp.cap_segments.size();
+            const uint8_t cap_edges = receiver ? cap_open[(std::size_t)vi][t] : 0;
+            if (cap_edges) {
                 const int *ix = &volumes[(std::size_t)vi].indices[3 * t];
                 const auto &cv = sv_clip[(std::size_t)vi];
                 for (int k = 0; k < 3; k++) {
-                    if (!(edges >> k & 1)) continue;
+                    if (!(cap_edges >> k & 1)) continue;
                     VolumePieces::Segment seg{};
                     const int seen = visible_segment(cv[(std::size_t)ix[k]],
                                                      cv[(std::size_t)ix[(k + 1) % 3]], width,
                                                      height, seg);
-                    if (seen > 0) vp.open_segments.push_back(seg);
-                    whole |= seen < 0;
+                    if (seen > 0) vp.cap_segments.push_back(seg);
+                    receiver &= seen >= 0;
                 }
             }
-            if (whole) vp.open_segments.resize(first_segment);
-            vp.open.push_back(whole ? kOpenWhole : edges ? 1 : 0);
-            vp.open_first.push_back((int)first_segment);
+            if (!receiver) vp.cap_segments.resize(first_cap);
+            vp.receiver.push_back(receiver ? 1 : 0);
+            vp.cap_first.push_back((int)first_cap);
         }
         vp.first_piece[(std::size_t)vi + 1] = (int)vp.pieces.size();
     }
     vp.open_first.push_back((int)vp.open_segments.size());
+    vp.cap_first.push_back((int)vp.cap_segments.size());
     /* Volumes with no chunk (no drawn triangle) start where the last ended. */
     for (std::size_t vi = 1; vi <= volumes.size(); vi++) {
         vp.first_piece[vi] = std::max(vp.first_piece[vi], vp.first_piece[vi - 1]);

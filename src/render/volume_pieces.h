@@ -28,16 +28,27 @@ struct VolumePieces {
     std::vector<raster::PieceExtent> extents;
     std::vector<int> volume;    /* per piece */
     std::vector<uint8_t> delta; /* per piece: 1 or 255, by facing and the volume's mode */
-    /* Per piece: 1 where its triangle has an open edge, kOpenWhole where
-     * the near plane cut it (the cut is open, and no edge of another
-     * piece); the open edges' visible parts, as the view clips them, in
-     * window pixels (y down): segments [open_first[q], open_first[q + 1]). */
+    /* Per piece: 1 where its triangle has an open edge or the near plane
+     * cut it (the cut is an edge of no other piece); the visible parts of
+     * those edges, as the view clips them, in window pixels (y down):
+     * segments [open_first[q], open_first[q + 1]); kOpenWhole where one
+     * could not be projected (the piece as a whole is open). */
     std::vector<uint8_t> open;
     struct Segment {
         double x0, y0, x1, y1;
     };
     std::vector<Segment> open_segments;
-    std::vector<int> open_first;  /* per piece, and one past the last */
+    std::vector<int> open_first; /* per piece, and one past the last */
+    /* Per piece: 1 where its triangle is one of the receiver's own (a cap
+     * made of the surface's vertices, as the depth pass drew them, in
+     * either order): its depth at every pixel it covers is the depth pass's
+     * value for that triangle, never less than the stored depth, so its
+     * test fails there, whatever the tile. The edges where such triangles
+     * do not close among themselves (the silhouette, where the sides
+     * attach), visible parts as above: [cap_first[q], cap_first[q + 1]). */
+    std::vector<uint8_t> receiver;
+    std::vector<Segment> cap_segments;
+    std::vector<int> cap_first;
     std::vector<int> first_piece; /* per volume, and one past the last */
     /* Per volume: no open piece, so its count is 0 wherever every one of
      * its triangles passes the depth test, and wherever every one fails. */
