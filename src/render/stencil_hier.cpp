@@ -26,10 +26,22 @@
  * the box), so where the edge is closed (its directed uses cancel, as in
  * the closed z-fail volume) the changes cancel: the fill rule decides a
  * shared edge's pixels the same way for every triangle on it. Open edges
- * (the ends of a z-pass volume's silhouette quads, a culled volume's cut,
- * the near plane's cut) are the exception: a counting piece on one makes
- * the tile a boundary tile. z-pass is appendix A mirrored: the count of a
- * point of the box is the deltas of the pieces in front of it.
+ * (open_edges.h: the ends of a z-pass volume's silhouette quads, a culled
+ * volume's cut, the neighbours of a triangle that snapped to nothing) are
+ * the exception: a counting piece whose open edge's visible part, or whose
+ * cut by the near plane, meets the tile makes it a boundary tile. A cap
+ * that is the receiver's own triangle fails its test at every pixel it
+ * covers (volume_pieces.h), so it counts as behind every box, except where
+ * the edges at which those caps do not close among themselves meet it. The
+ * test against the box clips the piece to the tile's square, so a sliver
+ * crossing the tile between pixel centres is seen too (volume_pieces.h
+ * keeps pieces that cover no centre).
+ *
+ * The z-pass form (derived here; the seed gives z-fail): a pixel's z-pass
+ * count is the deltas of the pieces in front of it, so in a tile no piece
+ * crosses, the pieces in front of the whole box count (front faces +1,
+ * back faces -1) where they cover the sample point, and those behind it
+ * do not; z-fail counts those behind (back +1, front -1), appendix A.
  *
  * The seed's S_min/S_max, FS buffer and PSV cache are its bandwidth model
  * (Table 1, counted later); the stencil the frame keeps is the per-pixel

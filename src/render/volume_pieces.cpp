@@ -220,11 +220,12 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
                                              &b = cv[(std::size_t)ix[(k + 1) % 3]];
                     const double da = a.z + a.w, db = b.z + b.w;
                     if ((da >= 0) == (db >= 0) || found == 2) continue;
-                    const raster::ClipVertex &in = da >= 0 ? a : b, &out = da >= 0 ? b : a;
-                    const double di = da >= 0 ? da : db, dout = da >= 0 ? db : da;
-                    const double u = di / (di - dout);
-                    ends[found++] = {in.x + u * (out.x - in.x), in.y + u * (out.y - in.y),
-                                     in.z + u * (out.z - in.z), in.w + u * (out.w - in.w)};
+                    /* From the end on the near plane's inside. */
+                    const raster::ClipVertex &p0 = da >= 0 ? a : b, &p1 = da >= 0 ? b : a;
+                    const double d0 = da >= 0 ? da : db, d1 = da >= 0 ? db : da;
+                    const double u = d0 / (d0 - d1);
+                    ends[found++] = {p0.x + u * (p1.x - p0.x), p0.y + u * (p1.y - p0.y),
+                                     p0.z + u * (p1.z - p0.z), p0.w + u * (p1.w - p0.w)};
                 }
                 /* On the near plane by construction: only the side planes
                  * clip it (a test against the near plane could lose it to
@@ -246,8 +247,6 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
             const std::size_t first_cap = vp.cap_segments.size();
             const uint8_t cap_edges = receiver ? cap_open[(std::size_t)vi][t] : 0;
             if (cap_edges) {
-                const int *ix = &volumes[(std::size_t)vi].indices[3 * t];
-                const auto &cv = sv_clip[(std::size_t)vi];
                 for (int k = 0; k < 3; k++) {
                     if (!(cap_edges >> k & 1)) continue;
                     VolumePieces::Segment seg{};
