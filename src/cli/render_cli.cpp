@@ -380,6 +380,10 @@ int render_main(int argc, char **argv) {
             (unsigned long long)truths[li].rays, truths[li].seconds,
             truths[li].seconds > 0 ? (double)truths[li].rays / truths[li].seconds / 1e6 : 0.0,
             threads);
+        std::printf("truth %zu: the depth pass's visible triangle checked by the truth's own "
+                    "camera rays at %llu pixels: %llu disagree\n",
+                    li, (unsigned long long)cmps[li].primary_checked,
+                    (unsigned long long)cmps[li].primary_disagreements);
         for (int p : cmps[li].first_off_boundary) {
             std::printf("  off-boundary mismatch at pixel (%d, %d): stencil %u\n", p % frame.width,
                         p / frame.width, frame.lights[li].stencil[(std::size_t)p]);
@@ -481,6 +485,9 @@ int render_main(int argc, char **argv) {
                 j.key("mismatches"), j.value((unsigned long long)c.mismatches);
                 j.key("off_boundary_mismatches"),
                     j.value((unsigned long long)c.off_boundary_mismatches);
+                j.key("primary_rays_checked"), j.value((unsigned long long)c.primary_checked);
+                j.key("primary_rays_disagree"),
+                    j.value((unsigned long long)c.primary_disagreements);
                 j.key("rays"), j.value((unsigned long long)truths[li].rays);
                 j.key("seconds"), j.value(truths[li].seconds);
                 j.end_object();

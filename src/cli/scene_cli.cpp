@@ -64,6 +64,7 @@ struct FrameRow {
     sv::render::FrameDifference diff;
     bool truth_done = false;
     uint64_t truth_mismatches = 0, truth_off_boundary = 0, truth_compared = 0;
+    uint64_t primary_checked = 0, primary_disagreements = 0; /* truth.h */
 };
 
 void sum_lights(const sv::render::Frame &f, FrameRow &r) {
@@ -388,6 +389,8 @@ int scene_main(int argc, char **argv) {
                 r.truth_mismatches += c.mismatches;
                 r.truth_off_boundary += c.off_boundary_mismatches;
                 r.truth_compared += c.compared;
+                r.primary_checked += c.primary_checked;
+                r.primary_disagreements += c.primary_disagreements;
                 if (c.off_boundary_mismatches) {
                     const int p = c.first_off_boundary.empty() ? -1 : c.first_off_boundary[0];
                     char line[200];
@@ -469,6 +472,7 @@ int scene_main(int argc, char **argv) {
         full_ticks += r.ticks_full_frame, full_pixels += r.full_stencil_pixels,
             full_indices += r.full_indices;
         t.truth_mismatches += r.truth_mismatches, t.truth_off_boundary += r.truth_off_boundary;
+        t.primary_checked += r.primary_checked, t.primary_disagreements += r.primary_disagreements;
     }
     const double n = (double)rows.size();
     std::printf("\ntotals over %zu frame(s): %d volumes built, %d reused, %d skipped out of reach, "
@@ -520,8 +524,12 @@ int scene_main(int argc, char **argv) {
         }
     }
     if (args.truth) {
-        std::printf("truth: %llu mismatches, all on shadow boundaries: %s\n",
-                    (unsigned long long)t.truth_mismatches, t.truth_off_boundary ? "NO" : "yes");
+        std::printf("truth: %llu mismatches, all on shadow boundaries: %s; the depth pass's "
+                    "visible triangle checked by the truth's own camera rays at %llu pixels: %llu "
+                    "disagree\n",
+                    (unsigned long long)t.truth_mismatches, t.truth_off_boundary ? "NO" : "yes",
+                    (unsigned long long)t.primary_checked,
+                    (unsigned long long)t.primary_disagreements);
         for (const std::string &n : truth_notes) std::printf("  %s\n", n.c_str());
     }
     std::printf("images: %s/frame_000.png .. frame_%03zu.png, contact.png\n", args.out_dir.c_str(),

@@ -6,6 +6,7 @@
 #include "truth.h"
 #include "volume_faces.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -80,6 +81,46 @@ TruthCaster::TruthCaster(const Scene &scene) : scene_(scene), rays_(new SceneRay
 }
 
 TruthCaster::~TruthCaster() = default;
+
+namespace {
+
+/* One pixel in 16, spread over rows and columns. */
+inline bool primary_sample(int x, int y) { return (x + 5 * y) % 16 == 0; }
+
+/* Does the depth pass show one triangle over the 3 x 3 pixels around
+ * (x, y) (those inside the frame)? */
+bool off_depth_edges(const Frame &f, int x, int y) {
+    const int32_t id = f.target.ids[(std::size_t)y * f.width + x];
+    for (int dy = -1; dy <= 1; dy++) {
+        for (int dx = -1; dx <= 1; dx++) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= f.width || ny >= f.height) continue;
+            if (f.target.ids[(std::size_t)ny * f.width + nx] != id) return false;
+        }
+    }
+    return true;
+}
+
+} // namespace
+
+bool TruthCaster::primary_ray_agrees(const Frame &f, int x, int y) const {
+    const int32_t id = f.target.ids[(std::size_t)y * f.width + x];
+    const Vec3d d = camera_ray(f, x + 0.5, y + 0.5);
+    const Point3 o{f.camera.eye.x, f.camera.eye.y, f.camera.eye.z}, r{d.x, d.y, d.z};
+    /* d has unit length along the view axis: s is the view depth. */
+    double best = HUGE_VAL, s_id = NAN;
+    int32_t best_id = -1;
+    rays_->tris.for_each_candidate(o, r, HUGE_VAL, [&](uint32_t t) {
+        const double s = ray_hit(rays_->tris, t, o, r);
+        if (!(s >= f.camera.near_distance)) return true;
+        if ((int32_t)t == id) s_id = s;
+        if (s < best) best = s, best_id = (int32_t)t;
+        return true;
+    });
+    if (best_id == id) return true;
+    if (id < 0 || best_id < 0) return false;
+    return std::fabs(s_id - best) <= 1e-6 * best; /* false for NaN: the ray missed ID */
+}
 
 uint8_t TruthCaster::light_class(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
                                  const LightFrame &lf, int si, int t, const Vec3d &P,
@@ -175,14 +216,11 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
     bool faces_ready = false;
     Comparison result = compare_with_stencil(
         truth, f.lights[(std::size_t)light].stencil, f.width, f.height, [&](int x, int y) {
-            /* A frame with this many unexplained
-                                     * mismatches fails anyway. */
+            /* A frame with this many unexplained mismatches fails anyway. */
             if (++looked_at > kMaxRefined) return false;
-            /* The point the depth test used: the
-                                     * camera ray at the stored depth. For a
-                                     * receiver seen edge-on, the depth of
-                                     * its snapped triangle can lie well off
-                                     * the exact one. */
+            /* The point the depth test used: the camera ray at the stored
+             * depth. For a receiver seen edge-on, the depth of its snapped
+             * triangle can lie well off the exact one. */
             const std::size_t px = (std::size_t)y * f.width + x;
             const uint8_t at_depth = classify_stored_depth(f, facing, lf, x, y);
             if (at_depth != kTruthNone && (at_depth == kTruthLit) != (truth.cls[px] == kTruthLit)) {
@@ -210,6 +248,12 @@ Comparison TruthCaster::compare(const Frame &f, int light, const Truth &truth) c
             return false;
         });
     result.depth_tie_mismatches = ties;
+    result.primary_checked = truth.primary_checked;
+    result.primary_disagreements = truth.primary_disagreements;
+    result.off_boundary_mismatches += truth.primary_disagreements;
+    for (int p : truth.first_primary_disagreements) {
+        if (result.first_off_boundary.size() < 16) result.first_off_boundary.push_back(p);
+    }
     return result;
 }
 
@@ -224,6 +268,8 @@ Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
      * gives the same). */
     const std::vector<std::vector<uint8_t>> facing = facing_bytes(L);
     std::vector<uint64_t> rays((std::size_t)std::max(threads, 1), 0);
+    std::vector<uint64_t> checked(rays.size(), 0);
+    std::vector<std::vector<int>> disagree(rays.size());
     auto work = [&](int k, int step) {
         for (int py = k; py < f.height; py += step) {
             for (int px = 0; px < f.width; px++) {
@@ -234,6 +280,10 @@ Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
                 f.decode_id(id, si, t);
                 const Vec3d P = visible_point(f, scene_, si, t, px, py);
                 out.cls[i] = light_class(f, facing, lf, si, t, P, &rays[(std::size_t)k]);
+                if (primary_sample(px, py) && off_depth_edges(f, px, py)) {
+                    checked[(std::size_t)k]++;
+                    if (!primary_ray_agrees(f, px, py)) disagree[(std::size_t)k].push_back((int)i);
+                }
             }
         }
     };
@@ -243,6 +293,13 @@ Truth TruthCaster::cast(const Frame &f, int light, int threads) const {
     work(0, nt);
     for (std::thread &th : pool) th.join();
     for (uint64_t r : rays) out.rays += r;
+    for (std::size_t k = 0; k < rays.size(); k++) {
+        out.primary_checked += checked[k];
+        out.primary_disagreements += disagree[k].size();
+        for (int p : disagree[k]) out.first_primary_disagreements.push_back(p);
+    }
+    std::sort(out.first_primary_disagreements.begin(), out.first_primary_disagreements.end());
+    if (out.first_primary_disagreements.size() > 16) out.first_primary_disagreements.resize(16);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }

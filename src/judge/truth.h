@@ -39,6 +39,17 @@
  * (At most 2000 mismatches a light are looked at so; a frame with more
  * fails anyway.)
  *
+ * The truth does not take the depth pass on trust: the visible triangle of
+ * every pixel comes from the depth pass's ids, so an error there would
+ * move the truth and the stencil together. On one pixel in 16 (those with
+ * (x + 5 y) mod 16 = 0) whose 3 x 3 neighbourhood shows one triangle id
+ * (off every edge of the depth pass), the truth casts its own camera ray
+ * through the pixel's centre and finds the nearest triangle beyond the
+ * near plane. Another triangle than the depth pass's is a disagreement,
+ * unless the ray meets the depth pass's triangle too within a relative
+ * 1e-6 of the same distance (coincident triangles: either is right). A
+ * disagreement counts as a mismatch off the boundary.
+ *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #ifndef SV_RENDER_TRUTH_H
@@ -68,6 +79,10 @@ struct Truth {
     std::vector<uint8_t> cls; /* TruthClass per pixel */
     uint64_t rays = 0;
     double seconds = 0;
+    /* The depth pass checked by the truth's own camera rays (see above). */
+    uint64_t primary_checked = 0;
+    uint64_t primary_disagreements = 0;
+    std::vector<int> first_primary_disagreements; /* pixel numbers, up to 16 */
 };
 
 struct Comparison {
@@ -85,6 +100,10 @@ struct Comparison {
      * grazing the receiver's own plane. */
     uint64_t depth_tie_mismatches = 0;
     std::vector<int> first_off_boundary; /* pixel numbers (y * width + x), up to 16 */
+    /* Truth's own camera rays against the depth pass (see above); each
+     * disagreement is counted in off_boundary_mismatches too. */
+    uint64_t primary_checked = 0;
+    uint64_t primary_disagreements = 0;
 };
 
 class TruthCaster {
@@ -110,6 +129,7 @@ private:
                            const LightFrame &lf, double x, double y) const;
     uint8_t classify_stored_depth(const Frame &f, const std::vector<std::vector<uint8_t>> &facing,
                                   const LightFrame &lf, int x, int y) const;
+    bool primary_ray_agrees(const Frame &f, int x, int y) const;
 };
 
 /* Truth against a stencil (0 = lit), by the nine centres only; REFINE,

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "fill_rule.h"
 #include "row_kernels_c.h"
@@ -69,15 +71,25 @@ struct Snapped {
 
 /* Window coordinates of the clipped polygon, snapped to 1/256 pixel (round
  * to nearest), and window depth. False when a vertex is not drawable (w <=
- * 0 or not finite: only a degenerate input gets here after clipping). */
+ * 0 or not finite: only a degenerate input gets here after clipping).
+ *
+ * Clipping leaves |x|, |y| <= w up to rounding, but a vertex cut from an
+ * edge whose ends differ by many orders of magnitude can carry an error
+ * far larger than its own w (a light very close to a vertex extrudes such
+ * edges): x / w then reaches 1e16 and more, and the int64 cast and the
+ * edge functions would overflow. Such a vertex lies on a side plane in
+ * exact arithmetic, so it is clamped to a guard band of one pixel around
+ * the frame, which no vertex that clipping placed correctly can leave; the
+ * bound walk_rows' proof needs (|X|, |Y| < 2^21 + 2^8) then holds for
+ * every input. */
 bool snap_polygon(const ClipVertex *poly, int n, int width, int height, Snapped *s) {
     for (int i = 0; i < n; i++) {
         const ClipVertex &q = poly[i];
         if (!(q.w > 0) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
             return false;
         }
-        const double xs = (q.x / q.w + 1) * 0.5 * width;
-        const double ys = (1 - q.y / q.w) * 0.5 * height;
+        const double xs = std::clamp((q.x / q.w + 1) * 0.5 * width, -1.0, width + 1.0);
+        const double ys = std::clamp((1 - q.y / q.w) * 0.5 * height, -1.0, height + 1.0);
         s[i].X = (int64_t)std::nearbyint(xs * kSubPixel);
         s[i].Y = (int64_t)std::nearbyint(ys * kSubPixel);
         s[i].z = (q.z / q.w + 1) * 0.5;
@@ -195,7 +207,21 @@ uint64_t Target::bytes_for(int width, int height) {
     return (uint64_t)width * (uint64_t)height * (sizeof(float) + sizeof(int32_t) + 1);
 }
 
+namespace {
+
+void check_side(const char *what, int side) {
+    if (side < 1 || side > kMaxTargetSide) {
+        throw std::invalid_argument(std::string("rasteriser: target ") + what + " " +
+                                    std::to_string(side) + " outside 1.." +
+                                    std::to_string(kMaxTargetSide));
+    }
+}
+
+} // namespace
+
 void Target::resize(int w, int h) {
+    check_side("width", w);
+    check_side("height", h);
     width = w;
     height = h;
     const std::size_t n = (std::size_t)w * (std::size_t)h;
@@ -215,6 +241,10 @@ Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
 
 void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
                        std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents) const {
+    if (width < 1 || width > kMaxTargetSide || height < 1 || height > kMaxTargetSide) {
+        check_side("width", width);
+        check_side("height", height);
+    }
     c.triangles++;
     ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
     int n = 3;
@@ -312,9 +342,10 @@ void Rasterizer::walk_rows(const SetupTriangle &tri, RowBand band, Emit &&emit) 
      * from row to row (one add): a conservative span padded by a pixel;
      * the kernel's integer test is the exact one, so where the walk starts
      * (the band's first row or the triangle's) changes no pixel. The
-     * padding holds: after clipping |X|, |Y| < 2^21, so |E| < 2^43,
-     * |step_x| >= 256 (when not 0) and |bound| < 2^35, whose ulp is 2^-17
-     * pixel; 8192 rows of additions stay below 0.07 pixel. */
+     * padding holds: after snapping |X|, |Y| < 2^21 + 2^8 (snap_polygon's
+     * guard band, kMaxTargetSide), so |E| < 2^44,
+     * |step_x| >= 256 (when not 0) and |bound| < 2^36, whose ulp is 2^-16
+     * pixel; 8192 rows of additions stay below 0.13 pixel. */
     double bound[3], slope[3];
     int64_t e_row[3];
     for (int e = 0; e < 3; e++) {

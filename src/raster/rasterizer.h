@@ -41,6 +41,12 @@
 
 namespace sv::raster {
 
+/* The largest target side the fixed-point edge functions are proved for
+ * (rasterizer.cpp, walk_rows: 1/256-pixel coordinates below 2^21 + 2^8):
+ * Target::resize and Rasterizer::setup refuse larger ones
+ * (std::invalid_argument). */
+constexpr int kMaxTargetSide = 8192;
+
 /* A clip-space vertex (x, y, z, w). */
 struct ClipVertex {
     double x, y, z, w;
@@ -99,6 +105,8 @@ struct Target {
     FrameBuffer<uint8_t> stencil;
     /* Bytes a WIDTH x HEIGHT target takes (depth, ids, stencil). */
     static uint64_t bytes_for(int width, int height);
+    /* Throws std::invalid_argument unless 1 <= WIDTH, HEIGHT <=
+     * kMaxTargetSide. */
     void resize(int width, int height);
     void clear_depth();   /* depth 1, ids -1 */
     void clear_stencil(); /* 0 */

@@ -13,6 +13,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -90,6 +92,12 @@ const char *fate_name(VolumeFate f) {
 }
 
 Frame render_frame(const Scene &scene, const RenderOptions &opt) {
+    if (opt.width < 1 || opt.height < 1 || opt.width > kMaxFrameSide ||
+        opt.height > kMaxFrameSide || (int64_t)opt.width * opt.height > kMaxFramePixels) {
+        throw std::invalid_argument("render_frame: a " + std::to_string(opt.width) + "x" +
+                                    std::to_string(opt.height) + " frame is outside 1.." +
+                                    std::to_string(kMaxFrameSide) + " per side");
+    }
     const uint64_t k_start = ticks();
     const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
     /* More threads than cores only when asked (the tests of identical

@@ -151,7 +151,7 @@ struct RenderOptions {
 
 /* Largest frame side and pixel count accepted (a 8192 x 8192 frame needs
  * about 1.2 GiB with the truth's buffers). */
-constexpr int kMaxFrameSide = 8192;
+constexpr int kMaxFrameSide = raster::kMaxTargetSide;
 constexpr int64_t kMaxFramePixels = 8192LL * 8192LL;
 /* Bytes a frame of W x H with L lights needs (target, per-light stencils,
  * colour, truth classes): what the CLI prints before it allocates. */
@@ -225,7 +225,9 @@ struct FrameDifference {
 };
 FrameDifference compare_frames(const Scene &scene, const Frame &a, const Frame &b);
 
-/* Renders SCENE (validated: see validate_scene). */
+/* Renders SCENE (validated: see validate_scene). Throws
+ * std::invalid_argument for a frame outside 1..kMaxFrameSide per side or
+ * over kMaxFramePixels. */
 Frame render_frame(const Scene &scene, const RenderOptions &options);
 
 /* The clip-space position of world point (x, y, z, w) (the rasteriser's

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "frame.h"
@@ -199,6 +200,53 @@ SV_TIERED_TEST(Raster, BottomLeftRuleAsLlvmpipe) {
             EXPECT_EQ(pb.pixels_tested, 8u + 7 + 6 + 5 + 4 + 3 + 2 + 1) << k->name;
         }
     }
+}
+
+SV_TIERED_TEST(Raster, ACutVertexFarOffItsPlaneStaysInTheFrame) {
+    /* A triangle whose ends differ by fifteen orders of magnitude in w (as
+     * an extruded edge of a light almost on a vertex): the vertex clipping
+     * cuts on the right plane comes out with x / w near -6e20 pixels
+     * (found by a random search of the clipper). Before snap_polygon's
+     * guard band, its int64 cast and the edge functions overflowed, and
+     * set-up handed the row walk a first column of -1. */
+    const int w = 320, h = 256;
+    const ClipVertex v[3] = {{37911.6083537019, 94284.774335987197, 135032.97678016024,
+                              -52248.863284100065},
+                             {-1.2192594770244772e-08, -1.7967216210245658e-08,
+                              2.0756543708408483e-08, 9.5473339540958948e-09},
+                             {38737202.925246969, -10898806.902987299, -4193642.9211302507,
+                              11989775.399345443}};
+    for (const RowKernels *k : runnable_kernels()) {
+        const Rasterizer r(k);
+        PassCounters pc;
+        std::vector<SetupTriangle> pieces;
+        r.setup(v, w, h, 7, pc, pieces);
+        EXPECT_EQ(pc.triangles_clipped, 1u) << k->name;
+        for (const SetupTriangle &t : pieces) {
+            EXPECT_GE(t.x_first, 0) << k->name;
+            EXPECT_LE(t.x_last, w - 1) << k->name;
+            EXPECT_GE(t.y_first, 0) << k->name;
+            EXPECT_LE(t.y_last, h - 1) << k->name;
+        }
+        Target t;
+        t.resize(w, h);
+        r.draw_depth(t, v, 7, pc);
+        EXPECT_LE(pc.pixels_written, (uint64_t)w * h) << k->name;
+    }
+}
+
+TEST(Raster, RefusesTargetsBeyondTheProvedSide) {
+    Target t;
+    EXPECT_THROW(t.resize(kMaxTargetSide + 1, 8), std::invalid_argument);
+    EXPECT_THROW(t.resize(8, 0), std::invalid_argument);
+    t.resize(kMaxTargetSide, 1);
+    EXPECT_EQ(t.width, kMaxTargetSide);
+    const Rasterizer r(&kRowKernelsC);
+    PassCounters pc;
+    std::vector<SetupTriangle> pieces;
+    const ClipVertex v[3] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {-1, 1, 0, 1}};
+    EXPECT_THROW(r.setup(v, kMaxTargetSide + 1, 8, 0, pc, pieces), std::invalid_argument);
+    EXPECT_TRUE(pieces.empty());
 }
 
 TEST(Raster, FrontIsCounterClockwiseWithYUp) {

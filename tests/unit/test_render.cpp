@@ -16,7 +16,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <stb/stb_image.h>
@@ -312,6 +314,79 @@ TEST(Render, ShadedImageIsLitAndShadowed) {
     ASSERT_GT(ns, 0);
     ASSERT_GT(nl, 0);
     EXPECT_LT(shadow / ns, 0.6 * (lit / nl));
+}
+
+TEST(Render, TruthChecksTheDepthPassWithItsOwnRays) {
+    /* The truth's own camera rays agree with the depth pass on at least one
+     * in 16 of the pixels off every edge of the depth pass; a depth pass
+     * that shows the wrong triangle over a patch is caught, and fails the
+     * comparison off the boundary. */
+    Scene scene = model_on_ground(SV_MODELS_DIR "/character_1344.glb");
+    scene.lights = three_lights(scene);
+    RenderOptions opt;
+    opt.width = kW;
+    opt.height = kH;
+    Frame f = render_frame(scene, opt);
+    uint64_t off_edges = 0;
+    for (int y = 0; y < kH; y++) {
+        for (int x = 0; x < kW; x++) {
+            const int32_t id = f.target.ids[(std::size_t)y * kW + x];
+            bool same = id >= 0;
+            for (int dy = -1; dy <= 1 && same; dy++) {
+                for (int dx = -1; dx <= 1 && same; dx++) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= kW || ny >= kH) continue;
+                    same = f.target.ids[(std::size_t)ny * kW + nx] == id;
+                }
+            }
+            off_edges += same;
+        }
+    }
+    const TruthCaster caster(scene);
+    const Truth t = caster.cast(f, 0, 2);
+    const Comparison c = caster.compare(f, 0, t);
+    EXPECT_GE(c.primary_checked * 16 + 16 * 16, off_edges) << "fewer than 1 in 16 checked";
+    EXPECT_GT(c.primary_checked, 0u);
+    EXPECT_EQ(c.primary_disagreements, 0u);
+    EXPECT_EQ(c.off_boundary_mismatches, 0u);
+    /* The depth pass made wrong: a 16 x 16 patch of the character shows
+     * the ground's first triangle. */
+    const int32_t ground_id = f.surface_first_id.back();
+    int changed = 0;
+    for (std::size_t i = 0; i < f.target.ids.size() && changed < 256; i++) {
+        const int x = (int)(i % kW), y = (int)(i / kW);
+        if (x + 16 > kW || y + 16 > kH) continue;
+        bool character = true;
+        for (int dy = 0; dy < 16 && character; dy++) {
+            for (int dx = 0; dx < 16 && character; dx++) {
+                const int32_t id = f.target.ids[i + (std::size_t)dy * kW + dx];
+                character = id >= 0 && id < ground_id;
+            }
+        }
+        if (!character) continue;
+        for (int dy = 0; dy < 16; dy++) {
+            for (int dx = 0; dx < 16; dx++) f.target.ids[i + (std::size_t)dy * kW + dx] = ground_id;
+        }
+        changed = 256;
+    }
+    ASSERT_EQ(changed, 256) << "no 16 x 16 patch of the character in view";
+    const Truth bad = caster.cast(f, 0, 2);
+    const Comparison cb = caster.compare(f, 0, bad);
+    EXPECT_GT(cb.primary_disagreements, 0u);
+    EXPECT_GE(cb.off_boundary_mismatches, cb.primary_disagreements);
+}
+
+TEST(Render, RefusesFramesBeyondTheBoundInTheLibrary) {
+    /* The CLIs check --size; the library checks too (the rasteriser's
+     * edge functions are proved for 8192 per side). */
+    const Scene scene = model_on_ground(std::string(SV_MODELS_DIR) + "/character_1344.glb");
+    for (const auto &[w, h] : {std::pair{kMaxFrameSide + 1, 16}, std::pair{16, 0},
+                               std::pair{-3, 16}, std::pair{kMaxFrameSide, kMaxFrameSide + 1}}) {
+        RenderOptions opt;
+        opt.width = w;
+        opt.height = h;
+        EXPECT_THROW(render_frame(scene, opt), std::invalid_argument) << w << "x" << h;
+    }
 }
 
 TEST(Scene, BadInputIsRefusedClearly) {

@@ -323,4 +323,61 @@ TEST(Shortcuts, TestsAreConservativeOnBoxes) {
     EXPECT_EQ(classify_box(planes, {0, 5, 0}, {2, 6, 2}), BoxSide::outside);
 }
 
+TEST(Shortcuts, LightReachOfABoxHoldsEveryPointInReach) {
+    /* The shortcut proof excuses mask differences out of a light's reach
+     * through light_reaches_box, the same function shortcut 1 and the
+     * lighting use; so it is checked here against the per-point test it
+     * stands for. Random boxes under random point lights (with and
+     * without a range) and spot lights (cones of 5 to 80 degrees): where
+     * any sampled point of the box (corners, face centres, random points)
+     * is in reach, the box must be reached. And the test must not be
+     * trivially true: some boxes are out of reach. */
+    uint32_t seed = 20261206;
+    auto rnd = [&] { return (seed = seed * 1664525u + 1013904223u) / 4294967296.0; };
+    auto in = [&](double lo, double hi) { return lo + (hi - lo) * rnd(); };
+    int reached = 0, not_reached = 0, boxes_with_points_in_reach = 0;
+    for (int trial = 0; trial < 4000; trial++) {
+        const Vec3d at{in(-5, 5), in(-5, 5), in(-5, 5)};
+        SceneLight l;
+        if (trial % 2 == 0) {
+            l = point_light(at, trial % 4 == 0 ? 0.0 : in(0.5, 6));
+        } else {
+            const Vec3d d{in(-1, 1), in(-1, 1), in(-1, 1)};
+            const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+            if (n < 1e-3) continue;
+            l = spot_light(at, {at.x + d.x, at.y + d.y, at.z + d.z}, in(5, 80),
+                           trial % 3 == 0 ? 0.0 : in(0.5, 8));
+        }
+        const Vec3d c{in(-6, 6), in(-6, 6), in(-6, 6)};
+        const Vec3d h{in(0.01, 2), in(0.01, 2), in(0.01, 2)};
+        const Vec3d lo{c.x - h.x, c.y - h.y, c.z - h.z}, hi{c.x + h.x, c.y + h.y, c.z + h.z};
+        const bool box = light_reaches_box(l, lo, hi);
+        (box ? reached : not_reached)++;
+        bool any = false;
+        for (int k = 0; k < 64 && !any; k++) {
+            Vec3d q;
+            if (k < 8) {
+                q = {(k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z};
+            } else if (k < 14) {
+                const int axis = (k - 8) / 2;
+                const bool top = (k - 8) % 2;
+                q = c;
+                (axis == 0   ? q.x
+                 : axis == 1 ? q.y
+                             : q.z) = axis == 0   ? (top ? hi.x : lo.x)
+                                      : axis == 1 ? (top ? hi.y : lo.y)
+                                                  : (top ? hi.z : lo.z);
+            } else {
+                q = {in(lo.x, hi.x), in(lo.y, hi.y), in(lo.z, hi.z)};
+            }
+            any = point_in_light_reach(l, q);
+        }
+        boxes_with_points_in_reach += any;
+        EXPECT_TRUE(!any || box) << "trial " << trial << ": a point of the box is in reach of "
+                                 << l.describe() << " but the box is not";
+    }
+    EXPECT_GT(not_reached, 100) << "the property is trivially true";
+    EXPECT_GT(boxes_with_points_in_reach, 100);
+}
+
 } // namespace
