@@ -19,41 +19,19 @@ using namespace detail;
 
 StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     StencilPassResult result;
-    const Scene &scene = *in.scene;
     const std::vector<Volume> &volumes = *in.volumes;
     const raster::Rasterizer &rast = *in.rast;
     const int width = in.target->width, height = in.target->height;
-    const Vec4 L = in.light;
     const double t0 = now_seconds();
     const uint64_t k0 = ticks();
     result.stencil.assign((std::size_t)width * height, 0);
-    struct Chunk {
-        int volume, first, last;
-    };
-    std::vector<Chunk> chunks;
-    for (int vi = 0; vi < (int)volumes.size(); vi++) {
-        const int n = volumes[(std::size_t)vi].drawn_indices() / 3;
-        for (int t = 0; t < n; t += kSetupChunk)
-            chunks.push_back({vi, t, std::min(n, t + kSetupChunk)});
-    }
-    /* The double-length buffers through the paper's vertex program
-     * (the even vertices are the receivers' own, already done). */
-    std::vector<std::vector<raster::ClipVertex>> sv_clip(volumes.size());
-    parallel((int)volumes.size(), [&](int vi) {
-        const Volume &vol = volumes[(std::size_t)vi];
-        const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-        auto &out = sv_clip[(std::size_t)vi];
-        out.resize(2 * (std::size_t)p.num_vertices());
-        for (int v = 0; v < p.num_vertices(); v++) {
-            out[2 * (std::size_t)v] = (*in.receivers)[(std::size_t)vol.surface][(std::size_t)v];
-            out[2 * (std::size_t)v + 1] = shadow_vertex_to_clip(in.view_proj, p, 2 * v + 1, L);
-        }
-    });
+    const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
+    const std::vector<std::vector<raster::ClipVertex>> sv_clip = shadow_vertex_buffers(in);
     BinnedTriangles bt;
     bt.chunks.resize(chunks.size());
     std::vector<raster::PassCounters> cc(chunks.size());
     parallel((int)chunks.size(), [&](int c) {
-        const Chunk &ch = chunks[(std::size_t)c];
+        const VolumeChunk &ch = chunks[(std::size_t)c];
         const Volume &vol = volumes[(std::size_t)ch.volume];
         const auto &cv = sv_clip[(std::size_t)ch.volume];
         for (int t = ch.first; t < ch.last; t++) {

@@ -6,6 +6,10 @@
  */
 #include "stencil_pass.h"
 
+#include <algorithm>
+
+#include "pass_bins.h"
+
 #include <string>
 
 namespace sv::render {
@@ -47,6 +51,33 @@ std::string stencil_method_names() {
 }
 
 bool valid_stencil_tile(int side) { return side == 4 || side == 8 || side == 16 || side == 32; }
+
+std::vector<VolumeChunk> volume_chunks(const std::vector<Volume> &volumes) {
+    std::vector<VolumeChunk> chunks;
+    for (int vi = 0; vi < (int)volumes.size(); vi++) {
+        const int n = volumes[(std::size_t)vi].drawn_indices() / 3;
+        for (int t = 0; t < n; t += detail::kSetupChunk)
+            chunks.push_back({vi, t, std::min(n, t + detail::kSetupChunk)});
+    }
+    return chunks;
+}
+
+std::vector<std::vector<raster::ClipVertex>> shadow_vertex_buffers(const StencilPassInputs &in) {
+    const std::vector<Volume> &volumes = *in.volumes;
+    std::vector<std::vector<raster::ClipVertex>> sv_clip(volumes.size());
+    detail::parallel((int)volumes.size(), [&](int vi) {
+        const Volume &vol = volumes[(std::size_t)vi];
+        const PreparedSurface &p = in.scene->surfaces[(std::size_t)vol.surface].prepared;
+        auto &out = sv_clip[(std::size_t)vi];
+        out.resize(2 * (std::size_t)p.num_vertices());
+        for (int v = 0; v < p.num_vertices(); v++) {
+            out[2 * (std::size_t)v] = (*in.receivers)[(std::size_t)vol.surface][(std::size_t)v];
+            out[2 * (std::size_t)v + 1] = shadow_vertex_to_clip(in.view_proj, p, 2 * v + 1,
+                                                                in.light);
+        }
+    });
+    return sv_clip;
+}
 
 StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in) {
     switch (method) {

@@ -43,6 +43,17 @@ struct StencilPassResult {
     uint64_t tile_volume_pairs = 0, boundary_pairs = 0, boundary_tiles = 0, tiles = 0;
 };
 
+/* What every method sets up the same way. The volumes' triangles in
+ * set-up chunks of submission order (kSetupChunk triangles of one volume
+ * each), and each volume's double-length vertex buffer in clip space
+ * through the paper's vertex program (the even vertices are the
+ * receivers' own, already in IN.receivers). */
+struct VolumeChunk {
+    int volume, first, last; /* triangles [first, last) of volume VOLUME */
+};
+std::vector<VolumeChunk> volume_chunks(const std::vector<Volume> &volumes);
+std::vector<std::vector<raster::ClipVertex>> shadow_vertex_buffers(const StencilPassInputs &in);
+
 /* Runs on the calling task arena's threads. */
 StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in);
 

@@ -59,26 +59,8 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
     const raster::Rasterizer &rast = *in.rast;
     const int width = in.target->width, height = in.target->height;
     const Vec4 L = in.light;
-    struct Chunk {
-        int volume, first, last;
-    };
-    std::vector<Chunk> chunks;
-    for (int vi = 0; vi < (int)volumes.size(); vi++) {
-        const int n = volumes[(std::size_t)vi].drawn_indices() / 3;
-        for (int t = 0; t < n; t += kSetupChunk)
-            chunks.push_back({vi, t, std::min(n, t + kSetupChunk)});
-    }
-    std::vector<std::vector<raster::ClipVertex>> sv_clip(volumes.size());
-    parallel((int)volumes.size(), [&](int vi) {
-        const Volume &vol = volumes[(std::size_t)vi];
-        const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-        auto &out = sv_clip[(std::size_t)vi];
-        out.resize(2 * (std::size_t)p.num_vertices());
-        for (int v = 0; v < p.num_vertices(); v++) {
-            out[2 * (std::size_t)v] = (*in.receivers)[(std::size_t)vol.surface][(std::size_t)v];
-            out[2 * (std::size_t)v + 1] = shadow_vertex_to_clip(in.view_proj, p, 2 * v + 1, L);
-        }
-    });
+    const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
+    const std::vector<std::vector<raster::ClipVertex>> sv_clip = shadow_vertex_buffers(in);
     /* Per chunk: its pieces, extents, the triangle each came from, and per
      * triangle whether it drew nothing (skipped by the open-edge count)
      * and whether the near plane cut it. */
@@ -95,7 +77,7 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
         near_cut[vi].assign((std::size_t)volumes[vi].drawn_indices() / 3, 0);
     }
     parallel((int)chunks.size(), [&](int c) {
-        const Chunk &ch = chunks[(std::size_t)c];
+        const VolumeChunk &ch = chunks[(std::size_t)c];
         const Volume &vol = volumes[(std::size_t)ch.volume];
         const auto &cv = sv_clip[(std::size_t)ch.volume];
         ChunkOut &o = co[(std::size_t)c];
