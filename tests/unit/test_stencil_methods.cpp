@@ -21,6 +21,7 @@
 #include "row_kernels.h"
 #include "sequence.h"
 #include "shadowvol_scene.h"
+#include "test_lights.h"
 #include "test_conditions.h"
 
 namespace {
@@ -38,38 +39,9 @@ constexpr int kOddW = 257, kOddH = 131;
 
 const std::string kCharacter = std::string(SV_MODELS_DIR) + "/character_1344.glb";
 
-SceneLight point_light(Vec3d at, double range) {
-    SceneLight l;
-    l.kind = LightKind::point;
-    l.position = at;
-    l.range = range;
-    l.intensity = 12;
-    return l;
-}
-
-SceneLight spot_light(Vec3d at, Vec3d towards, double outer, double range) {
-    SceneLight l;
-    l.kind = LightKind::spot;
-    l.position = at;
-    const Vec3d d{towards.x - at.x, towards.y - at.y, towards.z - at.z};
-    const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-    l.direction = {d.x / n, d.y / n, d.z / n};
-    l.inner_degrees = outer * 0.6;
-    l.outer_degrees = outer;
-    l.range = range;
-    l.intensity = 14;
-    return l;
-}
-
-SceneLight sun(Vec3d direction) {
-    SceneLight l;
-    l.kind = LightKind::directional;
-    const double n = std::sqrt(direction.x * direction.x + direction.y * direction.y +
-                               direction.z * direction.z);
-    l.direction = {direction.x / n, direction.y / n, direction.z / n};
-    l.intensity = 0.8;
-    return l;
-}
+using svtest::point_light;
+using svtest::spot_light;
+using svtest::sun;
 
 /* The character on the ground with a point, a spot and a directional
  * light (as test_shortcuts.cpp's scene). */
