@@ -133,19 +133,25 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                 const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
                 const raster::PieceExtent &e = vp.extents[(std::size_t)q];
                 int first = 0, last = 0;
-                tile_span(e.min_x, e.max_x, grid.side, grid.tiles_x, first, last);
+                if (!piece_columns_in_row(e, grid, Y0, Y1, first, last)) continue;
+                const bool receiver = vp.receiver[(std::size_t)q] != 0;
                 for (int tx = first; tx <= last; tx++) {
                     uint8_t &st = state[(std::size_t)tx];
                     if (st == 2) continue;
-                    TileSide side = classify_piece(p, e, grid, tx, ty, in.faults);
-                    if (side == TileSide::misses) continue;
-                    if (vp.receiver[(std::size_t)q]) {
+                    TileSide side = TileSide::behind;
+                    if (!receiver) {
+                        side = classify_piece(p, e, grid, tx, ty, in.faults);
+                        if (side == TileSide::misses) continue;
+                    } else {
                         /* The receiver's own triangle fails its test at every
-                         * pixel it covers: "behind" in every tile, except
-                         * where an edge at which the receiver's triangles do
-                         * not close meets the tile (the other pieces on it may
+                         * pixel it covers: "behind" in every tile it may
+                         * reach (its edges alone decide: a tile it does not
+                         * cover gets nothing from its sample), except where
+                         * an edge at which the receiver's triangles do not
+                         * close meets the tile (the other pieces on it may
                          * count otherwise). */
-                        side = TileSide::behind;
+                        if (!edges_reach_square(p, grid.x0(tx), grid.x1(tx), Y0, Y1, nullptr))
+                            continue;
                         for (int si = vp.cap_first[(std::size_t)q];
                              si < vp.cap_first[(std::size_t)q + 1]; si++) {
                             const VolumePieces::Segment &sg = vp.cap_segments[(std::size_t)si];
@@ -207,13 +213,24 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                         p.y_first >= Y1) {
                         continue;
                     }
-                    for (int tx = p.x_first / grid.side; tx <= p.x_last / grid.side; tx++) {
+                    int first = 0, last = 0;
+                    if (!piece_columns_in_row(vp.extents[(std::size_t)bin[k]], grid, Y0, Y1,
+                                              first, last)) {
+                        continue;
+                    }
+                    first = std::max(first, p.x_first / grid.side);
+                    last = std::min(last, p.x_last / grid.side);
+                    /* Each run of consecutive boundary tiles in one walk. */
+                    for (int tx = first; tx <= last; tx++) {
                         if (state[(std::size_t)tx] != 2) continue;
+                        int run_end = tx;
+                        while (run_end < last && state[(std::size_t)run_end + 1] == 2) run_end++;
                         raster::SetupTriangle clamped = p;
                         clamped.x_first = std::max(p.x_first, grid.x0(tx));
-                        clamped.x_last = std::min(p.x_last, grid.x1(tx) - 1);
+                        clamped.x_last = std::min(p.x_last, grid.x1(run_end) - 1);
                         rast.walk_stencil(clamped, in.target->depth.data(), result.stencil.data(),
                                           width, height, {Y0, Y1}, mode, tot.walked);
+                        tx = run_end;
                     }
                 }
             }

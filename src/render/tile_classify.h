@@ -107,6 +107,40 @@ inline bool depth_range_in_square(const raster::SetupTriangle &p, const raster::
     return true;
 }
 
+/* The range [LO, HI] of piece P's depth plane over the whole square
+ * [X0, X1] x [Y0, Y1] (pixels), with depth_range_in_square's MARGIN: a
+ * superset of the piece's part there, so as conservative, and exact where
+ * the piece covers the square (no clipping needed). */
+inline void depth_range_over_square(const raster::SetupTriangle &p, const raster::PieceExtent &ext,
+                                    int X0, int X1, int Y0, int Y1, double &lo, double &hi,
+                                    double &margin) {
+    const double zx0 = p.a * (X0 - p.x0), zx1 = p.a * (X1 - p.x0);
+    const double zy0 = p.b * (Y0 - p.y0), zy1 = p.b * (Y1 - p.y0);
+    lo = p.z0 + std::min(zx0, zx1) + std::min(zy0, zy1);
+    hi = p.z0 + std::max(zx0, zx1) + std::max(zy0, zy1);
+    const double size = std::max(std::fabs(zx0), std::fabs(zx1)) +
+                        std::max(std::fabs(zy0), std::fabs(zy1));
+    margin = 1e-9 + 1e-12 * size + ext.off_plane * (1 + 1e-9);
+}
+
+/* Does piece P's every edge function leave some point of the square
+ * [X0, X1] x [Y0, Y1] inside (false: it misses the square for sure), and
+ * is the whole square inside all three (*INSIDE)? Exact integers. */
+inline bool edges_reach_square(const raster::SetupTriangle &p, int X0, int X1, int Y0, int Y1,
+                               bool *inside) {
+    bool all = true;
+    for (int e = 0; e < 3; e++) {
+        const int64_t c00 = edge_at_corner(p, e, X0, Y0), dx = p.step_x[e] * (X1 - X0),
+                      dy = p.step_y[e] * (Y1 - Y0);
+        const int64_t most = c00 + std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0);
+        if (most < 0) return false;
+        const int64_t least = c00 + std::min<int64_t>(dx, 0) + std::min<int64_t>(dy, 0);
+        all &= least >= 0;
+    }
+    if (inside) *inside = all;
+    return true;
+}
+
 inline TileSide classify_piece(const raster::SetupTriangle &p, const raster::PieceExtent &ext,
                                const TileGrid &g, int tx, int ty, const StencilFaults &faults) {
     const int X0 = g.x0(tx), X1 = g.x1(tx), Y0 = g.y0(ty), Y1 = g.y1(ty);
@@ -115,17 +149,16 @@ inline TileSide classify_piece(const raster::SetupTriangle &p, const raster::Pie
         ext.min_y >= Y1 * kSub) {
         return TileSide::misses;
     }
-    for (int e = 0; e < 3; e++) {
-        const int64_t c00 = edge_at_corner(p, e, X0, Y0), dx = p.step_x[e] * (X1 - X0),
-                      dy = p.step_y[e] * (Y1 - Y0);
-        const int64_t most = c00 + std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0);
-        if (most < 0) return TileSide::misses;
-    }
+    bool covers_square = false;
+    if (!edges_reach_square(p, X0, X1, Y0, Y1, &covers_square)) return TileSide::misses;
     const std::size_t t = (std::size_t)ty * (std::size_t)g.tiles_x + (std::size_t)tx;
     const float z_min = g.z_min[t], z_max = g.z_max[t];
     double lo = 0, hi = 0, margin = 0;
     if (faults.tile_box_test_too_tight) {
         lo = hi = p.z0 + p.a * ((X0 + X1) * 0.5 - p.x0) + p.b * ((Y0 + Y1) * 0.5 - p.y0);
+    } else if (covers_square) {
+        /* Most tiles of a large piece: the square itself, no clipping. */
+        depth_range_over_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin);
     } else if (!depth_range_in_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin)) {
         return TileSide::misses;
     }
@@ -158,6 +191,42 @@ inline bool segment_meets_tile(double x0, double y0, double x1, double y1, const
             u1 = std::min(u1, r);
         if (u0 > u1) return false;
     }
+    return true;
+}
+
+/* The tile columns [FIRST, LAST] that piece EXT meets within tile row
+ * [Y0, Y1) (pixels), widened by 1/256 pixel: a convex polygon's x extent
+ * inside a horizontal slab is that of its edges clipped to the slab, so a
+ * long diagonal sliver visits the tiles along it, not its bounding box.
+ * False: the piece does not reach the slab. */
+inline bool piece_columns_in_row(const raster::PieceExtent &ext, const TileGrid &g, int Y0, int Y1,
+                                 int &first, int &last) {
+    constexpr double kSub = 256;
+    const double lo_y = Y0 * kSub - 1, hi_y = Y1 * kSub + 1;
+    double lo_x = std::numeric_limits<double>::infinity(), hi_x = -lo_x;
+    for (int i = 0; i < 3; i++) {
+        const int j = (i + 1) % 3;
+        const double xa = (double)ext.X[i], ya = (double)ext.Y[i];
+        const double xb = (double)ext.X[j], yb = (double)ext.Y[j];
+        const double y_min = std::max(std::min(ya, yb), lo_y);
+        const double y_max = std::min(std::max(ya, yb), hi_y);
+        if (y_min > y_max) continue;
+        if (ya == yb) {
+            lo_x = std::min({lo_x, xa, xb});
+            hi_x = std::max({hi_x, xa, xb});
+            continue;
+        }
+        const double slope = (xb - xa) / (yb - ya);
+        const double x0 = xa + slope * (y_min - ya), x1 = xa + slope * (y_max - ya);
+        lo_x = std::min({lo_x, x0, x1});
+        hi_x = std::max({hi_x, x0, x1});
+    }
+    if (!(lo_x <= hi_x)) return false;
+    const double tile = kSub * g.side;
+    const double f = std::floor((lo_x - 1) / tile), l = std::floor((hi_x + 1) / tile);
+    if (l < 0 || f > g.tiles_x - 1) return false;
+    first = (int)std::max(0.0, f);
+    last = (int)std::min((double)(g.tiles_x - 1), l);
     return true;
 }
 
