@@ -29,6 +29,11 @@
 
 #include "frame.h"
 #include "json_writer.h"
+#include "shadowvol_gltf.h"
+#include "shadowvol_mesh.h"
+#include "workload.h"
+#include "scene_pass_table.h"
+#include "scene_presets.h"
 #include "seed_bench.h"
 #include "sequence.h"
 #include "shadowvol_casters.h"
@@ -138,9 +143,56 @@ int find_surface(const sv::Scene &s, const std::string &suffix) {
     return -1;
 }
 
+/* The table of passes (scene_pass_table.h) of preset NAME at WIDTH x
+ * HEIGHT. */
+PassTable pass_table(const SeedCommand &cmd, const std::string &name, int width, int height) {
+    std::unique_ptr<ScenePreset> preset;
+    try {
+        preset = make_scene_preset(name, (double)width / height, SV_MODELS_DIR, cmd.sharedModels,
+                                   SV_DEMO_SCENE);
+    } catch (const sv::GltfError &e) { /* exit 3, as a model that cannot be loaded */
+        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
+    } catch (const sv::PrepareError &e) {
+        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
+    } catch (const sv::SceneError &e) {
+        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
+    }
+    PassTableOptions po;
+    po.width = width;
+    po.height = height;
+    po.frames = cmd.quick ? 2 : 4;
+    po.runs = cmd.quick ? 2 : 3;
+    po.threads_all = tbb::info::default_concurrency();
+    return run_pass_table(*preset, po);
+}
+
+/* --preset / --size: the table of passes alone. */
+int run_preset_passes(const SeedCommand &cmd) {
+    return run_seed_frame(cmd, "scene", [&](FILE *out, std::string *doc) {
+        const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
+        const std::string name = cmd.scenePreset.empty() ? "demo" : cmd.scenePreset;
+        const int width = cmd.sceneWidth ? cmd.sceneWidth : cmd.quick ? 320 : 640;
+        const int height = cmd.sceneHeight ? cmd.sceneHeight : cmd.quick ? 256 : 512;
+        print_seed_header(out, "shadowvol bench --scene: the passes of a scene, per method", timer,
+                          -1);
+        const PassTable t = pass_table(cmd, name, width, height);
+        print_pass_table(out, t);
+        JsonWriter j;
+        j.begin_object();
+        seed_json_header(j, "shadowvol-scene-bench/1", timer);
+        j.key("preset"), j.value(name);
+        j.key("passes");
+        pass_table_json(j, t);
+        j.end_object();
+        *doc = j.str();
+        return t.failed();
+    });
+}
+
 } // namespace
 
 int run_scene_bench(const SeedCommand &cmd) {
+    if (!cmd.scenePreset.empty() || cmd.sceneWidth) return run_preset_passes(cmd);
     return run_seed_frame(cmd, "scene", [&](FILE *out, std::string *doc) {
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
         const double hz = timer.tscHz;
@@ -345,10 +397,18 @@ int run_scene_bench(const SeedCommand &cmd) {
             "stencil pass; where both sides draw the same volume only the job is compared)\n",
             repeats);
 
+        /* 4. The passes per stencil method (issue 28). */
+        std::fprintf(out, "\n");
+        const PassTable passes = pass_table(cmd, "demo", width, height);
+        print_pass_table(out, passes);
+        failed += passes.failed();
+
         JsonWriter j;
         j.begin_object();
         seed_json_header(j, "shadowvol-scene-bench/1", timer);
         j.key("scene"), j.value(so.file);
+        j.key("passes");
+        pass_table_json(j, passes);
         j.key("frames"), j.value(frames);
         j.key("width"), j.value(width);
         j.key("height"), j.value(height);

@@ -36,6 +36,10 @@ struct SeedCommand {
     uint64_t seed = 1;               /* the lights' jitter */
     std::string sharedModels;        /* the real characters' folder */
     std::string casterRule = "auto"; /* --caster-rule of --scene (shadowvol_casters.h) */
+    /* --preset and --size of --scene: the table of passes for that scene
+     * only ("" and 0: the demo scene's tables, then its table of passes). */
+    std::string scenePreset;
+    int sceneWidth = 0, sceneHeight = 0;
 };
 /* Exit status as bench_main's: 0 done, 1 a row failed its check (or the
  * document could not be written), 2 --json names a file that cannot be

@@ -22,7 +22,10 @@
 #include "model_workload.h"
 #include "output_file.h"
 #include "planes_bench.h"
+#include "cli_args.h"
+#include "render_args.h"
 #include "scene_bench.h"
+#include "scene_presets.h"
 #include "shadowvol_casters.h"
 #include "routines.h"
 #include "compare.h"
@@ -183,17 +186,19 @@ struct CliOptions {
     bool hasLight = false;
     Vec4 light{};
     LightTargets targets;
-    std::string json;         /* --json FILE; "" none, "-" stdout */
-    bool scaling = false;     /* --scaling: scaling.h instead of the cycle table */
-    bool limits = false;      /* --limits: machine_limits.h after each table */
-    bool silhouette = false;  /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
-    bool backface = false;    /* --backface: seed 001's culling (backface_bench.cpp) */
-    bool planes = false;      /* --planes: per-frame planes (planes_bench.cpp) */
-    bool scene = false;       /* --scene: the demo scene per frame (scene_bench.cpp) */
-    std::string casterRule;   /* --caster-rule R (with --scene); "" the default, auto */
-    std::string plot;         /* --plot FILE (with --scaling) */
-    long maxTriangles = 0;    /* --max-triangles N (with --scaling) */
-    bool regimeGiven = false; /* options the scaling run has no use for */
+    std::string json;        /* --json FILE; "" none, "-" stdout */
+    bool scaling = false;    /* --scaling: scaling.h instead of the cycle table */
+    bool limits = false;     /* --limits: machine_limits.h after each table */
+    bool silhouette = false; /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
+    bool backface = false;   /* --backface: seed 001's culling (backface_bench.cpp) */
+    bool planes = false;     /* --planes: per-frame planes (planes_bench.cpp) */
+    bool scene = false;      /* --scene: the demo scene per frame (scene_bench.cpp) */
+    std::string casterRule;  /* --caster-rule R (with --scene); "" the default, auto */
+    std::string scenePreset; /* --preset NAME|FILE (with --scene) */
+    int sceneWidth = 0, sceneHeight = 0; /* --size WxH (with --scene) */
+    std::string plot;                    /* --plot FILE (with --scaling) */
+    long maxTriangles = 0;               /* --max-triangles N (with --scaling) */
+    bool regimeGiven = false;            /* options the scaling run has no use for */
     bool lightGiven = false;
     std::string isa;                            /* --isa; "" none */
     std::vector<const BenchVariant *> variants; /* --variant, as given */
@@ -320,6 +325,18 @@ CliOptions parse(int argc, char **argv) {
             if (!sv::caster_rule_by_name(c.casterRule, r)) {
                 bad("--caster-rule needs auto, closed or general, not '" + c.casterRule + "'");
             }
+        } else if (opt == "--preset") {
+            c.scenePreset = need();
+            if (c.scenePreset.empty()) {
+                bad(std::string("--preset needs ") + scene_preset_names() + " or a glTF file");
+            }
+        } else if (opt == "--size") {
+            const std::string v = need();
+            try {
+                svcli::parse_frame_size(v, c.sceneWidth, c.sceneHeight);
+            } catch (const svcli::UsageError &e) {
+                bad(e.message);
+            }
         } else if (opt == "--limits" && !hasValue) {
             c.limits = true;
         } else if (opt == "--plot") {
@@ -354,9 +371,12 @@ CliOptions parse(int argc, char **argv) {
             bad(mode + " takes --quick, --json, --max-triangles, --seed, --timer and --isa only");
         }
         if (!c.casterRule.empty() && !c.scene) bad("--caster-rule is an option of --scene");
+        if ((!c.scenePreset.empty() || c.sceneWidth) && !c.scene)
+            bad("--preset and --size are options of --scene");
         return c;
     }
     if (!c.casterRule.empty()) bad("--caster-rule is an option of --scene");
+    if (!c.scenePreset.empty() || c.sceneWidth) bad("--preset and --size are options of --scene");
     if (!c.scaling && !c.plot.empty()) {
         bad("--plot draws the scaling run: add --scaling");
     }
@@ -462,6 +482,9 @@ SeedCommand seed_command(const CliOptions &c) {
     cmd.seed = c.seed;
     cmd.sharedModels = SV_SHARED_MODELS_DIR;
     if (!c.casterRule.empty()) cmd.casterRule = c.casterRule;
+    cmd.scenePreset = c.scenePreset;
+    cmd.sceneWidth = c.sceneWidth;
+    cmd.sceneHeight = c.sceneHeight;
     return cmd;
 }
 
@@ -600,6 +623,7 @@ void bench_usage(FILE *out) {
         "JSON schema shadowvol-planes/1. --quick: the character and a small grid.\n"
         "\n"
         "Per frame: shadowvol bench --scene [--quick] [--caster-rule R] [--json FILE]\n"
+        "           [--preset simple|knights|demo|FILE] [--size WxH]\n"
         "The demo scene's frames (8 at 640x512; --quick 4 at 320x256) with only what each\n"
         "requires and with everything, on 1 thread and every core, as ratios of one run;\n"
         "each shortcut alone switched off; the culling decision timed on both sides for\n"
@@ -607,6 +631,10 @@ void bench_usage(FILE *out) {
         "checked against its full frame and across thread counts (docs/SCENES.md).\n"
         "--caster-rule R (auto, closed, general; default auto) for those runs; then the\n"
         "frames under closed against auto (docs/CASTERS.md): the open terrain's cost.\n"
+        "Then the stencil pass per method (bf, db, hier) on 1 thread and every core:\n"
+        "ms per frame (the minimum of the same runs), pixels tested, and whether each\n"
+        "light's stencil equals bf's. --preset simple|knights|demo|FILE and --size WxH:\n"
+        "that table alone, for that scene (docs/RENDERING.md).\n"
         "JSON schema shadowvol-scene-bench/1.\n"
         "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"

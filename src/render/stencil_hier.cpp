@@ -82,6 +82,30 @@ inline void tile_span(int64_t lo, int64_t hi, int side, int count, int &first, i
     last = clamp_int(floor_div(hi, 256 * (int64_t)side), 0, count - 1);
 }
 
+/* The tile columns of one tile row that a piece's segments may meet
+ * (segment_columns_in_row), at most four segments (a triangle's three
+ * edges and its cut by the near plane). */
+struct SegmentColumns {
+    int first[4], last[4], n = 0;
+    /* Segments [BEGIN, END) of SEGS; false when there are more than four
+     * (the caller then takes every tile as met). */
+    bool add(const std::vector<VolumePieces::Segment> &segs, int begin, int end, const TileGrid &g,
+             int Y0, int Y1) {
+        if (end - begin > 4) return false;
+        for (int si = begin; si < end; si++) {
+            const VolumePieces::Segment &sg = segs[(std::size_t)si];
+            if (segment_columns_in_row(sg.x0, sg.y0, sg.x1, sg.y1, g, Y0, Y1, first[n], last[n]))
+                n++;
+        }
+        return true;
+    }
+    bool meet(int tx) const {
+        bool hit = false;
+        for (int i = 0; i < n; i++) hit |= tx >= first[i] && tx <= last[i];
+        return hit;
+    }
+};
+
 struct RowTotals {
     raster::RowCounts walked;
     uint64_t pairs = 0, boundary_pairs = 0, boundary_tiles = 0, wholesale_pixels = 0;
@@ -112,6 +136,9 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
         tile_span(e.min_y, e.max_y, grid.side, grid.tiles_y, first, last);
         for (int ty = first; ty <= last; ty++) rows[(std::size_t)ty].push_back(q);
     }
+    std::vector<PieceEdges> edges;
+    edges.reserve(vp.pieces.size());
+    for (const raster::PieceExtent &e : vp.extents) edges.emplace_back(e);
     std::vector<RowTotals> totals((std::size_t)grid.tiles_y);
     parallel(grid.tiles_y, [&](int ty) {
         const std::vector<int> &bin = rows[(std::size_t)ty];
@@ -133,33 +160,42 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                 const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
                 const raster::PieceExtent &e = vp.extents[(std::size_t)q];
                 int first = 0, last = 0;
-                if (!piece_columns_in_row(e, grid, Y0, Y1, first, last)) continue;
+                RowExtent row_extent{};
+                if (!piece_columns_in_row(edges[(std::size_t)q], grid, Y0, Y1, first, last,
+                                          &row_extent)) {
+                    continue;
+                }
                 const bool receiver = vp.receiver[(std::size_t)q] != 0;
+                /* The columns this row's part of each open edge may meet
+                 * (a tile there is a boundary tile wherever the piece
+                 * counts), and for the receiver's own triangle those of
+                 * each edge where the receiver's triangles do not close. */
+                const uint8_t open = vp.open[(std::size_t)q];
+                bool open_whole = (open & kOpenWhole) != 0;
+                SegmentColumns open_columns, cap_columns;
+                if (open && !open_whole) {
+                    open_whole = !open_columns.add(vp.open_segments, vp.open_first[(std::size_t)q],
+                                                   vp.open_first[(std::size_t)q + 1], grid, Y0, Y1);
+                }
+                bool cap_whole = false;
+                if (receiver) {
+                    cap_whole = !cap_columns.add(vp.cap_segments, vp.cap_first[(std::size_t)q],
+                                                 vp.cap_first[(std::size_t)q + 1], grid, Y0, Y1);
+                }
                 for (int tx = first; tx <= last; tx++) {
                     uint8_t &st = state[(std::size_t)tx];
                     if (st == 2) continue;
                     TileSide side = TileSide::behind;
                     if (!receiver) {
-                        side = classify_piece(p, e, grid, tx, ty, in.faults);
+                        side = classify_in_row(p, e, grid, tx, ty, row_extent, in.faults);
                         if (side == TileSide::misses) continue;
-                    } else {
+                    } else if (cap_whole || cap_columns.meet(tx)) {
                         /* The receiver's own triangle fails its test at every
-                         * pixel it covers: "behind" in every tile it may
-                         * reach (its edges alone decide: a tile it does not
-                         * cover gets nothing from its sample), except where
-                         * an edge at which the receiver's triangles do not
-                         * close meets the tile (the other pieces on it may
+                         * pixel it covers: "behind" in every tile, except
+                         * where an edge at which the receiver's triangles do
+                         * not close meets the tile (the other pieces on it may
                          * count otherwise). */
-                        if (!edges_reach_square(p, grid.x0(tx), grid.x1(tx), Y0, Y1, nullptr))
-                            continue;
-                        for (int si = vp.cap_first[(std::size_t)q];
-                             si < vp.cap_first[(std::size_t)q + 1]; si++) {
-                            const VolumePieces::Segment &sg = vp.cap_segments[(std::size_t)si];
-                            if (segment_meets_tile(sg.x0, sg.y0, sg.x1, sg.y1, grid, tx, ty)) {
-                                side = TileSide::crosses;
-                                break;
-                            }
-                        }
+                        side = TileSide::crosses;
                     }
                     if (st == 0) {
                         st = 1;
@@ -171,16 +207,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                         continue;
                     }
                     if ((side == TileSide::behind) != zfail) continue; /* does not count */
-                    const uint8_t open = vp.open[(std::size_t)q];
-                    bool crossed = (open & kOpenWhole) != 0;
-                    if (open && !crossed) {
-                        for (int si = vp.open_first[(std::size_t)q];
-                             si < vp.open_first[(std::size_t)q + 1] && !crossed; si++) {
-                            const VolumePieces::Segment &sg = vp.open_segments[(std::size_t)si];
-                            crossed = segment_meets_tile(sg.x0, sg.y0, sg.x1, sg.y1, grid, tx, ty);
-                        }
-                    }
-                    if (crossed) {
+                    if (open_whole || open_columns.meet(tx)) {
                         st = 2;
                         continue;
                     }
@@ -214,8 +241,8 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                         continue;
                     }
                     int first = 0, last = 0;
-                    if (!piece_columns_in_row(vp.extents[(std::size_t)bin[k]], grid, Y0, Y1,
-                                              first, last)) {
+                    if (!piece_columns_in_row(edges[(std::size_t)bin[k]], grid, Y0, Y1, first,
+                                              last)) {
                         continue;
                     }
                     first = std::max(first, p.x_first / grid.side);

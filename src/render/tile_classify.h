@@ -141,8 +141,24 @@ inline bool edges_reach_square(const raster::SetupTriangle &p, int X0, int X1, i
     return true;
 }
 
+/* Where the piece lies against the tile's box, from a depth range: front,
+ * behind or crosses. */
+inline TileSide side_of_range(double lo, double hi, double margin, float z_min, float z_max) {
+    if ((float)(hi + margin) < z_min) return TileSide::front;
+    if (lo - margin >= (double)z_max) return TileSide::behind;
+    return TileSide::crosses;
+}
+
+/* The piece's x extent inside one tile row (pixels, widened), from
+ * piece_columns_in_row: a rectangle that holds the piece's part of each
+ * tile of the row. */
+struct RowExtent {
+    double lo_x, hi_x, lo_y, hi_y;
+};
+
 inline TileSide classify_piece(const raster::SetupTriangle &p, const raster::PieceExtent &ext,
-                               const TileGrid &g, int tx, int ty, const StencilFaults &faults) {
+                               const TileGrid &g, int tx, int ty, const StencilFaults &faults,
+                               const RowExtent *row = nullptr) {
     const int X0 = g.x0(tx), X1 = g.x1(tx), Y0 = g.y0(ty), Y1 = g.y1(ty);
     constexpr int64_t kSub = 256;
     if (ext.max_x <= X0 * kSub || ext.min_x >= X1 * kSub || ext.max_y <= Y0 * kSub ||
@@ -159,72 +175,150 @@ inline TileSide classify_piece(const raster::SetupTriangle &p, const raster::Pie
     } else if (covers_square) {
         /* Most tiles of a large piece: the square itself, no clipping. */
         depth_range_over_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin);
-    } else if (!depth_range_in_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin)) {
-        return TileSide::misses;
-    }
-    if ((float)(hi + margin) < z_min) return TileSide::front;
-    if (lo - margin >= (double)z_max) return TileSide::behind;
-    return TileSide::crosses;
-}
-
-/* Does segment S (window pixels) meet the square of tile (TX, TY),
- * widened by 1/16 pixel (the rasteriser's snapped edge is within 1/512
- * pixel of it)? Liang-Barsky. */
-inline bool segment_meets_tile(double x0, double y0, double x1, double y1, const TileGrid &g,
-                               int tx, int ty) {
-    constexpr double kWiden = 1.0 / 16;
-    const double dx = x1 - x0, dy = y1 - y0;
-    const double lo_x = g.x0(tx) - kWiden, hi_x = g.x1(tx) + kWiden;
-    const double lo_y = g.y0(ty) - kWiden, hi_y = g.y1(ty) + kWiden;
-    double u0 = 0, u1 = 1;
-    const double pp[4] = {-dx, dx, -dy, dy};
-    const double qq[4] = {x0 - lo_x, hi_x - x0, y0 - lo_y, hi_y - y0};
-    for (int i = 0; i < 4; i++) {
-        if (pp[i] == 0) {
-            if (qq[i] < 0) return false;
-            continue;
+    } else {
+        /* First the plane over the rectangle that holds the piece's part of
+         * the tile (its extent in the tile row, cut to the square): most
+         * tiles a long sliver passes are decided there, without the clip. */
+        if (row) {
+            const double rx0 = std::max((double)X0, row->lo_x),
+                         rx1 = std::min((double)X1, row->hi_x);
+            const double ry0 = std::max((double)Y0, row->lo_y),
+                         ry1 = std::min((double)Y1, row->hi_y);
+            if (rx0 <= rx1 && ry0 <= ry1) {
+                const double zx0 = p.a * (rx0 - p.x0), zx1 = p.a * (rx1 - p.x0);
+                const double zy0 = p.b * (ry0 - p.y0), zy1 = p.b * (ry1 - p.y0);
+                lo = p.z0 + std::min(zx0, zx1) + std::min(zy0, zy1);
+                hi = p.z0 + std::max(zx0, zx1) + std::max(zy0, zy1);
+                const double size = std::max(std::fabs(zx0), std::fabs(zx1)) +
+                                    std::max(std::fabs(zy0), std::fabs(zy1));
+                margin = 1e-9 + 1e-12 * size + ext.off_plane * (1 + 1e-9);
+                const TileSide quick = side_of_range(lo, hi, margin, z_min, z_max);
+                if (quick != TileSide::crosses) return quick;
+            }
         }
-        const double r = qq[i] / pp[i];
-        if (pp[i] < 0)
-            u0 = std::max(u0, r);
-        else
-            u1 = std::min(u1, r);
-        if (u0 > u1) return false;
+        if (!depth_range_in_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin)) return TileSide::misses;
     }
-    return true;
+    return side_of_range(lo, hi, margin, z_min, z_max);
 }
 
-/* The tile columns [FIRST, LAST] that piece EXT meets within tile row
+/* A piece's edges as piece_columns_in_row walks them: per edge its upper
+ * end, its y range and its slope dx/dy (1/256 pixel), computed once per
+ * piece instead of once per tile row. */
+struct PieceEdges {
+    double x_top[3], x_bottom[3], y_top[3], y_bottom[3];
+    double slope[3];     /* 0 where the edge is flat (y_top == y_bottom) */
+    double min_y, max_y; /* the piece's, pixels, widened by 1/256 */
+    explicit PieceEdges(const raster::PieceExtent &ext) {
+        for (int i = 0; i < 3; i++) {
+            const int j = (i + 1) % 3;
+            const bool down = ext.Y[i] <= ext.Y[j];
+            const int a = down ? i : j, b = down ? j : i;
+            x_top[i] = (double)ext.X[a];
+            y_top[i] = (double)ext.Y[a];
+            y_bottom[i] = (double)ext.Y[b];
+            slope[i] = ext.Y[a] == ext.Y[b]
+                           ? 0
+                           : (double)(ext.X[b] - ext.X[a]) / (double)(ext.Y[b] - ext.Y[a]);
+            x_bottom[i] = (double)ext.X[b];
+        }
+        min_y = (double)(ext.min_y - 1) / 256;
+        max_y = (double)(ext.max_y + 1) / 256;
+    }
+};
+
+/* The tile columns [FIRST, LAST] that piece E meets within tile row
  * [Y0, Y1) (pixels), widened by 1/256 pixel: a convex polygon's x extent
  * inside a horizontal slab is that of its edges clipped to the slab, so a
  * long diagonal sliver visits the tiles along it, not its bounding box.
- * False: the piece does not reach the slab. */
-inline bool piece_columns_in_row(const raster::PieceExtent &ext, const TileGrid &g, int Y0, int Y1,
-                                 int &first, int &last) {
+ * ROW gets that extent. False: the piece does not reach the slab. */
+inline bool piece_columns_in_row(const PieceEdges &e, const TileGrid &g, int Y0, int Y1, int &first,
+                                 int &last, RowExtent *row = nullptr) {
     constexpr double kSub = 256;
     const double lo_y = Y0 * kSub - 1, hi_y = Y1 * kSub + 1;
     double lo_x = std::numeric_limits<double>::infinity(), hi_x = -lo_x;
     for (int i = 0; i < 3; i++) {
-        const int j = (i + 1) % 3;
-        const double xa = (double)ext.X[i], ya = (double)ext.Y[i];
-        const double xb = (double)ext.X[j], yb = (double)ext.Y[j];
-        const double y_min = std::max(std::min(ya, yb), lo_y);
-        const double y_max = std::min(std::max(ya, yb), hi_y);
+        const double y_min = std::max(e.y_top[i], lo_y), y_max = std::min(e.y_bottom[i], hi_y);
         if (y_min > y_max) continue;
-        if (ya == yb) {
-            lo_x = std::min({lo_x, xa, xb});
-            hi_x = std::max({hi_x, xa, xb});
-            continue;
+        double x0 = 0, x1 = 0;
+        if (e.y_top[i] == e.y_bottom[i]) {
+            x0 = e.x_top[i], x1 = e.x_bottom[i];
+        } else {
+            x0 = e.x_top[i] + e.slope[i] * (y_min - e.y_top[i]);
+            x1 = e.x_top[i] + e.slope[i] * (y_max - e.y_top[i]);
         }
-        const double slope = (xb - xa) / (yb - ya);
-        const double x0 = xa + slope * (y_min - ya), x1 = xa + slope * (y_max - ya);
         lo_x = std::min({lo_x, x0, x1});
         hi_x = std::max({hi_x, x0, x1});
     }
     if (!(lo_x <= hi_x)) return false;
-    const double tile = kSub * g.side;
-    const double f = std::floor((lo_x - 1) / tile), l = std::floor((hi_x + 1) / tile);
+    if (row) {
+        row->lo_x = (lo_x - 1) / kSub;
+        row->hi_x = (hi_x + 1) / kSub;
+        row->lo_y = e.min_y;
+        row->hi_y = e.max_y;
+    }
+    /* A tile is 2^10 to 2^13 units wide: multiplying by its inverse is
+     * exact. */
+    const double per_tile = 1.0 / (kSub * g.side);
+    const double f = std::floor((lo_x - 1) * per_tile), l = std::floor((hi_x + 1) * per_tile);
     if (l < 0 || f > g.tiles_x - 1) return false;
+    first = (int)std::max(0.0, f);
+    last = (int)std::min((double)(g.tiles_x - 1), l);
+    return true;
+}
+
+/* Piece P against tile TX of the row whose extent ROW piece_columns_in_row
+ * gave (the tile one of the columns it returned): the plane's range over
+ * the rectangle ROW leaves of the square first, the clip to the square
+ * only where that cannot decide. The columns come from the piece's edges,
+ * so no edge test is needed; a tile the piece only nearly reaches is
+ * classified as if it reached it, which costs nothing: its sample is not
+ * covered, and "crosses" only walks pixels the walk finds empty. */
+inline TileSide classify_in_row(const raster::SetupTriangle &p, const raster::PieceExtent &ext,
+                                const TileGrid &g, int tx, int ty, const RowExtent &row,
+                                const StencilFaults &faults) {
+    if (faults.tile_box_test_too_tight) return classify_piece(p, ext, g, tx, ty, faults);
+    const int X0 = g.x0(tx), X1 = g.x1(tx), Y0 = g.y0(ty), Y1 = g.y1(ty);
+    const std::size_t t = (std::size_t)ty * (std::size_t)g.tiles_x + (std::size_t)tx;
+    const float z_min = g.z_min[t], z_max = g.z_max[t];
+    const double rx0 = std::max((double)X0, row.lo_x), rx1 = std::min((double)X1, row.hi_x);
+    const double ry0 = std::max((double)Y0, row.lo_y), ry1 = std::min((double)Y1, row.hi_y);
+    double lo = 0, hi = 0, margin = 0;
+    if (rx0 <= rx1 && ry0 <= ry1) {
+        const double zx0 = p.a * (rx0 - p.x0), zx1 = p.a * (rx1 - p.x0);
+        const double zy0 = p.b * (ry0 - p.y0), zy1 = p.b * (ry1 - p.y0);
+        lo = p.z0 + std::min(zx0, zx1) + std::min(zy0, zy1);
+        hi = p.z0 + std::max(zx0, zx1) + std::max(zy0, zy1);
+        const double size = std::max(std::fabs(zx0), std::fabs(zx1)) +
+                            std::max(std::fabs(zy0), std::fabs(zy1));
+        margin = 1e-9 + 1e-12 * size + ext.off_plane * (1 + 1e-9);
+        const TileSide quick = side_of_range(lo, hi, margin, z_min, z_max);
+        if (quick != TileSide::crosses) return quick;
+    }
+    if (!depth_range_in_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin)) return TileSide::misses;
+    return side_of_range(lo, hi, margin, z_min, z_max);
+}
+
+/* The tile columns [FIRST, LAST] of tile row [Y0, Y1) whose squares,
+ * widened by 1/8 pixel (the rasteriser's snapped edge is within 1/512
+ * pixel of segment S, window pixels), S may meet: the x extent of S inside
+ * the row's slab, widened. False: none. */
+inline bool segment_columns_in_row(double x0, double y0, double x1, double y1, const TileGrid &g,
+                                   int Y0, int Y1, int &first, int &last) {
+    constexpr double kWiden = 2.0 / 16;
+    const double lo_y = Y0 - kWiden, hi_y = Y1 + kWiden;
+    double lo_x = 0, hi_x = 0;
+    if (y0 == y1) {
+        if (y0 < lo_y || y0 > hi_y) return false;
+        lo_x = std::min(x0, x1), hi_x = std::max(x0, x1);
+    } else {
+        const double ya = std::max(std::min(y0, y1), lo_y), yb = std::min(std::max(y0, y1), hi_y);
+        if (!(ya <= yb)) return false;
+        const double slope = (x1 - x0) / (y1 - y0);
+        const double xa = x0 + slope * (ya - y0), xb = x0 + slope * (yb - y0);
+        lo_x = std::min(xa, xb), hi_x = std::max(xa, xb);
+    }
+    const double f = std::floor((lo_x - kWiden) / g.side), l = std::floor((hi_x + kWiden) / g.side);
+    if (!(l >= 0) || !(f <= g.tiles_x - 1)) return false;
     first = (int)std::max(0.0, f);
     last = (int)std::min((double)(g.tiles_x - 1), l);
     return true;

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# `shadowvol bench --scene --preset NAME --size WxH` (issue 28): the table
+# of passes for each preset (simple, knights, demo, a file) has a stencil
+# row per method (bf, db, hier) at 1 thread and every core, each checked
+# in the same run (every light's stencil equal to bf's), the same rows in
+# the JSON with their frame and run counts; bad input ends with its
+# documented exit status and a message.
+# usage: check_scene_bench.sh PATH/TO/shadowvol DEMO_SCENE
+set -u
+sv="$1"; demo="$2"
+fail=0
+err() { echo "FAIL: $*"; fail=1; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+
+for preset in simple knights demo "$demo"; do
+  "$sv" bench --scene --preset "$preset" --size 160x128 --quick --json "$tmp/p.json" \
+    >"$tmp/out" 2>"$tmp/err"
+  rc=$?
+  [ $rc -eq 0 ] || { err "--preset $preset exited $rc: $(cat "$tmp/err")"; continue; }
+  for m in bf db hier; do
+    grep -qE "^stencil +$m +1 +[0-9.]+ +[0-9.]+ +[0-9]+ +[0-9.]+ +[0-9]+ +yes$" "$tmp/out" \
+      || err "--preset $preset: no checked 1-thread row for $m: $(cat "$tmp/out")"
+  done
+  rows=$(grep -c '"pass": "stencil"' "$tmp/p.json")
+  [ "$rows" -ge 3 ] || err "--preset $preset: $rows stencil rows in the JSON"
+  grep -q '"frames": 2, "runs": 2, "frames_equal_to_bf": 2}' "$tmp/p.json" \
+    || err "--preset $preset: the JSON lacks the rows' counts and check"
+  if grep -q '"frames_equal_to_bf": [01]}' "$tmp/p.json"; then
+    err "--preset $preset: a method's stencil differs from bf's"
+  fi
+done
+# hier tests fewer pixels than bf on the crowd (the ratio is printed).
+"$sv" bench --scene --preset knights --size 320x256 --quick >"$tmp/out" 2>&1 \
+  || err "knights at 320x256: $(cat "$tmp/out")"
+bf=$(awk '$1 == "stencil" && $2 == "bf" && $3 == 1 {print $6}' "$tmp/out")
+hier=$(awk '$1 == "stencil" && $2 == "hier" && $3 == 1 {print $6}' "$tmp/out")
+[ -n "$bf" ] && [ -n "$hier" ] && [ "$hier" -lt "$bf" ] \
+  || err "knights: hier tested ${hier:-?} pixels, bf ${bf:-?}"
+
+# Bad input.
+"$sv" bench --scene --preset "$tmp/none.glb" --quick >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 3 ] || err "a missing --preset file did not exit 3"
+grep -q "none.glb" "$tmp/err" || err "a missing --preset file: no message naming it"
+for bad in "--size 0x5" "--size 9000x10" "--size 12" "--preset="; do
+  # shellcheck disable=SC2086
+  "$sv" bench --scene $bad >"$tmp/out" 2>"$tmp/err"
+  [ $? -eq 2 ] || err "bench --scene $bad did not exit 2"
+  [ -s "$tmp/err" ] || err "bench --scene $bad: no message"
+done
+"$sv" bench --preset simple >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] || err "--preset without --scene did not exit 2"
+"$sv" bench --size 64x64 >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] || err "--size without --scene did not exit 2"
+
+[ $fail -eq 0 ] && echo "bench --scene presets: OK"
+exit $fail
