@@ -339,6 +339,147 @@ int sv_create_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing, co
 int sv_count_facing_cull_avx512vbmi(uint8_t *facing, int numTriangles, const int *indices,
                                     const uint8_t *cullBits);
 
+/* ---- The general rule (issue 27, docs/CASTERS.md) -------------------------
+ * The paper's volume is the exact shadow of closed shells only. The general
+ * rule is exact for any triangle set: every triangle t casts its own prism
+ * V_t, so the stencil counts the triangles between a point and the light.
+ * With sigma_t = +1 for a triangle that faces away from the light, -1 for
+ * one that faces it (its reverse casts), 0 for one that casts nothing, an
+ * edge's quad Q(v1 -> v2) (the paper's quad for a dark triangle running
+ * v1 -> v2) is drawn m times, m = the sum over the edge's triangles of
+ * sigma_t * (+1 when t runs v1 -> v2, -1 when it runs v2 -> v1): |m|
+ * copies in the direction of sign(m). Every triangle that casts gives
+ * caps: a dark one the paper's, a lit one reversed.
+ *
+ * The facing bytes of the general rule, one per triangle of the surface
+ * (not doubled), from sv_calculate_facing's 0/1 (see
+ * sv_general_facing_from_calculated):
+ *   SV_GENERAL_DARK 0  faces away from the light: casts V_t (sigma +1);
+ *   SV_GENERAL_NONE 1  casts nothing (sigma 0): culled, or facing the
+ *                      light in a shell under the paper's rule;
+ *   SV_GENERAL_LIT  2  faces the light in a shell under the general
+ *                      rule: its reverse casts (sigma -1).
+ * The paper's routines read bytes 0 and 1 exactly as they always have, so
+ * the shells under the paper's rule take the same bytes. */
+enum { SV_GENERAL_DARK = 0, SV_GENERAL_NONE = 1, SV_GENERAL_LIT = 2 };
+
+/* An edge of three or more triangles, or of two that run it the same way:
+ * its uses are sharedUses[firstUse .. firstUse + numUses - 1], each
+ * 2 * t + d: triangle t, d = 0 when t runs v1 -> v2, 1 when v2 -> v1. */
+typedef struct sv_shared_edge {
+    int v1, v2; /* doubled vertex numbers, as in SilEdge */
+    int firstUse, numUses;
+} sv_shared_edge;
+
+/* The general edge table of a surface (sv::general_edge_table builds it
+ * once per surface topology), every welded edge once, in four classes:
+ *   paper   edges of the shells under the paper's rule: the paper's
+ *           SilEdges, drawn by CreateSilTriangles (p2 may be the
+ *           sentinel numTriangles);
+ *   pairs   two triangles running the edge in opposite directions, p1
+ *           v1 -> v2 and p2 v2 -> v1 (a SilEdge): m = sigma_p1 - sigma_p2
+ *           in -2 .. 2;
+ *   opens   one triangle p1 running v1 -> v2 (p2 == p1): m = sigma_p1;
+ *   shared  every other edge (sv_shared_edge).
+ * A closed 2-manifold surface under the paper's rule is all `paper`: its
+ * SilEdges, its index list. */
+typedef struct sv_general_edges {
+    const SilEdge *paper;
+    int numPaper;
+    const SilEdge *pairs;
+    int numPairs;
+    const SilEdge *opens;
+    int numOpens;
+    const sv_shared_edge *shared;
+    int numShared;
+    const int *sharedUses;
+    int numSharedUses;
+} sv_general_edges;
+
+/* Ints of output the silhouette part may need: 6 per edge of the paper's
+ * class, and 6 * k for an edge of k triangles (|m| <= k): 12 per pair, 6
+ * per open edge, 6 per shared use. SIZE_MAX for negative counts. */
+size_t sv_general_sil_capacity(const sv_general_edges *edges);
+
+/* The silhouette quads of the general rule; returns the number of indices
+ * written (a multiple of 6). For each class, in the order paper, pairs,
+ * opens, shared (the order of the quads is not part of the contract; the
+ * multiset is):
+ *   paper   the paper's quad when the facing bytes differ (section 6);
+ *   pairs   with f = (byte != 0) and g = (byte != 2) (the triangle's and
+ *           its reverse's paper facing): the paper's quad of (p1, p2,
+ *           v1, v2) when f differs, and that of the reverses (v2, v1 run
+ *           by p1's reverse) when g differs: exactly the quads the
+ *           two-sided caster draws for the edge;
+ *   opens   the paper's quad of p1 against its own reverse, unless p1
+ *           casts nothing;
+ *   shared  |m| copies of Q(v1 -> v2) (m > 0) or of its reverse (m < 0).
+ *   shadowIndices  room for sv_general_sil_capacity(edges) ints; branch-
+ *                  free variants may write up to that bound past the count.
+ *   facing         the general bytes (0, 1, 2) of the numTriangles
+ *                  triangles, then facing[numTriangles] = 1 when the
+ *                  paper's class has dangling edges. Triangles named by the
+ *                  paper's class have bytes 0 or 1. */
+typedef int (*sv_create_general_sil_triangles_fn)(int *shadowIndices, const uint8_t *facing,
+                                                  const sv_general_edges *edges);
+/* The caps of the general rule: for byte 0 the paper's near cap (i2, i1,
+ * i0) and far cap (i0+1, i1+1, i2+1); for byte 2 the caps of the reverse:
+ * (i0, i1, i2) and (i2+1, i1+1, i0+1); for byte 1 nothing. Returns the
+ * number of indices (6 per casting triangle).
+ *   shadowIndices  room for 2 * numIndices ints (branch-free variants may
+ *                  write 6 past the count, never past 2 * numIndices).
+ *   indices        numIndices (a multiple of 3) vertex numbers < 2^30. */
+typedef int (*sv_create_general_cap_triangles_fn)(int *shadowIndices, const uint8_t *facing,
+                                                  const int *indices, int numIndices);
+
+int sv_create_general_sil_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
+                                          const sv_general_edges *edges);
+int sv_create_general_cap_triangles_c_ref(int *shadowIndices, const uint8_t *facing,
+                                          const int *indices, int numIndices);
+/* AVX2 and AVX-512 (src/core/x86/general_simd.c): the reference's list, in
+ * its order. The paper's class goes to the paper's kernel of the same ISA.
+ * They read the facing bytes of the pairs as the aligned 4-byte words that
+ * hold them: up to 3 bytes before facing[0] and past the last byte, within
+ * its word (a word never crosses a page, so no read can fault). */
+int sv_create_general_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
+                                         const sv_general_edges *edges);
+int sv_create_general_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
+                                         const int *indices, int numIndices);
+int sv_create_general_sil_triangles_avx512(int *shadowIndices, const uint8_t *facing,
+                                           const sv_general_edges *edges);
+int sv_create_general_cap_triangles_avx512(int *shadowIndices, const uint8_t *facing,
+                                           const int *indices, int numIndices);
+
+/* The general bytes from sv_calculate_facing's: byte t becomes 0 where
+ * calculated[t] is 0, else litByte[t] (SV_GENERAL_LIT for a triangle of a
+ * general shell, SV_GENERAL_NONE for one under the paper's rule; NULL:
+ * SV_GENERAL_LIT for all). Returns the triangles that cast (bytes != 1). */
+int sv_general_facing_from_calculated(uint8_t *facing, const uint8_t *calculated,
+                                      const uint8_t *litByte, int numTriangles);
+/* CountFacingCull for the general rule: a triangle whose three vertices
+ * share a set cull bit casts nothing, lit or dark (byte 1). Returns the
+ * triangles that cast afterwards (bytes != 1). */
+int sv_general_cull_c_ref(uint8_t *facing, int numTriangles, const int *indices,
+                          const uint8_t *cullBits);
+
+/* The implementations of the general rule, from the reference to the
+ * fastest (as sv_variants). */
+typedef struct sv_general_variant {
+    const char *name;
+    unsigned isa; /* SV_ISA_* bits the CPU must have */
+    sv_create_general_sil_triangles_fn create_general_sil_triangles;
+    sv_create_general_cap_triangles_fn create_general_cap_triangles;
+} sv_general_variant;
+
+const sv_general_variant *sv_general_variants(int *count);
+const sv_general_variant *sv_general_variant_by_name(const char *name);
+/* The last entry whose isa is within ISA (c_ref at least): the general
+ * kernels that go with a variant of the paper's, sv_general_variant_for_isa
+ * (variant->isa). */
+const sv_general_variant *sv_general_variant_for_isa(unsigned isa);
+/* The last entry sv_cpu_isa() allows. */
+const sv_general_variant *sv_best_general_variant(void);
+
 /* ---- Contracts -----------------------------------------------------------
  * Each sv_check_* returns SV_OK or the first violated contract (SV_E_*), for
  * the named variant (its alignment needs) and the given buffers. The
@@ -358,8 +499,10 @@ enum sv_status {
         -8, /* an index count (input 3 * numTriangles, or the output) does not fit in an int */
     SV_E_CPU = -9,              /* the CPU lacks the variant's instruction set */
     SV_E_FACING_SENTINEL = -10, /* facing[numTriangles] is 0 (it must be 1) */
-    SV_E_CULL_BITS = -11        /* sse2_paper: a cull byte with bit 7 set (its
+    SV_E_CULL_BITS = -11,       /* sse2_paper: a cull byte with bit 7 set (its
                                   documented limit is bits 0..6, erratum D-5) */
+    SV_E_GENERAL_FACING = -12   /* a general facing byte above 2, or 2 on a
+                                   triangle of the paper's class */
 };
 const char *sv_status_string(int status);
 
@@ -382,6 +525,21 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
                                     const int *indices, int numIndices, int numVerts,
                                     const SilEdge *silEdges, int numSilEdges, uint8_t *facing,
                                     const uint8_t *cullBits);
+
+/* The general rule's entry points, checked: numVerts vertices (every v1,
+ * v2 below 2 * numVerts, even), the table's triangles below numTriangles
+ * (the paper's class may name numTriangles, with facing[numTriangles] =
+ * 1), every shared use inside sharedUses, capacity at least
+ * sv_general_sil_capacity (SV_E_CAPACITY) and that bound an int
+ * (SV_E_OVERFLOW); facing bytes 0, 1 or 2, and 0 or 1 on the paper's
+ * class (SV_E_GENERAL_FACING). */
+int sv_create_general_sil_triangles_checked(const sv_general_variant *v, int *shadowIndices,
+                                            size_t capacity, const uint8_t *facing,
+                                            int numTriangles, int numVerts,
+                                            const sv_general_edges *edges);
+int sv_create_general_cap_triangles_checked(const sv_general_variant *v, int *shadowIndices,
+                                            size_t capacity, const uint8_t *facing,
+                                            const int *indices, int numIndices, int numVerts);
 
 #ifdef __cplusplus
 }

@@ -91,6 +91,38 @@ bool two_sided_caster_fits(const PreparedSurface &s, const PreparedSurface &cast
 /* CASTER's positions and planes from S's (O(n), no sorting). */
 void refresh_two_sided_caster(const PreparedSurface &s, PreparedSurface &caster);
 
+/* How the general rule's volume is built: the two-sided caster (the
+ * paper's routines on the shell and its reverse) or the direct kernels
+ * (sv_create_general_sil_triangles on the general edge table). Both give
+ * the same stencil; docs/CASTERS.md measures them. */
+enum class GeneralBuild { two_sided, direct };
+const char *general_build_name(GeneralBuild b);
+/* "two-sided" or "direct"; false for anything else. */
+bool general_build_by_name(const std::string &name, GeneralBuild &out);
+
+/* The general edge table of a surface under a rule (shadowvol.h,
+ * sv_general_edges): built once per topology; positions may move. */
+struct GeneralEdgeTable {
+    std::vector<SilEdge> paper; /* the shells under the paper's rule: S's SilEdges, in order */
+    std::vector<SilEdge> pairs, opens;
+    std::vector<sv_shared_edge> shared;
+    std::vector<int> shared_uses;
+    /* Per triangle, the general byte of a triangle that faces the light:
+     * SV_GENERAL_LIT in a general shell, SV_GENERAL_NONE under the paper's
+     * rule (sv_general_facing_from_calculated). */
+    std::vector<uint8_t> lit_byte;
+    int64_t general_triangles = 0; /* in shells under the general rule */
+    sv_general_edges view() const;
+    std::size_t sil_capacity() const; /* sv_general_sil_capacity */
+};
+
+/* The table of S under RULE. Every welded edge of a general shell once, with every triangle on
+ * it: a pair is (p1, p2, v1, v2) with p1 the earlier triangle, running v1
+ * -> v2 (the paper's SilEdge, as prepare_surface pairs it); a shared
+ * edge runs v1 -> v2 as its earliest use. O(n log n). */
+GeneralEdgeTable general_edge_table(const PreparedSurface &s, const ShellMap &shells,
+                                    CasterRule rule);
+
 } // namespace sv
 
 #endif /* SHADOWVOL_CASTERS_H */

@@ -46,6 +46,8 @@ struct SeedCommand {
  * written, 3 a model could not be loaded. */
 int run_silhouette_bench(const SeedCommand &cmd);
 int run_backface_bench(const SeedCommand &cmd);
+/* `shadowvol bench --casters` (casters_bench.cpp, issue 27). */
+int run_casters_bench(const SeedCommand &cmd);
 
 /* The frame both commands share: the --json file opened before anything
  * runs, BODY printing its tables to OUT (stdout; stderr when the JSON goes

@@ -713,4 +713,133 @@ void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng) {
     });
 }
 
+// ---- The general rule (issue 27): its silhouette and caps ------------------
+
+namespace {
+
+// General bytes: 0 (casts), 1 (nothing), 2 (its reverse casts), in
+// proportions by MODE (none: all 0; all: all 2; half: 0 and 2; random).
+std::vector<uint8_t> general_bytes(Rng &rng, int n, Facing mode) {
+    std::vector<uint8_t> b((size_t)std::max(n, 0));
+    for (uint8_t &x : b) {
+        switch (mode) {
+        case Facing::none: x = 0; break;
+        case Facing::all: x = 2; break;
+        case Facing::half: x = rng.chance(0.5) ? 2 : 0; break;
+        default: x = (uint8_t)rng.below(3); break;
+        }
+    }
+    return b;
+}
+
+// A table of N edges of each class over NUMTRIANGLES triangles, the first
+// PAPER of them the paper's class (their bytes 0 or 1); shared edges of 2
+// to 5 triangles running either way.
+struct GeneralCase {
+    std::vector<SilEdge> paper, pairs, opens;
+    std::vector<sv_shared_edge> shared;
+    std::vector<int> uses;
+    sv_general_edges view() const {
+        sv_general_edges e{};
+        e.paper = paper.data(), e.numPaper = (int)paper.size();
+        e.pairs = pairs.data(), e.numPairs = (int)pairs.size();
+        e.opens = opens.data(), e.numOpens = (int)opens.size();
+        e.shared = shared.data(), e.numShared = (int)shared.size();
+        e.sharedUses = uses.data(), e.numSharedUses = (int)uses.size();
+        return e;
+    }
+};
+
+GeneralCase general_case(Rng &rng, int n, int numTriangles, int paperTriangles) {
+    GeneralCase c;
+    auto general = [&] {
+        return paperTriangles + (int)rng.below((uint32_t)(numTriangles - paperTriangles));
+    };
+    for (int i = 0; i < n; i++) {
+        const int p1 = (int)rng.below((uint32_t)paperTriangles);
+        const int p2 = rng.chance(0.1) ? numTriangles : (int)rng.below((uint32_t)paperTriangles);
+        c.paper.push_back({p1, p2, doubled_vertex(rng), doubled_vertex(rng)});
+        c.pairs.push_back({general(), general(), doubled_vertex(rng), doubled_vertex(rng)});
+        const int p = general();
+        c.opens.push_back({p, p, doubled_vertex(rng), doubled_vertex(rng)});
+        const int k = 2 + (int)rng.below(4);
+        c.shared.push_back({doubled_vertex(rng), doubled_vertex(rng), (int)c.uses.size(), k});
+        for (int j = 0; j < k; j++) c.uses.push_back(2 * general() + (int)rng.below(2));
+    }
+    return c;
+}
+
+} // namespace
+
+void run_create_general_sil_triangles(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(false, kFacingModes, [&](int n, Facing mode, size_t caseno) {
+        const int paperTriangles = 1 + (int)rng.below((uint32_t)n + 1);
+        const int numTriangles = paperTriangles + 1 + (int)rng.below(2u * (uint32_t)n + 1);
+        std::vector<uint8_t> facing = general_bytes(rng, numTriangles + 1, mode);
+        for (int t = 0; t < paperTriangles; t++) facing[(size_t)t] &= 1; /* 0 or 1 */
+        facing[(size_t)numTriangles] = 1; /* the paper's dangling edges' byte */
+        const GeneralCase g = general_case(rng, n, numTriangles, paperTriangles);
+        const sv_general_edges e = g.view();
+        const size_t out_ints = sv_general_sil_capacity(&e);
+        std::vector<int> want_out(out_ints + 6);
+        const int want = sv_create_general_sil_triangles_c_ref(want_out.data(), facing.data(), &e);
+        const uint8_t pat = guard_pattern(rng);
+        const size_t fo = pick(kByteOffsets, caseno), oo = pick(kIntOffsets, caseno);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(numTriangles);
+            const std::string at = where("edges of each class", n, mode, oo) + ", " +
+                                   std::to_string(numTriangles) + " triangles";
+            GuardedBuffer out(out_ints * sizeof(int), oo, pat);
+            GuardedBuffer fbuf = guarded_copy(facing, fo, pat);
+            uint32_t failed = 0;
+            const int got = abi_call(row.abi, &failed, k.general->create_general_sil_triangles,
+                                     out.as<int>(), (const uint8_t *)fbuf.data(), &e);
+            count_case(row);
+            record_abi(row, failed, at);
+            compare_indices(row, at, got, want, out, want_out);
+            if (!unchanged(fbuf, facing)) record_failure(row, at, "modified its const facing");
+            check_guards(row, at, {"outside sv_general_sil_capacity ints", "around facing"},
+                         {&out, &fbuf});
+        }
+    });
+}
+
+void run_create_general_cap_triangles(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(false, kFacingModes, [&](int n, Facing mode, size_t caseno) {
+        std::vector<uint8_t> facing = general_bytes(rng, n, mode);
+        if (mode == Facing::random)
+            for (uint8_t &b : facing) b = rng.chance(0.3) ? 1 : b;
+        const uint32_t numVerts = rng.chance(0.5) ? 1u << 30 : 1 + rng.below(3u * (uint32_t)n + 1);
+        std::vector<int> indices((size_t)3 * n);
+        for (int &i : indices) i = vertex_index(rng, numVerts);
+        const size_t out_ints = (size_t)6 * n;
+        std::vector<int> want_out(out_ints + 6);
+        const int want = sv_create_general_cap_triangles_c_ref(want_out.data(), facing.data(),
+                                                               indices.data(), 3 * n);
+        const uint8_t pat = guard_pattern(rng);
+        const size_t fo = pick(kByteOffsets, caseno), io = pick(kIntOffsets, caseno),
+                     oo = pick(kIntOffsets, caseno / 3);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(n);
+            const std::string at = where("triangles", n, mode, oo) + ", indices offset " +
+                                   std::to_string(io);
+            GuardedBuffer out(out_ints * sizeof(int), oo, pat);
+            GuardedBuffer fbuf = guarded_copy(facing, fo, pat);
+            GuardedBuffer ibuf = guarded_copy(indices, io, pat);
+            uint32_t failed = 0;
+            const int got = abi_call(row.abi, &failed, k.general->create_general_cap_triangles,
+                                     out.as<int>(), (const uint8_t *)fbuf.data(),
+                                     ibuf.as<const int>(), 3 * n);
+            count_case(row);
+            record_abi(row, failed, at);
+            compare_indices(row, at, got, want, out, want_out);
+            if (!unchanged(fbuf, facing) || !unchanged(ibuf, indices))
+                record_failure(row, at, "modified its const facing or indices");
+            check_guards(row, at,
+                         {"outside 6 * numTriangles ints", "around facing", "around the indices"},
+                         {&out, &fbuf, &ibuf});
+        }
+    });
+}
+
 } // namespace svcheck

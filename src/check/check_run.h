@@ -72,5 +72,7 @@ void run_create_sil_triangles(std::vector<Row> &rows, Rng &rng);
 void run_create_cap_triangles(std::vector<Row> &rows, Rng &rng);
 void run_shadow_volume(std::vector<Row> &rows, Rng &rng, bool cull);
 void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng);
+void run_create_general_sil_triangles(std::vector<Row> &rows, Rng &rng);
+void run_create_general_cap_triangles(std::vector<Row> &rows, Rng &rng);
 
 } // namespace svcheck

@@ -165,6 +165,22 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
             sink = k.kernels.create_cap_triangles(d.out.as<int>(), d.facing_buf.data(),
                                                   d.indices_buf.as<int>(), 3 * n);
         });
+    case Routine::create_general_sil_triangles: {
+        /* A quick look on the same input: its edges as the paper's class
+         * (their bytes are 0 or 1, with the sentinel). */
+        sv_general_edges e{};
+        e.paper = d.edges.data(), e.numPaper = ne;
+        return d.time_calls([&] {
+            sink = k.general->create_general_sil_triangles(d.out.as<int>(), d.facing_buf.data(),
+                                                           &e);
+        });
+    }
+    case Routine::create_general_cap_triangles:
+        /* Bytes 0 or 1: the dark triangles cast, the others nothing. */
+        return d.time_calls([&] {
+            sink = k.general->create_general_cap_triangles(d.out.as<int>(), d.facing_buf.data(),
+                                                           d.indices_buf.as<int>(), 3 * n);
+        });
     case Routine::shadow_volume:
     case Routine::shadow_volume_cull: {
         const uint8_t *cull = routine == Routine::shadow_volume_cull ? d.cull.data() : nullptr;

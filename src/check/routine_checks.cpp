@@ -14,9 +14,18 @@ namespace svcheck {
 namespace {
 
 const char *const kRoutineNames[kNumRoutines] = {
-    "calculate_facing",   "calculate_cull_bits",     "calculate_facing_count", "count_facing",
-    "count_facing_cull",  "create_sil_triangles",    "create_cap_triangles",   "shadow_volume",
-    "shadow_volume_cull", "shadow_volume_for_light",
+    "calculate_facing",
+    "calculate_cull_bits",
+    "calculate_facing_count",
+    "count_facing",
+    "count_facing_cull",
+    "create_sil_triangles",
+    "create_cap_triangles",
+    "shadow_volume",
+    "shadow_volume_cull",
+    "shadow_volume_for_light",
+    "create_general_sil_triangles",
+    "create_general_cap_triangles",
 };
 
 // The library's own contract check decides whether bit 7 is in
@@ -66,6 +75,8 @@ bool Variant::has(Routine r) const {
     case Routine::calculate_cull_bits: return k.calculate_cull_bits != nullptr;
     case Routine::calculate_facing_count: return k.calculate_facing_count != nullptr;
     case Routine::shadow_volume_for_light: return k.plan != nullptr;
+    case Routine::create_general_sil_triangles:
+    case Routine::create_general_cap_triangles: return k.general != nullptr;
     default: return k.kernels.count_facing != nullptr;
     }
 }
@@ -86,6 +97,7 @@ Variant make_variant(const std::string &name, const sv_facing_variant *facing,
         k.kernels = *kernels;
         k.cull_bit7 = honours_cull_bit7(*kernels);
     }
+    if ((k.general = sv_general_variant_by_name(name.c_str()))) v.isa |= k.general->isa;
     for (Kernels &c : v.by_class) c = k;
     return v;
 }
@@ -198,6 +210,12 @@ std::vector<Result> check_routine(Routine routine, const std::vector<Variant> &t
     case Routine::shadow_volume: run_shadow_volume(rows, input, false); break;
     case Routine::shadow_volume_cull: run_shadow_volume(rows, input, true); break;
     case Routine::shadow_volume_for_light: run_shadow_volume_for_light(rows, input); break;
+    case Routine::create_general_sil_triangles:
+        run_create_general_sil_triangles(rows, input);
+        break;
+    case Routine::create_general_cap_triangles:
+        run_create_general_cap_triangles(rows, input);
+        break;
     }
     // Back in table order, each run row in its place.
     size_t next = 0;

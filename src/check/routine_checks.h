@@ -36,8 +36,10 @@ enum class Routine {
     shadow_volume,
     shadow_volume_cull,
     shadow_volume_for_light,
+    create_general_sil_triangles, /* the general rule (issue 27) */
+    create_general_cap_triangles,
 };
-constexpr int kNumRoutines = 10;
+constexpr int kNumRoutines = 12;
 const char *routine_name(Routine r);
 // false when NAME is none of routine_name()'s.
 bool routine_by_name(const std::string &name, Routine *out);
@@ -53,6 +55,8 @@ struct Kernels {
     sv_variant kernels{}; // C-F with their alignment needs; count_facing null: none
     // The plan sv_shadow_volume_for_light runs ("planned" only; null: none).
     const sv_plan *plan = nullptr;
+    // The general rule's kernels of the variant's name (null: none).
+    const sv_general_variant *general = nullptr;
     // Whether the contract lets CountFacingCull see cull bit 7
     // (sse2_paper's does not, erratum D-5): asked of the library's own
     // contract check (sv_count_facing_cull_checked), not known by name.

@@ -193,6 +193,7 @@ struct CliOptions {
     bool backface = false;   /* --backface: seed 001's culling (backface_bench.cpp) */
     bool planes = false;     /* --planes: per-frame planes (planes_bench.cpp) */
     bool scene = false;      /* --scene: the demo scene per frame (scene_bench.cpp) */
+    bool casters = false;    /* --casters: the general rule's builders (casters_bench.cpp) */
     std::string casterRule;  /* --caster-rule R (with --scene); "" the default, auto */
     std::string scenePreset; /* --preset NAME|FILE (with --scene) */
     int sceneWidth = 0, sceneHeight = 0; /* --size WxH (with --scene) */
@@ -319,6 +320,8 @@ CliOptions parse(int argc, char **argv) {
             c.planes = true;
         } else if (opt == "--scene" && !hasValue) {
             c.scene = true;
+        } else if (opt == "--casters" && !hasValue) {
+            c.casters = true;
         } else if (opt == "--caster-rule") {
             c.casterRule = need();
             sv::CasterRule r;
@@ -348,7 +351,7 @@ CliOptions parse(int argc, char **argv) {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
                                 opt == "--silhouette" || opt == "--backface" || opt == "--planes" ||
-                                opt == "--scene")) {
+                                opt == "--scene" || opt == "--casters")) {
             bad(opt + " takes no value");
         } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -356,15 +359,16 @@ CliOptions parse(int argc, char **argv) {
             bad("unexpected argument '" + arg + "'");
         }
     }
-    if (c.silhouette || c.backface || c.planes || c.scene) {
+    if (c.silhouette || c.backface || c.planes || c.scene || c.casters) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
-         * backface_bench.cpp, planes_bench.cpp). */
+         * backface_bench.cpp, planes_bench.cpp, casters_bench.cpp). */
         const std::string mode = c.silhouette ? "--silhouette"
                                  : c.backface ? "--backface"
                                  : c.planes   ? "--planes"
+                                 : c.casters  ? "--casters"
                                               : "--scene";
-        if ((c.silhouette + c.backface + c.planes + c.scene > 1) || c.scaling || c.limits ||
-            !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
+        if ((c.silhouette + c.backface + c.planes + c.scene + c.casters > 1) || c.scaling ||
+            c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
             !c.table.routines.empty() || !c.variants.empty() || c.runs || c.table.batch ||
             c.targets.facing != LightTargets{}.facing ||
             c.targets.silhouette != LightTargets{}.silhouette) {
@@ -637,6 +641,13 @@ void bench_usage(FILE *out) {
         "that table alone, for that scene (docs/RENDERING.md).\n"
         "JSON schema shadowvol-scene-bench/1.\n"
         "\n"
+        "The general rule: shadowvol bench --casters [--quick] [--json FILE]\n"
+        "Min TSC ticks per triangle of a whole volume build, warm, in one process: the\n"
+        "closed rule (the paper's, the floor), two-sided and the direct general kernels\n"
+        "(and their C), on the open character, the generated open cases and the demo\n"
+        "terrain, three lights, z-pass and z-fail (docs/CASTERS.md). --quick: the point\n"
+        "light only, shorter rows. JSON schema shadowvol-casters-bench/1.\n"
+        "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
         "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
@@ -673,6 +684,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.scene) {
             return run_scene_bench(seed_command(c));
+        }
+        if (c.casters) {
+            return run_casters_bench(seed_command(c));
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {

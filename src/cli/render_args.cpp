@@ -66,6 +66,14 @@ bool parse_caster_rule_option(ArgReader &a, sv::CasterRule &rule) {
     return true;
 }
 
+bool parse_general_build_option(ArgReader &a, sv::GeneralBuild &build) {
+    if (!a.is("--general-build")) return false;
+    const std::string b = a.value();
+    if (!sv::general_build_by_name(b, build))
+        usage_error("--general-build needs two-sided or direct, not '" + quoted(b) + "'");
+    return true;
+}
+
 bool parse_mode_option(ArgReader &a, sv::render::ModeChoice &mode) {
     if (!a.is("--mode")) return false;
     const std::string m = a.value();
@@ -90,9 +98,10 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
         } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
                                               r.has_camera) ||
                    parse_render_pass_option(a, r.stencil) ||
-                   parse_caster_rule_option(a, r.caster_rule) || parse_mode_option(a, r.mode)) {
+                   parse_caster_rule_option(a, r.caster_rule) ||
+                   parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode)) {
             /* the options scene shares: --add, --ground, --light, --camera; --stencil;
-             * --caster-rule; --mode */
+             * --caster-rule; --general-build; --mode */
         } else if (a.is("--size")) {
             parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--out")) {

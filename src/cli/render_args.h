@@ -27,6 +27,7 @@ struct RenderArgs {
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
+    sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     std::string out_dir = "shadowvol-render";
     std::string json_path;
     std::string kernels, variant;
@@ -58,6 +59,10 @@ bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil);
 /* --caster-rule auto|closed|general (shadowvol_casters.h), shared by
  * render, scene and bench --scene. As parse_render_pass_option. */
 bool parse_caster_rule_option(ArgReader &a, sv::CasterRule &rule);
+/* --general-build two-sided|direct (shadowvol_casters.h): how the general
+ * rule's volumes are built, shared by render and scene. As
+ * parse_render_pass_option. */
+bool parse_general_build_option(ArgReader &a, sv::GeneralBuild &build);
 
 /* --mode zpass|zfail|auto, shared by render and scene. As
  * parse_render_pass_option. */

@@ -121,6 +121,9 @@ void render_usage(FILE *out) {
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
+        "  --general-build B how the general rule's volumes are built: direct (default:\n"
+        "                    the general kernels) or two-sided (the paper's kernels on\n"
+        "                    the shells and their reverses); the same stencil\n"
         "  --kernels K       the rasteriser's row kernels: c, avx2, avx512 (default: best)\n"
         "  --variant NAME    the library's volume kernels (default: best)\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -233,6 +236,7 @@ int render_main(int argc, char **argv) {
     opt.mode = args.mode;
     opt.stencil = args.stencil;
     opt.caster_rule = args.caster_rule;
+    opt.general_build = args.general_build;
     opt.kernels = kernels;
     opt.variant = variant;
     opt.threads = args.threads; /* 0: every core; the same bytes at any count */
@@ -419,6 +423,7 @@ int render_main(int argc, char **argv) {
         j.key("height"), j.value(frame.height);
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
+        j.key("general_build"), j.value(sv::general_build_name(args.general_build));
         j.key("stencil"), j.value(frame.stencil_method);
         j.key("row_kernels"), j.value(frame.kernels);
         j.key("volume_kernels"), j.value(frame.variant);

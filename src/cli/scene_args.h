@@ -27,6 +27,7 @@ struct SceneArgs {
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
+    sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     bool check = true; /* render the full frame beside and compare */
     bool truth = true;
     int width = 640, height = 512;

@@ -222,6 +222,8 @@ void scene_usage(FILE *out) {
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
+        "  --general-build B direct (default) or two-sided: how the general rule's\n"
+        "                    volumes are built; the same stencil\n"
         "  --full            render with no shortcut at all (what the check compares with)\n"
         "  --no-check        skip the full frame beside each frame\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -330,6 +332,7 @@ int scene_main(int argc, char **argv) {
     fast.stencil = args.stencil;
     fast.mode = args.mode;
     fast.caster_rule = args.caster_rule;
+    fast.general_build = args.general_build;
     sv::render::VolumeCache cache;
     fast.cache = &cache;
     if (args.full) fast.shortcuts = sv::render::Shortcuts::none();
@@ -548,6 +551,7 @@ int scene_main(int argc, char **argv) {
         j.key("stencil"), j.value(sv::render::stencil_method_name(args.stencil));
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
+        j.key("general_build"), j.value(sv::general_build_name(args.general_build));
         j.key("tsc_hz"), j.value(hz);
         j.key("surfaces"), j.value((long long)scene.surfaces.size());
         j.key("triangles"), j.value((long long)scene.triangles());

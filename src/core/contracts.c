@@ -27,6 +27,9 @@ const char *sv_status_string(int status) {
     case SV_E_CULL_BITS:
         return "a cull byte has bit 7 set, which sse2_paper's CountFacingCull does not honour "
                "(erratum D-5)";
+    case SV_E_GENERAL_FACING:
+        return "a general facing byte is not 0, 1 or 2 (or is 2 on a triangle of the paper's "
+               "class)";
     default: return status >= 0 ? "ok" : "unknown error";
     }
 }
@@ -211,4 +214,111 @@ int sv_create_shadow_volume_checked(const sv_variant *v, int *shadowIndices, siz
     if (cullBits && numTriangles > 0 && (s = check_cull_bits(v, cullBits, numVerts))) return s;
     return sv_create_shadow_volume(v, shadowIndices, indices, numIndices, silEdges, numSilEdges,
                                    facing, cullBits);
+}
+
+/* ---- The general rule (issue 27) ----------------------------------------- */
+
+static int check_general_variant(const sv_general_variant *v) {
+    if (!v) return SV_E_NULL;
+    if ((v->isa & sv_cpu_isa()) != v->isa) return SV_E_CPU;
+    return SV_OK;
+}
+
+static int check_general_bytes(const uint8_t *facing, int n) {
+    int i;
+    for (i = 0; i < n; i++) {
+        if (facing[i] > SV_GENERAL_LIT) return SV_E_GENERAL_FACING;
+    }
+    return SV_OK;
+}
+
+static int check_doubled_vertex(int v, int numVerts) {
+    if (v < 0 || v / 2 >= numVerts) return SV_E_INDEX_RANGE;
+    return (v & 1) ? SV_E_ODD_VERTEX : SV_OK;
+}
+
+/* A pair or open edge: triangles below numTriangles, even vertices below
+ * 2 * numVerts; an open edge names its triangle twice. */
+static int check_general_sil_edges(const SilEdge *edges, int n, int numTriangles, int numVerts,
+                                   int open) {
+    int i, s;
+    for (i = 0; i < n; i++) {
+        const SilEdge *e = &edges[i];
+        if (e->p1 < 0 || e->p1 >= numTriangles || e->p2 < 0 || e->p2 >= numTriangles) {
+            return SV_E_INDEX_RANGE;
+        }
+        if (open && e->p2 != e->p1) return SV_E_INDEX_RANGE;
+        if ((s = check_doubled_vertex(e->v1, numVerts))) return s;
+        if ((s = check_doubled_vertex(e->v2, numVerts))) return s;
+    }
+    return SV_OK;
+}
+
+int sv_create_general_sil_triangles_checked(const sv_general_variant *v, int *shadowIndices,
+                                            size_t capacity, const uint8_t *facing,
+                                            int numTriangles, int numVerts,
+                                            const sv_general_edges *e) {
+    int s = check_general_variant(v);
+    int i;
+    size_t bound;
+    if (s) return s;
+    if (!e) return SV_E_NULL;
+    if (numTriangles < 0 || numVerts < 0) return SV_E_COUNT;
+    bound = sv_general_sil_capacity(e);
+    if (bound == SIZE_MAX) return SV_E_COUNT;
+    /* The count returned is an int: 6 * k per edge of k triangles. */
+    if (bound > (size_t)INT_MAX) return SV_E_OVERFLOW;
+    if (!facing) return SV_E_NULL;
+    if ((e->numPaper > 0 && !e->paper) || (e->numPairs > 0 && !e->pairs) ||
+        (e->numOpens > 0 && !e->opens) || (e->numShared > 0 && !e->shared) ||
+        (e->numSharedUses > 0 && !e->sharedUses) || (bound > 0 && !shadowIndices)) {
+        return SV_E_NULL;
+    }
+    if (capacity < bound) return SV_E_CAPACITY;
+    if ((s = check_general_bytes(facing, numTriangles))) return s;
+    if (e->numPaper > 0) {
+        /* The paper's class: its routine's contract (bytes 0 or 1, the
+         * sentinel 1 for dangling edges). */
+        if ((s = sv_check_sil_edges(e->paper, e->numPaper, numTriangles, numVerts))) return s;
+        for (i = 0; i < e->numPaper; i++) {
+            if (e->paper[i].p2 == numTriangles && facing[numTriangles] != 1) {
+                return SV_E_FACING_SENTINEL;
+            }
+            if (facing[e->paper[i].p1] > 1 ||
+                (e->paper[i].p2 < numTriangles && facing[e->paper[i].p2] > 1)) {
+                return SV_E_GENERAL_FACING;
+            }
+        }
+    }
+    if ((s = check_general_sil_edges(e->pairs, e->numPairs, numTriangles, numVerts, 0))) return s;
+    if ((s = check_general_sil_edges(e->opens, e->numOpens, numTriangles, numVerts, 1))) return s;
+    for (i = 0; i < e->numShared; i++) {
+        const sv_shared_edge *x = &e->shared[i];
+        int k;
+        if (x->numUses < 1 || x->firstUse < 0 || x->firstUse > e->numSharedUses - x->numUses) {
+            return SV_E_INDEX_RANGE;
+        }
+        if ((s = check_doubled_vertex(x->v1, numVerts))) return s;
+        if ((s = check_doubled_vertex(x->v2, numVerts))) return s;
+        for (k = 0; k < x->numUses; k++) {
+            const int u = e->sharedUses[x->firstUse + k];
+            if (u < 0 || (u >> 1) >= numTriangles) return SV_E_INDEX_RANGE;
+        }
+    }
+    return v->create_general_sil_triangles(shadowIndices, facing, e);
+}
+
+int sv_create_general_cap_triangles_checked(const sv_general_variant *v, int *shadowIndices,
+                                            size_t capacity, const uint8_t *facing,
+                                            const int *indices, int numIndices, int numVerts) {
+    int s = check_general_variant(v);
+    if (s) return s;
+    if (numIndices < 0 || numIndices % 3 != 0 || numVerts < 0) return SV_E_COUNT;
+    if (numIndices > INT_MAX / 2) return SV_E_OVERFLOW;
+    if (numVerts > (1 << 30)) return SV_E_INDEX_RANGE;
+    if (numIndices > 0 && (!facing || !indices || !shadowIndices)) return SV_E_NULL;
+    if (capacity < 2u * (size_t)numIndices) return SV_E_CAPACITY;
+    if ((s = check_general_bytes(facing, numIndices / 3))) return s;
+    if ((s = sv_check_vertex_indices(indices, numIndices, numVerts))) return s;
+    return v->create_general_cap_triangles(shadowIndices, facing, indices, numIndices);
 }

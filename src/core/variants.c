@@ -77,3 +77,55 @@ const sv_variant *sv_best_variant(void) {
     }
     return &variants[0];
 }
+
+/* The general rule's kernels (issue 27), from the reference to the
+ * fastest, as the table above. */
+static const sv_general_variant general_variants[] = {
+    {"c_ref", SV_ISA_NONE, sv_create_general_sil_triangles_c_ref,
+     sv_create_general_cap_triangles_c_ref},
+#if defined(SV_HAVE_ASM_AVX2)
+    /* src/core/x86/general_simd.c: gathers and left-packing by a
+     * permutation; the paper's class by the AVX2 asm kernel. */
+    {"avx2", SV_ISA_AVX2, sv_create_general_sil_triangles_avx2,
+     sv_create_general_cap_triangles_avx2},
+#endif
+#if defined(SV_HAVE_ASM_AVX512)
+    /* vpcompressd lists and caps; the paper's class by the AVX-512 asm. */
+    {"avx512", SV_ISA_AVX512 | SV_ISA_AVX2 | SV_ISA_SSE2, sv_create_general_sil_triangles_avx512,
+     sv_create_general_cap_triangles_avx512},
+#endif
+};
+
+const sv_general_variant *sv_general_variants(int *count) {
+    if (count) {
+        *count = (int)(sizeof general_variants / sizeof general_variants[0]);
+    }
+    return general_variants;
+}
+
+const sv_general_variant *sv_general_variant_by_name(const char *name) {
+    size_t i;
+    if (!name) {
+        return NULL;
+    }
+    for (i = 0; i < sizeof general_variants / sizeof general_variants[0]; i++) {
+        if (strcmp(general_variants[i].name, name) == 0) {
+            return &general_variants[i];
+        }
+    }
+    return NULL;
+}
+
+const sv_general_variant *sv_general_variant_for_isa(unsigned isa) {
+    size_t i = sizeof general_variants / sizeof general_variants[0];
+    while (i-- > 1) {
+        if ((general_variants[i].isa & isa) == general_variants[i].isa) {
+            return &general_variants[i];
+        }
+    }
+    return &general_variants[0];
+}
+
+const sv_general_variant *sv_best_general_variant(void) {
+    return sv_general_variant_for_isa(sv_cpu_isa());
+}

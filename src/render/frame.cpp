@@ -150,6 +150,9 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         vin.aspect = aspect;
         vin.mode = opt.mode;
         vin.caster_rule = opt.caster_rule;
+        vin.general_build = opt.general_build;
+        /* The general kernels of the paper's variant's instruction set. */
+        vin.general_variant = sv_general_variant_for_isa(variant->isa);
         vin.shortcuts = opt.shortcuts;
         vin.faults = opt.faults;
         vin.variant = variant;

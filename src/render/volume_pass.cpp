@@ -60,8 +60,10 @@ struct VolumeCache::CasterEntry {
     bool valid = false;
     uint64_t revision = 0;
     CasterRule rule = CasterRule::automatic;
-    std::shared_ptr<PreparedSurface> caster;
-    /* The surface's triangles when no shell needed the caster (to tell a
+    GeneralBuild build = GeneralBuild::direct;
+    std::shared_ptr<PreparedSurface> caster;   /* two-sided */
+    std::shared_ptr<GeneralEdgeTable> general; /* direct */
+    /* The surface's triangles when no two-sided caster was made (to tell a
      * moved surface from a new one without sorting again). */
     std::vector<int> indices;
 };
@@ -109,16 +111,19 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
     const uint64_t k_jobs = ticks();
     /* Each surface's caster under the rule: the surface itself where
      * every shell keeps the paper's rule (closed shells under auto: no
-     * extra work at all), else the surface with its general shells made
-     * two-sided (shadowvol_casters.h). Kept while the surface stands. */
+     * extra work at all), else either the surface with its general shells
+     * made two-sided, or its general edge table for the direct kernels
+     * (shadowvol_casters.h). Kept while the surface stands. */
     parallel(num_surfaces, [&](int si) {
         const SceneSurface &s = scene.surfaces[(std::size_t)si];
         VolumeCache::CasterEntry &c = cache.casters()[(std::size_t)si];
-        if (c.valid && c.revision == s.revision && c.rule == in.caster_rule) return;
+        const bool same_rule = c.valid && c.rule == in.caster_rule && c.build == in.general_build;
+        if (same_rule && c.revision == s.revision) return;
         /* The same triangles moved (a posed skin): the shells and their
          * rules stay as decided on the first pose (find_shells sorts; a
-         * frame should not); only the positions and planes follow. */
-        const bool same_topology = c.valid && c.rule == in.caster_rule &&
+         * frame should not); only the positions and planes follow (the
+         * general edge table has none). */
+        const bool same_topology = same_rule &&
                                    (c.caster ? two_sided_caster_fits(s.prepared, *c.caster)
                                              : c.indices.size() == s.prepared.indices.size() &&
                                                    std::equal(c.indices.begin(), c.indices.end(),
@@ -126,13 +131,22 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
         c.valid = true;
         c.revision = s.revision;
         c.rule = in.caster_rule;
+        c.build = in.general_build;
         if (same_topology) {
             if (c.caster) refresh_two_sided_caster(s.prepared, *c.caster);
             return;
         }
-        c.caster = in.caster_rule == CasterRule::closed
-                       ? nullptr
-                       : two_sided_caster(s.prepared, find_shells(s.prepared), in.caster_rule);
+        c.caster = nullptr;
+        c.general = nullptr;
+        if (in.caster_rule != CasterRule::closed) {
+            const ShellMap shells = find_shells(s.prepared);
+            if (in.general_build == GeneralBuild::two_sided)
+                c.caster = two_sided_caster(s.prepared, shells, in.caster_rule);
+            else if (auto t = std::make_shared<GeneralEdgeTable>(
+                         general_edge_table(s.prepared, shells, in.caster_rule));
+                     t->general_triangles > 0)
+                c.general = std::move(t); /* else the paper's routines, as they are */
+        }
         if (c.caster)
             c.indices.clear();
         else
@@ -146,13 +160,14 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
         /* The caster's first triangles are the surface's: its facing bytes
          * serve the lighting pass as the surface's own. */
         const PreparedSurface &p = caster.caster ? *caster.caster : s.prepared;
+        const GeneralEdgeTable *general = caster.general.get();
         const SceneLight &light = lf.light;
         const Vec4 L = lf.shadow_light;
         VolumeDecision &d = lf.decisions[(std::size_t)si];
         VolumeCache::Entry &e = cache.entries()[(std::size_t)job];
         auto &tk = job_ticks[(std::size_t)job];
         d.surface = si;
-        d.general_rule = caster.caster != nullptr;
+        d.general_rule = caster.caster != nullptr || general != nullptr;
         /* 1 and 2: no volume at all. */
         if (sc.light_reach && !light_reaches_box(light, s.lo, s.hi, fault.light_reach_scale)) {
             d.fate = VolumeFate::out_of_reach;
@@ -173,7 +188,7 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
                                fault.drop_dark_cap_always;
         const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
                                 (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u) |
-                                ((unsigned)in.caster_rule << 4);
+                                ((unsigned)in.caster_rule << 4) | ((unsigned)in.general_build << 6);
         const bool same_light = e.valid && same_bits(e.light, L) && e.has_planes == has_planes &&
                                 (!has_planes || same_bits(e.planes, planes));
         const bool reuse = sc.reuse_static && e.valid && same_light && e.variant == variant &&
@@ -194,7 +209,18 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
             uint64_t k0 = ticks();
             facing_v->calculate_facing(p.planes.data(), n, &L, e.facing.data());
             tk[0] += ticks() - k0;
-            e.volume_facing = e.facing;
+            if (general) {
+                /* The general bytes (shadowvol.h): 0 casts, 1 nothing, 2
+                 * its reverse casts; the sentinel stays 1 for the paper's
+                 * class. */
+                e.volume_facing.assign((std::size_t)n + 1, SV_GENERAL_NONE);
+                e.casting = sv_general_facing_from_calculated(e.volume_facing.data(),
+                                                              e.facing.data(),
+                                                              general->lit_byte.data(), n);
+            } else {
+                e.volume_facing = e.facing;
+            }
+            tk[0] += ticks() - k0;
             k0 = ticks();
             if (has_planes) {
                 const BoxSide side = classify_box(planes, s.lo, s.hi);
@@ -213,14 +239,18 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
                         /* (cull_always: bits all 0 where the routine
                          * found the box inside, as it leaves them.) */
                         e.cull_bits = true;
-                        e.casting = n - variant->count_facing_cull(e.volume_facing.data(), n,
-                                                                   p.indices.data(), bits.data());
+                        e.casting = general ? sv_general_cull_c_ref(e.volume_facing.data(), n,
+                                                                    p.indices.data(), bits.data())
+                                            : n - variant->count_facing_cull(e.volume_facing.data(),
+                                                                             n, p.indices.data(),
+                                                                             bits.data());
                     }
                 }
             }
             tk[1] += ticks() - k0;
             k0 = ticks();
-            if (!e.cull_bits) e.casting = n - variant->count_facing(e.volume_facing.data(), n);
+            if (!e.cull_bits && !general)
+                e.casting = n - variant->count_facing(e.volume_facing.data(), n);
             tk[2] += ticks() - k0;
         }
         d.fate = reuse ? VolumeFate::reused : VolumeFate::built;
@@ -242,15 +272,27 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
         }
         const uint64_t k0 = ticks();
         if (e.sil_count < 0) {
-            e.sil.resize(6 * (std::size_t)p.num_sil_edges() + 8);
-            e.sil_count = variant->create_sil_triangles(e.sil.data(), e.volume_facing.data(),
-                                                        p.sil_edges.data(), p.num_sil_edges());
+            if (general) {
+                const sv_general_edges edges = general->view();
+                e.sil.resize(general->sil_capacity() + 8);
+                e.sil_count = in.general_variant->create_general_sil_triangles(
+                    e.sil.data(), e.volume_facing.data(), &edges);
+            } else {
+                e.sil.resize(6 * (std::size_t)p.num_sil_edges() + 8);
+                e.sil_count = variant->create_sil_triangles(e.sil.data(), e.volume_facing.data(),
+                                                            p.sil_edges.data(), p.num_sil_edges());
+            }
             d.indices_built += e.sil_count;
         }
         if (zfail && e.caps_count < 0) {
             e.caps.resize(2 * (std::size_t)p.num_indices() + 8);
-            int n = variant->create_cap_triangles(e.caps.data(), e.volume_facing.data(),
-                                                  p.indices.data(), p.num_indices());
+            int n = general
+                        ? in.general_variant->create_general_cap_triangles(e.caps.data(),
+                                                                           e.volume_facing.data(),
+                                                                           p.indices.data(),
+                                                                           p.num_indices())
+                        : variant->create_cap_triangles(e.caps.data(), e.volume_facing.data(),
+                                                        p.indices.data(), p.num_indices());
             if (dark_drop) {
                 /* 5: each cap pair is the near cap (3 indices) then the
                  * dark cap (3): keep the near ones. */

@@ -25,10 +25,12 @@ struct VolumePassInputs {
     double aspect = 1; /* the frame's width / height */
     ModeChoice mode = ModeChoice::automatic;
     CasterRule caster_rule = CasterRule::automatic;
+    GeneralBuild general_build = GeneralBuild::direct;
     Shortcuts shortcuts;
     ShortcutFaults faults;
-    const sv_variant *variant = nullptr;       /* the volume routines */
-    const sv_facing_variant *facing = nullptr; /* facing and cull bits */
+    const sv_variant *variant = nullptr;                 /* the volume routines */
+    const sv_facing_variant *facing = nullptr;           /* facing and cull bits */
+    const sv_general_variant *general_variant = nullptr; /* the general rule's, direct */
 };
 
 /* Fills LIGHTS (resized to the scene's lights) with each light's

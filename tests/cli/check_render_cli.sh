@@ -76,6 +76,8 @@ grep -q -- '--stencil needs bf' "$tmp/err" || err "--stencil sideways: the messa
 expect 2 --stencil
 expect 2 --caster-rule sideways
 grep -q -- '--caster-rule needs auto, closed or general' "$tmp/err" || err "--caster-rule sideways: the message does not list the rules: $(cat "$tmp/err")"
+expect 2 --general-build sideways
+grep -q -- '--general-build needs two-sided or direct' "$tmp/err" || err "--general-build sideways: the message does not list the builds: $(cat "$tmp/err")"
 expect 2 --light point:nan,1,1
 expect 2 --light point:1,inf,1
 expect 2 --light point:1e39,5,0
@@ -101,6 +103,7 @@ expect 3 --add "$tmp/empty.gltf"
 grep -q -- '--light spot:' "$tmp/out" || err "render --help does not describe --light"
 grep -q -- '--stencil S' "$tmp/out" || err "render --help does not describe --stencil"
 grep -q -- '--caster-rule R' "$tmp/out" || err "render --help does not describe --caster-rule"
+grep -q -- '--general-build B' "$tmp/out" || err "render --help does not describe --general-build"
 
 [ $fail -eq 0 ] && echo "PASSED: render CLI"
 exit $fail

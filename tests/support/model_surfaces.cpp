@@ -14,20 +14,25 @@ namespace svtest {
 
 std::vector<std::string> seed_model_paths(const std::string &set) {
     if (set == "bundled") return {std::string(SV_MODELS_DIR) + "/character_1344.glb"};
-    const std::string dir = shared_models_dir();
-    DIR *d = opendir(dir.c_str());
-    if (!d) {
-        ADD_FAILURE() << dir << " cannot be read";
-        return {};
-    }
+    /* The top of the folder, then its open/ folder (issue 27's open and
+     * non-manifold characters: the seeds' routines take any triangle set). */
     std::vector<std::string> shared;
-    while (const dirent *e = readdir(d)) {
-        const std::string n = e->d_name;
-        if (n.size() > 4 && n.compare(n.size() - 4, 4, ".glb") == 0)
-            shared.push_back(dir + "/" + n);
+    for (const std::string &dir : {shared_models_dir(), shared_models_dir() + "/open"}) {
+        DIR *d = opendir(dir.c_str());
+        if (!d) {
+            if (dir == shared_models_dir()) ADD_FAILURE() << dir << " cannot be read";
+            continue;
+        }
+        std::vector<std::string> here;
+        while (const dirent *e = readdir(d)) {
+            const std::string n = e->d_name;
+            if (n.size() > 4 && n.compare(n.size() - 4, 4, ".glb") == 0)
+                here.push_back(dir + "/" + n);
+        }
+        closedir(d);
+        std::sort(here.begin(), here.end());
+        shared.insert(shared.end(), here.begin(), here.end());
     }
-    closedir(d);
-    std::sort(shared.begin(), shared.end());
     return shared;
 }
 

@@ -14,7 +14,7 @@ namespace svtest {
 
 // The models of one set of svtest::model_sets() (tests/support/test_conditions.h):
 // "bundled" (the bundled character) or "SharedModels" (every .glb of
-// ../shared/models, sorted).
+// ../shared/models, sorted, then every .glb of its open/ folder).
 std::vector<std::string> seed_model_paths(const std::string &set);
 
 // The surfaces of a model, each prepared on its own.

@@ -26,6 +26,7 @@
 #include "gl_compare.h"
 #include "shadowvol_casters.h"
 #include "shadowvol_scene.h"
+#include "open_case_scenes.h"
 #include "test_conditions.h"
 #include "truth.h"
 
@@ -33,6 +34,10 @@ namespace {
 
 using namespace sv;
 using namespace sv::render;
+using svtest::add_box;
+using svtest::open_cases;
+using svtest::Soup;
+using svtest::surface_of;
 
 #ifdef SV_TEST_SMALL_FRAMES
 constexpr int kW = 128, kH = 104;
@@ -40,141 +45,7 @@ constexpr int kW = 128, kH = 104;
 constexpr int kW = 320, kH = 256;
 #endif
 
-/* A triangle soup: positions (x, y, z) and triangles. */
-struct Soup {
-    explicit Soup(std::string n) : name(std::move(n)) {}
-    std::string name;
-    std::vector<float> pos;
-    std::vector<uint32_t> idx;
-    uint32_t vertex(double x, double y, double z) {
-        pos.push_back((float)x), pos.push_back((float)y), pos.push_back((float)z);
-        return (uint32_t)(pos.size() / 3 - 1);
-    }
-    void tri(uint32_t a, uint32_t b, uint32_t c) { idx.insert(idx.end(), {a, b, c}); }
-    /* Quad a b c d, counter-clockwise seen from its front. */
-    void quad(uint32_t a, uint32_t b, uint32_t c, uint32_t d) { tri(a, b, c), tri(a, c, d); }
-};
-
-/* An axis-aligned box from LO to HI, outward faces, optionally without
- * its top (+y) face. */
-void add_box(Soup &s, double x0, double y0, double z0, double x1, double y1, double z1,
-             bool with_top) {
-    uint32_t v[8];
-    for (int i = 0; i < 8; i++) v[i] = s.vertex(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
-    s.quad(v[0], v[1], v[5], v[4]); /* bottom, -y */
-    if (with_top) s.quad(v[2], v[6], v[7], v[3]);
-    s.quad(v[0], v[4], v[6], v[2]); /* -x */
-    s.quad(v[1], v[3], v[7], v[5]); /* +x */
-    s.quad(v[0], v[2], v[3], v[1]); /* -z */
-    s.quad(v[4], v[5], v[7], v[6]); /* +z */
-}
-
-std::vector<Soup> open_cases() {
-    std::vector<Soup> out;
-    {
-        Soup s{"one triangle"};
-        s.tri(s.vertex(-0.5, 1, 0.5), s.vertex(0.5, 1, 0.5), s.vertex(0, 1, -0.5));
-        out.push_back(s);
-    }
-    {
-        /* A plane tilted towards the camera: lit from above on its front,
-         * its shadow on the ground, the lights on either side of it. */
-        Soup s{"tilted plane"};
-        s.quad(s.vertex(-0.6, 0.7, 0.4), s.vertex(0.6, 0.7, 0.4), s.vertex(0.6, 1.3, -0.4),
-               s.vertex(-0.6, 1.3, -0.4));
-        out.push_back(s);
-    }
-    {
-        /* Open at its bottom, upside down: the lit top casts nothing under
-         * the paper's rule, and nothing dark lies under it. */
-        Soup s{"open box"};
-        add_box(s, -0.5, 0.5, -0.5, 0.5, 1.2, 0.5, true);
-        s.idx.erase(s.idx.begin(), s.idx.begin() + 6); /* the bottom quad */
-        out.push_back(s);
-    }
-    {
-        /* Castle Game Engine's case: a cylinder open at one end (here its
-         * bottom, so that the light from above meets the closed end). */
-        Soup s{"cylinder open at one end"};
-        constexpr int kSides = 16;
-        const uint32_t centre = s.vertex(0, 1.4, 0);
-        std::vector<uint32_t> lo, hi;
-        for (int i = 0; i < kSides; i++) {
-            const double a = 2 * M_PI * i / kSides;
-            lo.push_back(s.vertex(0.5 * std::cos(a), 0.4, -0.5 * std::sin(a)));
-            hi.push_back(s.vertex(0.5 * std::cos(a), 1.4, -0.5 * std::sin(a)));
-        }
-        for (int i = 0; i < kSides; i++) {
-            const int j = (i + 1) % kSides;
-            s.quad(lo[(std::size_t)i], lo[(std::size_t)j], hi[(std::size_t)j], hi[(std::size_t)i]);
-            s.tri(centre, hi[(std::size_t)i], hi[(std::size_t)j]); /* top, +y */
-        }
-        out.push_back(s);
-    }
-    {
-        Soup s{"two overlapping shells"};
-        s.quad(s.vertex(-0.6, 0.8, 0.3), s.vertex(0.4, 0.8, 0.3), s.vertex(0.4, 0.8, -0.5),
-               s.vertex(-0.6, 0.8, -0.5));
-        s.quad(s.vertex(-0.3, 1.3, 0.5), s.vertex(0.7, 1.3, 0.5), s.vertex(0.7, 1.3, -0.3),
-               s.vertex(-0.3, 1.3, -0.3));
-        out.push_back(s);
-    }
-    for (int k : {3, 4}) {
-        /* K fins around one edge along z at (0, 1). */
-        Soup s{std::to_string(k) + " triangles on one edge"};
-        const uint32_t a = s.vertex(0, 1, 0.5), b = s.vertex(0, 1, -0.5);
-        for (int i = 0; i < k; i++) {
-            const double ang = 0.3 + 2 * M_PI * i / k;
-            s.tri(a, b, s.vertex(0.6 * std::cos(ang), 1 + 0.6 * std::sin(ang), 0));
-        }
-        out.push_back(s);
-    }
-    {
-        /* Two triangles run their shared edge the same way: one faces up,
-         * one down. */
-        Soup s{"inconsistently wound edge"};
-        const uint32_t a = s.vertex(-0.5, 1, 0.5), b = s.vertex(0.5, 1, -0.5);
-        s.tri(a, s.vertex(0.5, 1, 0.5), b);
-        s.tri(a, b, s.vertex(-0.5, 1.2, -0.5));
-        out.push_back(s);
-    }
-    {
-        /* A quad whose edge a-b carries a midpoint m, with the collinear
-         * sliver (a, m, b) kept (zero plane) and the fan around m. */
-        Soup s{"degenerate sliver"};
-        const uint32_t a = s.vertex(-0.5, 1, 0.5), b = s.vertex(0.5, 1, 0.5),
-                       c = s.vertex(0.5, 1, -0.5), d = s.vertex(-0.5, 1, -0.5),
-                       m = s.vertex(0, 1, 0.5);
-        s.tri(a, m, d), s.tri(m, b, c), s.tri(m, c, d), s.tri(a, m, b);
-        out.push_back(s);
-    }
-    return out;
-}
-
-SceneSurface surface_of(const Soup &s) {
-    SceneSurface g;
-    g.name = s.name;
-    g.prepared = prepare_surface(s.pos.data(), s.pos.size() / 3, s.idx.data(), s.idx.size());
-    update_bounds(g);
-    return g;
-}
-
-Scene scene_of(const Soup &s) {
-    Scene scene;
-    scene.surfaces.push_back(surface_of(s));
-    /* A ground at y = 0 (add_ground would put it at the lowest vertex,
-     * under a flat case at its own height). */
-    Soup ground("ground");
-    ground.quad(ground.vertex(-4, 0, 4), ground.vertex(4, 0, 4), ground.vertex(4, 0, -4),
-                ground.vertex(-4, 0, -4));
-    scene.surfaces.push_back(surface_of(ground));
-    scene.surfaces.back().ground = true;
-    scene.camera = frame_camera(scene, (double)kW / kH);
-    scene.lights = {auto_light(scene, LightKind::point), auto_light(scene, LightKind::spot),
-                    auto_light(scene, LightKind::directional)};
-    validate_scene(scene);
-    return scene;
-}
+Scene scene_of(const Soup &s) { return svtest::scene_of(s, kW, kH); }
 
 /* Off-boundary mismatches against the truth, over every light; SHADOWED
  * gets the truth's shadowed pixels. */
