@@ -184,7 +184,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
 
         const uint64_t k0 = ticks();
         ShadingResult shaded = shading_pass(scene, f, lit_facing(scene, f.lights, cache),
-                                            opt.ambient);
+                                            opt.ambient, kernels->isa);
         f.rgb = std::move(shaded.rgb);
         f.ticks_shading = ticks() - k0;
     });

@@ -1,9 +1,14 @@
 /*
- * The shading pass of shading_pass.h.
+ * The shading pass of shading_pass.h: per frame the terms of every
+ * triangle and light (shading_rows.h), then each row of pixels through
+ * the row kernel of the frame's ISA, one band of rows per task.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include "shading_pass.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +16,9 @@
 
 #include "frame_math.h"
 #include "pass_bins.h"
+#include "shading_rows.h"
+#include "shading_terms.h"
+#include "shadowvol.h"
 
 namespace sv::render {
 
@@ -18,116 +26,166 @@ using namespace detail;
 
 namespace {
 
-/* A light's constants for the lighting pass, worked out once a frame. */
-struct LightTerms {
-    const SceneLight *l;
-    double cos_outer, cos_inner, inv_range2;
-    explicit LightTerms(const SceneLight &light)
-        : l(&light), cos_outer(std::cos(light.outer_degrees * kPi / 180.0)),
-          cos_inner(std::cos(light.inner_degrees * kPi / 180.0)),
-          inv_range2(light.range > 0 ? 1.0 / (light.range * light.range) : 0) {}
-};
+/* Lights per group: the width of ShadeTriangle::facing_bits. A frame with
+ * more lights shades in several sweeps, adding each group's light to the
+ * accumulators of the one before. */
+constexpr int kLightGroup = 64;
 
-/* Radiance factor of light T at P with unit normal N (Lambert,
- * attenuation, cone), without the colour. */
-double irradiance(const LightTerms &t, const Vec3d &p, const Vec3d &n) {
-    const SceneLight &l = *t.l;
-    if (l.kind == LightKind::directional) {
-        return l.intensity * std::max(0.0, -dot(n, l.direction));
-    }
-    const Vec3d d = sub(l.position, p);
-    const double dist2 = dot(d, d);
-    const Vec3d dir = mul(d, 1.0 / std::sqrt(dist2));
-    double a = l.intensity * std::max(0.0, dot(n, dir)) / dist2;
-    if (l.range > 0) {
-        /* KHR_lights_punctual's recommended window. */
-        const double q = dist2 * t.inv_range2;
-        const double w = std::clamp(1.0 - q * q, 0.0, 1.0);
-        a *= w * w;
-    }
-    if (l.kind == LightKind::spot) {
-        const double c = -dot(dir, l.direction);
-        const double s = t.cos_inner > t.cos_outer
-                             ? std::clamp((c - t.cos_outer) / (t.cos_inner - t.cos_outer), 0.0, 1.0)
-                             : (c >= t.cos_outer ? 1.0 : 0.0);
-        a *= s * s;
-    }
-    return a;
+ShadeLight shade_light(const SceneLight &light) {
+    ShadeLight l{};
+    l.kind = light.kind == LightKind::point ? 0 : light.kind == LightKind::spot ? 1 : 2;
+    l.has_range = light.range > 0;
+    l.position[0] = light.position.x, l.position[1] = light.position.y,
+    l.position[2] = light.position.z;
+    l.direction[0] = light.direction.x, l.direction[1] = light.direction.y,
+    l.direction[2] = light.direction.z;
+    for (int c = 0; c < 3; c++) l.color[c] = light.color[(std::size_t)c];
+    l.intensity = light.intensity;
+    l.inv_range2 = light.range > 0 ? 1.0 / (light.range * light.range) : 0;
+    l.cos_outer = std::cos(light.outer_degrees * kPi / 180.0);
+    l.cos_inner = std::cos(light.inner_degrees * kPi / 180.0);
+    l.has_soft_cone = l.cos_inner > l.cos_outer;
+    return l;
 }
 
 /* Linear radiance to an 8-bit display value: a soft shoulder 1 - e^-1.2x
  * (so several lights overlapping do not wash out one light's shadow) and
- * gamma 2.2, through a table of 1/1024 steps up to 8 (a pow and an exp per
- * channel and pixel were most of the lighting pass). */
-uint8_t to_display8(double linear) {
-    constexpr int kSteps = 1024, kMax = 8;
+ * gamma 2.2, through a table of 1/kDisplaySteps steps up to kDisplayMax
+ * (a pow and an exp per channel and pixel were most of the lighting pass). */
+const std::vector<uint8_t> &display_table() {
     static const std::vector<uint8_t> table = [] {
-        std::vector<uint8_t> t(kSteps * kMax + 1);
-        for (int i = 0; i <= kSteps * kMax; i++) {
-            const double v = 1.0 - std::exp(-1.2 * i / kSteps);
+        std::vector<uint8_t> t((std::size_t)kDisplaySteps * kDisplayMax + 1);
+        for (int i = 0; i <= kDisplaySteps * kDisplayMax; i++) {
+            const double v = 1.0 - std::exp(-1.2 * i / kDisplaySteps);
             t[(std::size_t)i] = (uint8_t)std::lround(255.0 * std::pow(v, 1.0 / 2.2));
         }
         return t;
     }();
-    const double c = std::clamp(linear, 0.0, (double)kMax);
-    /* c >= 0: truncating c * kSteps + 0.5 rounds to the nearest step (a
-     * tie of the last bit going up is as good as down here), without a
-     * libm call per channel. */
-    return table[(std::size_t)(c * kSteps + 0.5)]; // NOLINT(bugprone-incorrect-roundings)
+    return table;
+}
+
+/* The sky's colour (the row kernels look surfaces up by display_index). */
+uint8_t to_display8(double linear) { return display_table()[display_index(linear)]; }
+
+/* Every triangle's terms for this frame, indexed by its id, with the
+ * facing bits of lights [FIRST_LIGHT, FIRST_LIGHT + 64). */
+void triangle_terms(const Scene &scene, const Frame &f,
+                    const std::vector<const uint8_t *> &lit_facing, int first_light,
+                    std::vector<ShadeTriangle> &out) {
+    const int num_surfaces = (int)scene.surfaces.size();
+    const int num_lights = std::min(kLightGroup, (int)f.lights.size() - first_light);
+    std::size_t total = 0;
+    for (const SceneSurface &s : scene.surfaces) total += (std::size_t)s.prepared.num_triangles();
+    out.resize(total);
+    for (int si = 0; si < num_surfaces; si++) {
+        const PreparedSurface &p = scene.surfaces[(std::size_t)si].prepared;
+        const bool ground = scene.surfaces[(std::size_t)si].ground;
+        const int first_id = f.surface_first_id[(std::size_t)si];
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, p.num_triangles(), 4096),
+            [&](const tbb::blocked_range<int> &r) {
+                for (int t = r.begin(); t != r.end(); t++) {
+                    ShadeTriangle &st = out[(std::size_t)first_id + (std::size_t)t];
+                    const int *tri = &p.indices[3 * (std::size_t)t];
+                    /* visible_point's arithmetic, once per triangle. */
+                    const Vec3d a = vertex(p, tri[0]);
+                    const Vec3d n = cross(sub(vertex(p, tri[1]), a), sub(vertex(p, tri[2]), a));
+                    st.n[0] = n.x, st.n[1] = n.y, st.n[2] = n.z;
+                    st.numerator = dot(n, sub(a, f.camera.eye));
+                    const Plane &pl = p.planes[(std::size_t)t];
+                    st.normal[0] = pl.a, st.normal[1] = pl.b, st.normal[2] = pl.c;
+                    uint64_t bits = 0;
+                    for (int li = 0; li < num_lights; li++) {
+                        const uint8_t *facing =
+                            lit_facing[(std::size_t)(first_light + li) * num_surfaces + si];
+                        if (facing && facing[(std::size_t)t]) bits |= uint64_t{1} << li;
+                    }
+                    st.facing_bits = bits;
+                    st.surface = si;
+                    st.ground = ground ? 1 : 0;
+                }
+            });
+    }
 }
 
 } // namespace
 
+uint8_t display_byte(double linear) { return to_display8(linear); }
+
 ShadingResult shading_pass(const Scene &scene, const Frame &f,
-                           const std::vector<const uint8_t *> &lit_facing, double ambient) {
+                           const std::vector<const uint8_t *> &lit_facing, double ambient,
+                           unsigned isa) {
     ShadingResult result;
     const uint64_t k0 = ticks();
     const int width = f.width, height = f.height;
-    const int num_surfaces = (int)scene.surfaces.size(), num_lights = (int)f.lights.size();
-    const int num_bands = band_count(height);
+    const int num_lights = (int)f.lights.size();
+    const std::size_t padded = ((std::size_t)width + 3) & ~std::size_t{3};
     result.rgb.assign((std::size_t)width * height * 3, 0);
-    std::vector<LightTerms> terms;
-    terms.reserve((std::size_t)num_lights);
-    for (int li = 0; li < num_lights; li++) terms.emplace_back(f.lights[(std::size_t)li].light);
-    parallel(num_bands, [&](int b) {
-        const raster::RowBand band = band_rows(b, height);
-        for (int py = band.row_begin; py < band.row_end; py++) {
-            for (int px = 0; px < width; px++) {
-                const std::size_t i = (std::size_t)py * width + px;
-                uint8_t *out = &result.rgb[3 * i];
-                const int32_t id = f.target.ids[i];
-                if (id < 0) {
-                    const double sky = 0.30 + 0.25 * (1.0 - (double)py / height);
-                    out[0] = to_display8(sky * 0.55), out[1] = to_display8(sky * 0.65),
-                    out[2] = to_display8(sky);
-                    continue;
+    const ShadeRowKernel kernel = (isa & (SV_ISA_AVX2 | SV_ISA_AVX512)) != 0 ? shade_row_avx2
+                                                                             : shade_row_c;
+
+    std::vector<double> column_nx(padded, 0.0);
+    for (int px = 0; px < width; px++) column_nx[(std::size_t)px] = ((px + 0.5) / width) * 2 - 1;
+    std::vector<double> albedo(3 * scene.surfaces.size());
+    for (std::size_t si = 0; si < scene.surfaces.size(); si++) {
+        for (int c = 0; c < 3; c++)
+            albedo[3 * si + (std::size_t)c] = scene.surfaces[si].albedo[(std::size_t)c];
+    }
+    std::vector<ShadeLight> lights;
+    lights.reserve((std::size_t)num_lights);
+    for (const LightFrame &lf : f.lights) lights.push_back(shade_light(lf.light));
+    const uint8_t *display = display_table().data();
+
+    /* Per band: the radiance accumulators between groups of lights. */
+    std::vector<std::vector<double>> accum((std::size_t)band_count(height));
+    std::vector<ShadeTriangle> triangles;
+    const int groups = std::max(1, (num_lights + kLightGroup - 1) / kLightGroup);
+    for (int g = 0; g < groups; g++) {
+        const int first_light = g * kLightGroup;
+        const int group_lights = std::min(kLightGroup, num_lights - first_light);
+        triangle_terms(scene, f, lit_facing, first_light, triangles);
+        parallel(band_count(height), [&](int b) {
+            const raster::RowBand band = band_rows(b, height);
+            std::vector<double> &acc = accum[(std::size_t)b];
+            acc.resize(3 * padded * (std::size_t)kBandRows);
+            std::vector<const uint8_t *> stencil_rows((std::size_t)std::max(group_lights, 0));
+            ShadeRowInputs row;
+            row.width = width;
+            row.column_nx = column_nx.data();
+            const Vec3d eye = f.camera.eye;
+            row.eye[0] = eye.x, row.eye[1] = eye.y, row.eye[2] = eye.z;
+            row.forward[0] = f.ray_forward.x, row.forward[1] = f.ray_forward.y,
+            row.forward[2] = f.ray_forward.z;
+            row.right[0] = f.ray_right.x, row.right[1] = f.ray_right.y,
+            row.right[2] = f.ray_right.z;
+            row.up[0] = f.ray_up.x, row.up[1] = f.ray_up.y, row.up[2] = f.ray_up.z;
+            row.triangles = triangles.data();
+            row.albedo = albedo.data();
+            row.lights = lights.data() + first_light;
+            row.num_lights = std::max(group_lights, 0);
+            row.stencil = stencil_rows.data();
+            row.ambient = ambient;
+            row.first_group = g == 0;
+            row.last_group = g == groups - 1;
+            row.accum_stride = padded;
+            row.display = display;
+            for (int py = band.row_begin; py < band.row_end; py++) {
+                const std::size_t first = (std::size_t)py * width;
+                row.ny = 1 - ((py + 0.5) / height) * 2;
+                row.ids = &f.target.ids[first];
+                row.accum = acc.data() + 3 * padded * (std::size_t)(py - band.row_begin);
+                for (int li = 0; li < row.num_lights; li++) {
+                    stencil_rows[(std::size_t)li] =
+                        &f.lights[(std::size_t)first_light + (std::size_t)li].stencil[first];
                 }
-                int si, t;
-                f.decode_id(id, si, t);
-                const SceneSurface &s = scene.surfaces[(std::size_t)si];
-                const Vec3d P = visible_point(f, scene, si, t, px, py);
-                const Plane &pl = s.prepared.planes[(std::size_t)t];
-                Vec3d n{pl.a, pl.b, pl.c};
-                const bool front_seen = dot(n, sub(scene.camera.eye, P)) > 0;
-                double rgb[3] = {ambient, ambient, ambient};
-                if (s.ground) {
-                    /* A faint checker, so the ground reads as a plane. */
-                    const bool odd = ((int)std::floor(P.x * 2) + (int)std::floor(P.z * 2)) & 1;
-                    for (double &c : rgb) c *= odd ? 0.9 : 1.0;
-                }
-                if (front_seen) {
-                    for (int li = 0; li < num_lights; li++) {
-                        const LightFrame &lf = f.lights[(std::size_t)li];
-                        const uint8_t *facing = lit_facing[(std::size_t)li * num_surfaces + si];
-                        if (lf.stencil[i] != 0 || !facing || !facing[(std::size_t)t]) continue;
-                        const double en = irradiance(terms[(std::size_t)li], P, n);
-                        for (int c = 0; c < 3; c++) rgb[c] += en * lf.light.color[(std::size_t)c];
-                    }
-                }
-                for (int c = 0; c < 3; c++) out[c] = to_display8(rgb[c] * s.albedo[(std::size_t)c]);
+                const double sky = 0.30 + 0.25 * (1.0 - (double)py / height);
+                row.sky[0] = to_display8(sky * 0.55), row.sky[1] = to_display8(sky * 0.65),
+                row.sky[2] = to_display8(sky);
+                row.rgb = &result.rgb[3 * first];
+                kernel(row);
             }
-        }
-    });
+        });
+    }
     result.ticks = ticks() - k0;
     return result;
 }

@@ -1,0 +1,127 @@
+/*
+ * The lighting pass (src/render/shading_pass.cpp and its row kernels):
+ * the AVX2 row kernel shades every pixel as the C one does, byte for byte,
+ * under every kind of light, on frames whose width leaves a partial last
+ * step, with sky beside the surfaces; lights past the 64 of one sweep are
+ * added as the first 64 are; and every thread count gives the same bytes.
+ *
+ * The C kernel's own bytes are the pass's first ones: tools/pin_bytes.sh's
+ * manifest holds them for every render and scene it pins.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "frame.h"
+#include "row_kernels.h"
+#include "shadowvol_scene.h"
+#include "test_conditions.h"
+#include "test_lights.h"
+
+namespace {
+
+using namespace sv;
+using namespace sv::render;
+
+#ifdef SV_TEST_SMALL_FRAMES
+constexpr int kW = 123, kH = 77;
+#else
+constexpr int kW = 243, kH = 157; /* 243 = 4 * 60 + 3: a partial last step in every row */
+#endif
+
+const std::string kCharacter = std::string(SV_MODELS_DIR) + "/character_1344.glb";
+
+/* The character on the ground, the sky above it, and a light of every
+ * shape the pass distinguishes: a point light with a range and one
+ * without, a spot with a soft cone and one with a hard edge (inner ==
+ * outer), and the sun. */
+Scene lit_scene() {
+    Scene s;
+    add_model(s, kCharacter, {});
+    add_model(s, kCharacter, {{1.3, 0, -1.0}, 0.8, 1});
+    add_ground(s);
+    s.camera.eye = {0.8, 1.9, 4.2};
+    s.camera.target = {0, 1.4, 0};
+    s.camera.fov_y_degrees = 55;
+    SceneLight unlimited = svtest::point_light({1.5, 2.5, 2.0}, 0);
+    unlimited.intensity = 5;
+    SceneLight hard_spot = svtest::spot_light({-1.0, 3.5, 1.0}, {0.2, 0, 0}, 20, 0);
+    hard_spot.inner_degrees = hard_spot.outer_degrees;
+    s.lights = {svtest::point_light({-1.6, 3.2, 1.4}, 7.0), unlimited,
+                svtest::spot_light({1.2, 3.0, 0.8}, {0, 1.6, 0}, 14, 9), hard_spot,
+                svtest::sun({0.45, -0.8, -0.4})};
+    validate_scene(s);
+    return s;
+}
+
+std::vector<const raster::RowKernels *> runnable_kernels() {
+    int n = 0;
+    const raster::RowKernels *const *all = raster::row_kernels_all(&n);
+    std::vector<const raster::RowKernels *> out;
+    for (int i = 0; i < n; i++) {
+        if (svtest::in_this_run(all[i]->isa, all[i]->name)) out.push_back(all[i]);
+    }
+    return out;
+}
+
+Frame render(const Scene &scene, const raster::RowKernels *kernels, int threads) {
+    RenderOptions opt;
+    opt.width = kW;
+    opt.height = kH;
+    opt.kernels = kernels;
+    opt.threads = threads;
+    return render_frame(scene, opt);
+}
+
+/* The first pixel where A and B differ, or -1. */
+long first_difference(const std::vector<uint8_t> &a, const std::vector<uint8_t> &b) {
+    if (a.size() != b.size()) return 0;
+    for (std::size_t i = 0; i < a.size(); i++) {
+        if (a[i] != b[i]) return (long)(i / 3);
+    }
+    return -1;
+}
+
+SV_TIERED_TEST(Shading, EveryRowKernelShadesAsTheC) {
+    const Scene scene = lit_scene();
+    const Frame c = render(scene, raster::row_kernels_by_name("c"), 1);
+    /* The frame is worth comparing: sky, lit and shadowed pixels. */
+    int sky = 0, surface = 0;
+    for (int32_t id : c.target.ids) (id < 0 ? sky : surface)++;
+    EXPECT_GT(sky, kW * kH / 20);
+    EXPECT_GT(surface, kW * kH / 4);
+    for (const raster::RowKernels *k : runnable_kernels()) {
+        for (int threads : {1, 3}) {
+            const Frame f = render(scene, k, threads);
+            const long at = first_difference(c.rgb, f.rgb);
+            EXPECT_EQ(at, -1) << k->name << " at " << threads << " thread(s): pixel " << at % kW
+                              << "," << at / kW;
+        }
+    }
+}
+
+SV_TIERED_TEST(Shading, LightsPastTheFirstSweepAddAsTheFirst) {
+    /* Sixty-four lights of zero intensity, then the scene's five: the
+     * first sweep adds +0 everywhere, the second the five lights, so the
+     * picture is the five lights' own, byte for byte. */
+    const Scene five = lit_scene();
+    Scene many = five;
+    many.lights.clear();
+    for (int i = 0; i < 64; i++) {
+        SceneLight dark = svtest::point_light({-3.0 + 0.1 * i, 4.0, 2.0}, 0);
+        dark.intensity = 0;
+        many.lights.push_back(dark);
+    }
+    for (const SceneLight &l : five.lights) many.lights.push_back(l);
+    validate_scene(many);
+    for (const raster::RowKernels *k : runnable_kernels()) {
+        const Frame a = render(five, k, 0), b = render(many, k, 0);
+        const long at = first_difference(a.rgb, b.rgb);
+        EXPECT_EQ(at, -1) << k->name << ": pixel " << at % kW << "," << at / kW;
+    }
+}
+
+} // namespace
