@@ -15,6 +15,7 @@
 #include "bench_run.h"
 #include "shadowvol_gltf.h"
 #include "cycle_table.h"
+#include "frame_bench.h"
 #include "json_report.h"
 #include "machine_limits.h"
 #include "lights.h"
@@ -195,11 +196,14 @@ struct CliOptions {
     bool scene = false;      /* --scene: the demo scene per frame (scene_bench.cpp) */
     bool casters = false;    /* --casters: the general rule's builders (casters_bench.cpp) */
     std::string casterRule;  /* --caster-rule R (with --scene); "" the default, auto */
-    std::string scenePreset; /* --preset NAME|FILE (with --scene) */
-    int sceneWidth = 0, sceneHeight = 0; /* --size WxH (with --scene) */
-    std::string plot;                    /* --plot FILE (with --scaling) */
-    long maxTriangles = 0;               /* --max-triangles N (with --scaling) */
-    bool regimeGiven = false;            /* options the scaling run has no use for */
+    std::string scenePreset; /* --preset NAME|FILE (with --scene or --frame) */
+    int sceneWidth = 0, sceneHeight = 0; /* --size WxH (with --scene or --frame) */
+    bool frame = false;             /* --frame: the whole frame, pass by pass (frame_bench.cpp) */
+    FrameBenchOptions frameOptions; /* --threads, --frames, --no-mesa, --out (with --frame) */
+    bool frameOptionGiven = false;
+    std::string plot;         /* --plot FILE (with --scaling) */
+    long maxTriangles = 0;    /* --max-triangles N (with --scaling) */
+    bool regimeGiven = false; /* options the scaling run has no use for */
     bool lightGiven = false;
     std::string isa;                            /* --isa; "" none */
     std::vector<const BenchVariant *> variants; /* --variant, as given */
@@ -322,6 +326,21 @@ CliOptions parse(int argc, char **argv) {
             c.scene = true;
         } else if (opt == "--casters" && !hasValue) {
             c.casters = true;
+        } else if (opt == "--frame" && !hasValue) {
+            c.frame = true;
+        } else if (opt == "--threads") {
+            c.frameOptions.threads = (int)parse_int(opt, need(), 1, 1024);
+            c.frameOptionGiven = true;
+        } else if (opt == "--frames") {
+            c.frameOptions.frames = (int)parse_int(opt, need(), 1, 1000);
+            c.frameOptionGiven = true;
+        } else if (opt == "--no-mesa" && !hasValue) {
+            c.frameOptions.mesa = false;
+            c.frameOptionGiven = true;
+        } else if (opt == "--out") {
+            c.frameOptions.out_dir = need();
+            if (c.frameOptions.out_dir.empty()) bad("--out needs a folder");
+            c.frameOptionGiven = true;
         } else if (opt == "--caster-rule") {
             c.casterRule = need();
             sv::CasterRule r;
@@ -351,7 +370,8 @@ CliOptions parse(int argc, char **argv) {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
                                 opt == "--silhouette" || opt == "--backface" || opt == "--planes" ||
-                                opt == "--scene" || opt == "--casters")) {
+                                opt == "--scene" || opt == "--casters" || opt == "--frame" ||
+                                opt == "--no-mesa")) {
             bad(opt + " takes no value");
         } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -359,6 +379,25 @@ CliOptions parse(int argc, char **argv) {
             bad("unexpected argument '" + arg + "'");
         }
     }
+    if (c.frame) {
+        if (c.silhouette || c.backface || c.planes || c.scene || c.casters || c.scaling ||
+            c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
+            !c.table.routines.empty() || !c.variants.empty() || c.table.batch ||
+            !c.casterRule.empty() || c.maxTriangles) {
+            bad("--frame takes --preset, --size, --threads, --frames, --runs, --no-mesa, --out, "
+                "--quick, --json, --timer and --isa only");
+        }
+        if (!c.scenePreset.empty()) c.frameOptions.preset = c.scenePreset;
+        if (c.sceneWidth)
+            c.frameOptions.width = c.sceneWidth, c.frameOptions.height = c.sceneHeight;
+        if (c.quick) {
+            c.frameOptions.frames = std::min(c.frameOptions.frames, 2);
+            c.frameOptions.runs = 1;
+        }
+        if (c.runs) c.frameOptions.runs = c.runs;
+        return c;
+    }
+    if (c.frameOptionGiven) bad("--threads, --frames, --no-mesa and --out are options of --frame");
     if (c.silhouette || c.backface || c.planes || c.scene || c.casters) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
          * backface_bench.cpp, planes_bench.cpp, casters_bench.cpp). */
@@ -376,11 +415,12 @@ CliOptions parse(int argc, char **argv) {
         }
         if (!c.casterRule.empty() && !c.scene) bad("--caster-rule is an option of --scene");
         if ((!c.scenePreset.empty() || c.sceneWidth) && !c.scene)
-            bad("--preset and --size are options of --scene");
+            bad("--preset and --size are options of --scene and --frame");
         return c;
     }
     if (!c.casterRule.empty()) bad("--caster-rule is an option of --scene");
-    if (!c.scenePreset.empty() || c.sceneWidth) bad("--preset and --size are options of --scene");
+    if (!c.scenePreset.empty() || c.sceneWidth)
+        bad("--preset and --size are options of --scene and --frame");
     if (!c.scaling && !c.plot.empty()) {
         bad("--plot draws the scaling run: add --scaling");
     }
@@ -648,6 +688,20 @@ void bench_usage(FILE *out) {
         "terrain, three lights, z-pass and z-fail (docs/CASTERS.md). --quick: the point\n"
         "light only, shorter rows. JSON schema shadowvol-casters-bench/1.\n"
         "\n"
+        "The whole frame: shadowvol bench --frame [--preset simple|knights|demo|FILE]\n"
+        "                 [--size WxH] [--threads N] [--frames N] [--runs N] [--no-mesa]\n"
+        "                 [--out DIR] [--quick] [--json FILE]\n"
+        "A scene (default the demo scene at 1280x720, 8 frames, every core) with the\n"
+        "camera orbiting and a light moving every frame: each pass (posing, volumes,\n"
+        "depth, stencil, lighting) in ms, the minimum of --runs drawings (default 3),\n"
+        "beside its floor\n"
+        "(the bytes it must touch at the memory rate measured in the run) and beside\n"
+        "Mesa's llvmpipe drawing the same frame on as many threads (LP_NUM_THREADS is\n"
+        "read once per process: one process per thread count). Checked: the runs give\n"
+        "the same bytes, and Mesa's picture agrees off edges (docs/FRAME.md). --out DIR:\n"
+        "the last frame, ours and Mesa's, as PNG. --quick: 2 frames, 1 run.\n"
+        "JSON schema shadowvol-frame-bench/1.\n"
+        "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
         "Exit status: 0 done, 1 a row failed its check, 2 bad arguments, 3 a model\n"
@@ -687,6 +741,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.casters) {
             return run_casters_bench(seed_command(c));
+        }
+        if (c.frame) {
+            return run_frame_bench(seed_command(c), c.frameOptions);
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {

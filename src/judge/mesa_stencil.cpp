@@ -44,18 +44,13 @@
  */
 #include "mesa_stencil.h"
 
-/* Prototypes of every GL entry point (never called directly: the functions
- * come from OSMesaGetProcAddress, and decltype(&::glX) below only reads a
- * prototype's type, so nothing links against libGL). */
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/osmesa.h>
+#include "mesa_gl.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <map>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -67,84 +62,7 @@ bool mesa_available_at_build() { return true; }
 
 namespace {
 
-/* The GL functions the judge uses. */
-#define SV_GL_FUNCTIONS(X)                                                                         \
-    X(glGetError)                                                                                  \
-    X(glGetString)                                                                                 \
-    X(glGetIntegerv)                                                                               \
-    X(glViewport)                                                                                  \
-    X(glEnable)                                                                                    \
-    X(glDisable)                                                                                   \
-    X(glClear)                                                                                     \
-    X(glClearDepth)                                                                                \
-    X(glClearStencil)                                                                              \
-    X(glDepthFunc)                                                                                 \
-    X(glDepthMask)                                                                                 \
-    X(glColorMask)                                                                                 \
-    X(glStencilMask)                                                                               \
-    X(glStencilFuncSeparate)                                                                       \
-    X(glStencilOpSeparate)                                                                         \
-    X(glFrontFace)                                                                                 \
-    X(glFinish)                                                                                    \
-    X(glReadPixels)                                                                                \
-    X(glPixelStorei)                                                                               \
-    X(glDrawBuffer)                                                                                \
-    X(glReadBuffer)                                                                                \
-    X(glGenFramebuffers)                                                                           \
-    X(glBindFramebuffer)                                                                           \
-    X(glDeleteFramebuffers)                                                                        \
-    X(glGenRenderbuffers)                                                                          \
-    X(glBindRenderbuffer)                                                                          \
-    X(glDeleteRenderbuffers)                                                                       \
-    X(glRenderbufferStorage)                                                                       \
-    X(glFramebufferRenderbuffer)                                                                   \
-    X(glCheckFramebufferStatus)                                                                    \
-    X(glCreateShader)                                                                              \
-    X(glShaderSource)                                                                              \
-    X(glCompileShader)                                                                             \
-    X(glGetShaderiv)                                                                               \
-    X(glGetShaderInfoLog)                                                                          \
-    X(glDeleteShader)                                                                              \
-    X(glCreateProgram)                                                                             \
-    X(glAttachShader)                                                                              \
-    X(glLinkProgram)                                                                               \
-    X(glGetProgramiv)                                                                              \
-    X(glGetProgramInfoLog)                                                                         \
-    X(glDeleteProgram)                                                                             \
-    X(glUseProgram)                                                                                \
-    X(glGetUniformLocation)                                                                        \
-    X(glUniformMatrix4fv)                                                                          \
-    X(glUniform4f)                                                                                 \
-    X(glGenVertexArrays)                                                                           \
-    X(glBindVertexArray)                                                                           \
-    X(glDeleteVertexArrays)                                                                        \
-    X(glGenBuffers)                                                                                \
-    X(glBindBuffer)                                                                                \
-    X(glBufferData)                                                                                \
-    X(glDeleteBuffers)                                                                             \
-    X(glVertexAttribPointer)                                                                       \
-    X(glEnableVertexAttribArray)                                                                   \
-    X(glDrawElements)
-
-struct GlApi {
-// NOLINTNEXTLINE(bugprone-macro-parentheses): NAME is a GL function's name, not an expression
-#define SV_GL_DECLARE(name) decltype(&::name) name = nullptr;
-    SV_GL_FUNCTIONS(SV_GL_DECLARE)
-#undef SV_GL_DECLARE
-};
-
-const char *gl_error_name(GLenum e) {
-    switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    default: return "unknown GL error";
-    }
-}
+using namespace detail;
 
 /* The paper's section 3 vertex program: a vertex with w = 0 is the far end
  * of an extruded edge, moved to infinity away from the light
@@ -185,6 +103,7 @@ public:
     bool init(int width, int height, std::string *why_not);
     std::string describe() const override { return description_; }
     MesaStencilResult run(const MesaStencilJob &job) override;
+    MesaFrameResult run_frame(const MesaFrameJob &job) override;
     Readback readback() const override { return readback_; }
     void set_readback(Readback r) override { readback_ = r; }
     int lp_num_threads() const override { return g_lp_threads; }
@@ -204,25 +123,10 @@ private:
     GLint vp_location_ = -1, light_location_ = -1;
     std::string description_;
     Readback readback_ = Readback::stencil_index;
+    FrameDrawerPtr frame_; /* made by the first run_frame */
 };
 
-void OsMesaContext::check(const char *call) const {
-    GLenum e = gl_.glGetError();
-    if (e == GL_NO_ERROR) return;
-    std::string msg = std::string("OpenGL error ") + gl_error_name(e) + " after " + call;
-    /* Drain the rest, so the next run starts clean. */
-    for (int i = 0; i < 16 && gl_.glGetError() != GL_NO_ERROR; ++i) {
-    }
-    throw std::runtime_error(msg);
-}
-
-/* Every GL call goes through this: the call, then glGetError, naming the
- * call in the exception. */
-#define SV_GL(call)                                                                                \
-    do {                                                                                           \
-        gl_.call;                                                                                  \
-        check(#call);                                                                              \
-    } while (0)
+void OsMesaContext::check(const char *call) const { check_gl(gl_, call); }
 
 void OsMesaContext::make_current() const {
     /* OSMesa wants a colour buffer to make a context current; drawing goes
@@ -232,20 +136,7 @@ void OsMesaContext::make_current() const {
 }
 
 GLuint OsMesaContext::compile(GLenum type, const char *source, const char *what) {
-    GLuint s = gl_.glCreateShader(type);
-    check("glCreateShader");
-    SV_GL(glShaderSource(s, 1, &source, nullptr));
-    SV_GL(glCompileShader(s));
-    GLint ok = 0;
-    SV_GL(glGetShaderiv(s, GL_COMPILE_STATUS, &ok));
-    if (!ok) {
-        char log[2048] = {};
-        gl_.glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        gl_.glDeleteShader(s);
-        throw std::runtime_error(std::string("Mesa judge: compiling the ") + what +
-                                 " shader: " + log);
-    }
-    return s;
+    return compile_shader(gl_, type, source, what);
 }
 
 bool OsMesaContext::init(int width, int height, std::string *why_not) {
@@ -379,6 +270,7 @@ void OsMesaContext::destroy() {
     /* Objects die with the context; deleting them first keeps a context
      * that shares nothing from holding them any longer than it lives. */
     if (OSMesaMakeCurrent(ctx_, colour_.data(), GL_UNSIGNED_BYTE, 1, 1) && gl_.glDeleteProgram) {
+        frame_.reset();
         if (program_) gl_.glDeleteProgram(program_);
         if (depth_stencil_rb_) gl_.glDeleteRenderbuffers(1, &depth_stencil_rb_);
         if (fbo_) gl_.glDeleteFramebuffers(1, &fbo_);
@@ -393,33 +285,6 @@ void OsMesaContext::destroy() {
     ctx_ = nullptr;
 }
 
-/* ---- job validation (on the CPU, before any GL call touches the data) --- */
-
-[[noreturn]] void bad_job(const std::string &what) {
-    throw std::runtime_error("Mesa judge: bad job: " + what);
-}
-
-/* Indices must be a multiple of 3 and each within [0, num_vertices): GL
- * would read past the vertex buffer (undefined, perhaps a crash in
- * llvmpipe) otherwise. */
-void check_indices(const int *indices, int num_indices, int num_vertices, const std::string &who) {
-    if (num_indices < 0)
-        bad_job(who + ": num_indices " + std::to_string(num_indices) + " is negative");
-    if (num_indices % 3 != 0)
-        bad_job(who + ": num_indices " + std::to_string(num_indices) + " is not a multiple of 3");
-    if (num_indices > 0 && !indices)
-        bad_job(who + ": indices is null with num_indices " + std::to_string(num_indices));
-    for (int i = 0; i < num_indices; ++i)
-        if (indices[i] < 0 || indices[i] >= num_vertices)
-            bad_job(who + ": index " + std::to_string(i) + " = " + std::to_string(indices[i]) +
-                    " is outside the " + std::to_string(num_vertices) + " vertices");
-}
-
-void check_vertices(const void *p, int n, const std::string &who) {
-    if (n < 0) bad_job(who + ": vertex count " + std::to_string(n) + " is negative");
-    if (n > 0 && !p) bad_job(who + ": vertices are null with a count of " + std::to_string(n));
-}
-
 void validate(const MesaStencilJob &job, int width, int height) {
     if (job.width != width || job.height != height)
         bad_job("size " + std::to_string(job.width) + "x" + std::to_string(job.height) +
@@ -430,41 +295,10 @@ void validate(const MesaStencilJob &job, int width, int height) {
     if (!std::isfinite(job.light.x) || !std::isfinite(job.light.y) || !std::isfinite(job.light.z) ||
         !std::isfinite(job.light.w))
         bad_job("the light has a non-finite coordinate");
-    for (size_t r = 0; r < job.receivers.size(); ++r) {
-        const MesaMesh &m = job.receivers[r];
-        std::string who = "receiver " + std::to_string(r);
-        check_vertices(m.positions, m.num_vertices, who);
-        if (static_cast<size_t>(m.num_vertices) > SIZE_MAX / (3 * sizeof(float)))
-            bad_job(who + ": too many vertices");
-        check_indices(m.indices, m.num_indices, m.num_vertices, who);
-    }
-    for (size_t v = 0; v < job.volumes.size(); ++v) {
-        const MesaVolume &m = job.volumes[v];
-        std::string who = "volume " + std::to_string(v);
-        check_vertices(m.shadow_vertices, m.num_shadow_vertices, who);
-        check_indices(m.indices, m.num_indices, m.num_shadow_vertices, who);
-    }
-}
-
-/* GL objects that live for one run(): deleted on every way out. */
-struct RunObjects {
-    const GlApi &gl;
-    std::vector<GLuint> buffers, arrays;
-    explicit RunObjects(const GlApi &api) : gl(api) {}
-    RunObjects(const RunObjects &) = delete;
-    RunObjects &operator=(const RunObjects &) = delete;
-    ~RunObjects() {
-        if (!arrays.empty())
-            gl.glDeleteVertexArrays(static_cast<GLsizei>(arrays.size()), arrays.data());
-        if (!buffers.empty())
-            gl.glDeleteBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
-        while (gl.glGetError() != GL_NO_ERROR) {
-        }
-    }
-};
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (size_t r = 0; r < job.receivers.size(); ++r)
+        validate_mesh(job.receivers[r], "receiver " + std::to_string(r));
+    for (size_t v = 0; v < job.volumes.size(); ++v)
+        validate_volume(job.volumes[v], "volume " + std::to_string(v));
 }
 
 } // namespace
@@ -506,87 +340,10 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
     make_current();
     while (gl_.glGetError() != GL_NO_ERROR) {
     }
-    RunObjects objects(gl_);
+    GlObjects objects(gl_);
 
-    /* Upload everything before the timed passes, so the times are drawing
-     * only. Receivers: one VAO each, vec3 positions (the shader sees
-     * (x, y, z, 1)). Volumes: one VAO per distinct shadow vertex buffer
-     * (many volumes of one mesh share it), their indices in one buffer. */
-    struct Draw {
-        GLuint vao;
-        GLsizei count;
-        size_t offset_bytes;
-        bool zfail;
-    };
-    std::vector<Draw> receiver_draws, volume_draws;
-
-    for (const MesaMesh &m : job.receivers) {
-        if (m.num_indices == 0) continue;
-        GLuint vao = 0, bufs[2] = {0, 0};
-        SV_GL(glGenVertexArrays(1, &vao));
-        objects.arrays.push_back(vao);
-        SV_GL(glGenBuffers(2, bufs));
-        objects.buffers.insert(objects.buffers.end(), bufs, bufs + 2);
-        SV_GL(glBindVertexArray(vao));
-        SV_GL(glBindBuffer(GL_ARRAY_BUFFER, bufs[0]));
-        SV_GL(glBufferData(GL_ARRAY_BUFFER,
-                           static_cast<GLsizeiptr>(sizeof(float) * 3 *
-                                                   static_cast<size_t>(m.num_vertices)),
-                           m.positions, GL_STATIC_DRAW));
-        SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr));
-        SV_GL(glEnableVertexAttribArray(0));
-        SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, bufs[1]));
-        SV_GL(
-            glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                         static_cast<GLsizeiptr>(sizeof(int) * static_cast<size_t>(m.num_indices)),
-                         m.indices, GL_STATIC_DRAW));
-        receiver_draws.push_back({vao, m.num_indices, 0, false});
-    }
-
-    size_t total_volume_indices = 0;
-    for (const MesaVolume &v : job.volumes)
-        total_volume_indices += static_cast<size_t>(v.num_indices);
-    if (total_volume_indices > 0) {
-        std::vector<int> all_indices;
-        all_indices.reserve(total_volume_indices);
-        GLuint index_buffer = 0;
-        SV_GL(glGenBuffers(1, &index_buffer));
-        objects.buffers.push_back(index_buffer);
-        std::map<std::pair<const Vec4 *, int>, GLuint> vaos;
-        for (const MesaVolume &v : job.volumes) {
-            if (v.num_indices == 0) continue;
-            auto key = std::make_pair(v.shadow_vertices, v.num_shadow_vertices);
-            auto it = vaos.find(key);
-            if (it == vaos.end()) {
-                GLuint vao = 0, vbo = 0;
-                SV_GL(glGenVertexArrays(1, &vao));
-                objects.arrays.push_back(vao);
-                SV_GL(glGenBuffers(1, &vbo));
-                objects.buffers.push_back(vbo);
-                SV_GL(glBindVertexArray(vao));
-                SV_GL(glBindBuffer(GL_ARRAY_BUFFER, vbo));
-                SV_GL(glBufferData(GL_ARRAY_BUFFER,
-                                   static_cast<GLsizeiptr>(
-                                       sizeof(Vec4) * static_cast<size_t>(v.num_shadow_vertices)),
-                                   v.shadow_vertices, GL_STATIC_DRAW));
-                SV_GL(glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Vec4), nullptr));
-                SV_GL(glEnableVertexAttribArray(0));
-                SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer));
-                it = vaos.emplace(key, vao).first;
-            }
-            volume_draws.push_back(
-                {it->second, v.num_indices, sizeof(int) * all_indices.size(), v.zfail});
-            all_indices.insert(all_indices.end(), v.indices, v.indices + v.num_indices);
-        }
-        /* Filled through a target that is not VAO state (the element
-         * binding belongs to the VAOs above, and the core profile has no
-         * VAO 0 to bind it to). */
-        SV_GL(glBindVertexArray(0));
-        SV_GL(glBindBuffer(GL_COPY_WRITE_BUFFER, index_buffer));
-        SV_GL(glBufferData(GL_COPY_WRITE_BUFFER,
-                           static_cast<GLsizeiptr>(sizeof(int) * all_indices.size()),
-                           all_indices.data(), GL_STATIC_DRAW));
-    }
+    const std::vector<GlDraw> receiver_draws = upload_receivers(gl_, job.receivers, objects);
+    const std::vector<GlDraw> volume_draws = upload_volumes(gl_, job.volumes, objects);
 
     /* The matrix in float, column-major as given. */
     float vp[16];
@@ -624,7 +381,7 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
     SV_GL(glClearStencil(0));
     SV_GL(glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT));
     SV_GL(glDisable(GL_STENCIL_TEST));
-    for (const Draw &d : receiver_draws) {
+    for (const GlDraw &d : receiver_draws) {
         SV_GL(glBindVertexArray(d.vao));
         SV_GL(glDrawElements(GL_TRIANGLES, d.count, GL_UNSIGNED_INT, nullptr));
     }
@@ -635,34 +392,24 @@ MesaStencilResult OsMesaContext::run(const MesaStencilJob &job) {
     auto t1 = std::chrono::steady_clock::now();
     SV_GL(glDepthMask(GL_FALSE));
     SV_GL(glEnable(GL_STENCIL_TEST));
-    SV_GL(glStencilFuncSeparate(GL_FRONT_AND_BACK, GL_ALWAYS, 0, 0xFF));
-    GLuint bound_vao = 0;
-    int mode = -1; /* 0 z-pass, 1 z-fail */
-    for (const Draw &d : volume_draws) {
-        if (d.vao != bound_vao) {
-            SV_GL(glBindVertexArray(d.vao));
-            bound_vao = d.vao;
-        }
-        if (mode != static_cast<int>(d.zfail)) {
-            mode = static_cast<int>(d.zfail);
-            if (d.zfail) {
-                /* (sfail, dpfail, dppass): count where the depth test fails. */
-                SV_GL(glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP));
-                SV_GL(glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP));
-            } else {
-                SV_GL(glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP));
-                SV_GL(glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP));
-            }
-        }
-        SV_GL(glDrawElements(GL_TRIANGLES, d.count, GL_UNSIGNED_INT,
-                             reinterpret_cast<const void *>(d.offset_bytes)));
-    }
+    draw_volumes(gl_, volume_draws);
     SV_GL(glFinish());
     out.stencil_pass_seconds = seconds_since(t1);
 
     SV_GL(glBindVertexArray(0));
     read_back(out);
     return out;
+}
+
+MesaFrameResult OsMesaContext::run_frame(const MesaFrameJob &job) {
+    make_current();
+    while (gl_.glGetError() != GL_NO_ERROR) {
+    }
+    if (!frame_) {
+        frame_ = make_frame_drawer(gl_, width_, height_, depth_stencil_rb_, program_, vp_location_,
+                                   light_location_);
+    }
+    return draw_frame(*frame_, job);
 }
 
 std::unique_ptr<MesaContext> MesaContext::create(int width, int height, int threads,

@@ -71,6 +71,9 @@ struct MesaStencilResult {
     double stencil_pass_seconds = 0; /* the volumes only, glFinish to glFinish */
 };
 
+struct MesaFrameJob;    /* mesa_frame.h */
+struct MesaFrameResult; /* mesa_frame.h */
+
 class MesaContext {
 public:
     /* An off-screen GL context (OSMesa, llvmpipe) with a WIDTH x HEIGHT
@@ -91,6 +94,9 @@ public:
     /* Draws the job and reads back stencil and depth. Throws
      * std::runtime_error on a GL error or a job that does not fit. */
     virtual MesaStencilResult run(const MesaStencilJob &job) = 0;
+    /* Draws the whole frame of mesa_frame.h and reads back its radiance.
+     * Throws std::runtime_error as run() does. */
+    virtual MesaFrameResult run_frame(const MesaFrameJob &job) = 0;
 
     /* How run() reads the stencil back. create() picks stencil_index when
      * glReadPixels(GL_STENCIL_INDEX, GL_UNSIGNED_BYTE) works on the FBO (it

@@ -1,0 +1,339 @@
+/*
+ * `shadowvol bench --frame` (issue 29): the whole shadowed frame, pass by
+ * pass, beside its floor and beside Mesa's llvmpipe drawing the same frame.
+ *
+ * The scene plays its animation with the camera orbiting its target and
+ * its first point or spot light circling it, a step every frame, so no
+ * view-dependent work and nothing of the moving light carries over from
+ * one frame to the next. Each frame is drawn RUNS times after the scene is
+ * posed, and each pass's minimum kept (the volume pass: its first
+ * drawing, before its volumes are cached); Mesa draws the same frame
+ * (mesa_frame.h) the same number of times after a warm-up, on as many
+ * threads (LP_NUM_THREADS, which llvmpipe reads once per process: run one
+ * process per thread count, as tools/frame_table.sh does).
+ *
+ * Floors: the bytes each pass must touch at the memory rate measured in
+ * the same run (memory_rate.h): the depth pass clears depth and ids and
+ * reads and writes what its counters count; each light's stencil pass
+ * clears its stencil and reads the depth and reads and writes the stencil
+ * its counters count; the lighting pass reads the ids and every light's
+ * stencil and writes the colour.
+ *
+ * The checks of the same run: our RUNS drawings of a frame are the same
+ * bytes, and Mesa's picture agrees with ours within kFrameTolerance but
+ * where the two rasterisers' edges meet (frame_vs_mesa.h).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "frame_bench.h"
+
+#include <tbb/info.h>
+#include <x86intrin.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "frame.h"
+#include "frame_vs_mesa.h"
+#include "images.h"
+#include "json_writer.h"
+#include "memory_rate.h"
+#include "sequence.h"
+
+#ifndef SV_DEMO_SCENE
+#define SV_DEMO_SCENE "models/demo_scene.glb"
+#endif
+
+namespace svbench {
+namespace {
+
+using sv::render::Frame;
+using sv::render::RenderOptions;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kStepDegrees = 7.5; /* the camera's orbit per frame; the light's is half */
+
+/* P turned by ANGLE radians about the vertical axis through C. */
+sv::Vec3d turn(const sv::Vec3d &p, const sv::Vec3d &c, double angle) {
+    const double x = p.x - c.x, z = p.z - c.z, cs = std::cos(angle), sn = std::sin(angle);
+    return {c.x + cs * x + sn * z, p.y, c.z - sn * x + cs * z};
+}
+sv::Vec3d turn_direction(const sv::Vec3d &d, double angle) { return turn(d, {0, 0, 0}, angle); }
+
+/* The passes of one frame, ms; the minimum over the runs, each pass its own. */
+struct PassTimes {
+    double pose = 0, volumes = 0, depth = 0, stencil = 0, lighting = 0, frame = 0;
+};
+
+/* Bytes a pass must touch (read, written). */
+struct Bytes {
+    double read = 0, written = 0;
+    double ms(const MemoryRate &m) const {
+        return 1e3 * (read / m.read_bytes_per_second + written / m.write_bytes_per_second);
+    }
+};
+
+struct Floors {
+    Bytes depth, stencil, lighting;
+};
+
+Floors floors_of(const Frame &f) {
+    Floors fl;
+    const double px = (double)f.width * f.height;
+    const auto &d = f.depth_counters;
+    fl.depth.read = (double)d.depth_bytes_read;
+    fl.depth.written = 8 * px + (double)d.depth_bytes_written + 4.0 * (double)d.pixels_written;
+    for (const auto &lf : f.lights) {
+        const auto &c = lf.stencil_counters;
+        fl.stencil.read += (double)c.depth_bytes_read + (double)c.stencil_bytes_read;
+        fl.stencil.written += px + (double)c.stencil_bytes_written;
+    }
+    fl.lighting.read = (4.0 + (double)f.lights.size()) * px;
+    fl.lighting.written = 3 * px;
+    return fl;
+}
+
+double ms_of(uint64_t ticks, double hz) { return 1e3 * (double)ticks / hz; }
+
+} // namespace
+
+int run_frame_bench(const SeedCommand &cmd, const FrameBenchOptions &fo) {
+    return run_seed_frame(cmd, "frame", [&](FILE *out, std::string *doc) {
+        const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
+        const double hz = timer.tscHz;
+        const int threads = fo.threads > 0 ? fo.threads : tbb::info::default_concurrency();
+        const int frames = std::max(fo.frames, 1), runs = std::max(fo.runs, 1);
+        sv::SequenceOptions so;
+        so.file = fo.preset.empty() || fo.preset == "demo" ? std::string(SV_DEMO_SCENE) : fo.preset;
+        so.aspect = (double)fo.width / fo.height;
+        sv::SceneSequence seq(so);
+        const sv::Camera base_camera = seq.scene().camera;
+        int moving_light = -1;
+        for (std::size_t i = 0; i < seq.scene().lights.size(); i++) {
+            if (seq.scene().lights[i].kind != sv::LightKind::directional) {
+                moving_light = (int)i;
+                break;
+            }
+        }
+        const sv::SceneLight base_light = moving_light >= 0
+                                              ? seq.scene().lights[(std::size_t)moving_light]
+                                              : sv::SceneLight{};
+        const MemoryRate rate = measure_memory_rate(threads, (std::size_t)64 << 20, 3);
+
+        print_seed_header(out, "shadowvol bench --frame: the whole frame, pass by pass", timer, -1);
+        std::fprintf(out,
+                     "scene: %s, %d frames 1/8 s apart, %dx%d, %d thread(s) on both sides, each "
+                     "frame drawn %d time(s) (the minimum kept); the camera orbits %.1f deg and "
+                     "light %d %.2f deg a frame\n",
+                     so.file.c_str(), frames, fo.width, fo.height, threads, runs, kStepDegrees,
+                     moving_light, kStepDegrees / 2);
+        std::fprintf(out, "memory: %.1f GB/s read, %.1f GB/s write (%d thread(s), best of %d)\n\n",
+                     rate.read_bytes_per_second / 1e9, rate.write_bytes_per_second / 1e9,
+                     rate.threads, rate.runs);
+
+        /* One volume cache for the whole run, as an interactive program
+         * keeps it: what depends on neither the view nor a moving light
+         * (the static surfaces' volumes of the lights that stand still,
+         * the casters' preparation) is built once. The volume pass is timed
+         * in the first drawing of each frame only (the later ones find
+         * its volumes cached); the other passes take their minimum. */
+        sv::render::VolumeCache cache;
+        RenderOptions o;
+        o.width = fo.width, o.height = fo.height;
+        o.threads = threads;
+        o.cache = &cache;
+        std::vector<PassTimes> ours((std::size_t)frames);
+        std::vector<double> first_wall((std::size_t)frames);
+        std::vector<sv::render::MesaFrameComparison> mesa;
+        std::vector<Floors> floors;
+        int failed = 0, same_runs = 0;
+        std::string note;
+        Frame last;
+        for (int k = 0; k < frames; k++) {
+            const uint64_t p0 = __rdtsc();
+            seq.set_time(seq.start() + k / 8.0);
+            sv::Scene &scene = seq.scene();
+            const double angle = k * kStepDegrees * kPi / 180.0;
+            scene.camera.eye = turn(base_camera.eye, base_camera.target, angle);
+            if (moving_light >= 0) {
+                sv::SceneLight &l = scene.lights[(std::size_t)moving_light];
+                l.position = turn(base_light.position, base_camera.target, angle / 2);
+                l.direction = turn_direction(base_light.direction, angle / 2);
+            }
+            PassTimes &best = ours[(std::size_t)k];
+            best.pose = 1e3 * (double)(__rdtsc() - p0) / hz;
+            if (k == 0) { /* warm-up: a cache of its own, so frame 0 builds as the rest do */
+                RenderOptions warm = o;
+                warm.cache = nullptr;
+                (void)sv::render::render_frame(scene, warm);
+            }
+            std::vector<uint8_t> first_rgb;
+            bool same = true;
+            for (int r = 0; r < runs; r++) {
+                Frame f = sv::render::render_frame(scene, o);
+                PassTimes t;
+                t.volumes = ms_of(f.ticks_jobs, hz);
+                t.depth = ms_of(f.ticks_depth, hz);
+                for (const auto &lf : f.lights) t.stencil += ms_of(lf.ticks_stencil, hz);
+                t.lighting = ms_of(f.ticks_shading, hz);
+                t.frame = ms_of(f.ticks_total, hz);
+                if (r == 0) {
+                    best = PassTimes{best.pose, t.volumes, t.depth, t.stencil, t.lighting, 0};
+                    first_wall[(std::size_t)k] = t.frame + best.pose;
+                    first_rgb = f.rgb;
+                } else {
+                    best.depth = std::min(best.depth, t.depth);
+                    best.stencil = std::min(best.stencil, t.stencil);
+                    best.lighting = std::min(best.lighting, t.lighting);
+                    same = same && f.rgb == first_rgb;
+                }
+                if (r == runs - 1) last = std::move(f);
+            }
+            best.frame = best.pose + best.volumes + best.depth + best.stencil + best.lighting;
+            same_runs += same;
+            floors.push_back(floors_of(last));
+            if (fo.mesa && note.empty()) {
+                sv::render::MesaFrameComparison m =
+                    sv::render::compare_frame_with_mesa(scene, last, o.ambient, threads, runs,
+                                                        &note);
+                if (m.ran) mesa.push_back(std::move(m));
+            }
+        }
+
+        /* The table: each pass's mean over the frames of its minimum. */
+        auto mean = [&](double PassTimes::*field) {
+            double s = 0;
+            for (const PassTimes &t : ours) s += t.*field;
+            return s / frames;
+        };
+        auto mean_floor = [&](Bytes Floors::*field) {
+            double s = 0;
+            for (const Floors &f : floors) s += (f.*field).ms(rate);
+            return s / frames;
+        };
+        auto mean_mesa = [&](double sv::render::MesaFrameComparison::*field) {
+            double s = 0;
+            for (const auto &m : mesa) s += 1e3 * (m.*field);
+            return mesa.empty() ? 0.0 : s / (double)mesa.size();
+        };
+        struct Row {
+            const char *name;
+            double ours, floor, mesa;
+        };
+        const double floor_total = mean_floor(&Floors::depth) + mean_floor(&Floors::stencil) +
+                                   mean_floor(&Floors::lighting);
+        const std::vector<Row> rows = {
+            {"pose, skin, planes", mean(&PassTimes::pose), -1, -1},
+            {"volumes", mean(&PassTimes::volumes), -1, -1},
+            {"depth", mean(&PassTimes::depth), mean_floor(&Floors::depth),
+             mean_mesa(&sv::render::MesaFrameComparison::depth_seconds)},
+            {"stencil", mean(&PassTimes::stencil), mean_floor(&Floors::stencil),
+             mean_mesa(&sv::render::MesaFrameComparison::stencil_seconds)},
+            {"lighting", mean(&PassTimes::lighting), mean_floor(&Floors::lighting),
+             mean_mesa(&sv::render::MesaFrameComparison::lighting_seconds)},
+            {"frame", mean(&PassTimes::frame), floor_total,
+             mean_mesa(&sv::render::MesaFrameComparison::total_seconds)},
+        };
+        std::fprintf(out, "%-20s %10s %10s %8s %10s %8s\n", "pass", "ours ms", "floor ms", "/floor",
+                     "Mesa ms", "Mesa/us");
+        for (const Row &r : rows) {
+            std::fprintf(out, "%-20s %10.2f ", r.name, r.ours);
+            if (r.floor >= 0) {
+                std::fprintf(out, "%10.2f %8.1f ", r.floor, r.ours / r.floor);
+            } else {
+                std::fprintf(out, "%10s %8s ", "-", "-");
+            }
+            if (r.mesa > 0) {
+                std::fprintf(out, "%10.2f %8.2f\n", r.mesa, r.mesa / r.ours);
+            } else {
+                std::fprintf(out, "%10s %8s\n", "-", "-");
+            }
+        }
+        double wall = 0;
+        for (double w : first_wall) wall += w;
+        std::fprintf(out,
+                     "(frame: the sum of the passes; the first drawing's wall time with posing: "
+                     "%.2f ms. Mesa's frame without a wait between passes, its passes with one; "
+                     "its volumes are given, not built)\n",
+                     wall / frames);
+        uint64_t compared = 0, equal = 0, on_edge = 0, other = 0;
+        for (const auto &m : mesa) {
+            compared += m.compared, equal += m.equal, on_edge += m.on_edge, other += m.other;
+        }
+        const bool ok_runs = same_runs == frames, ok_mesa = other == 0;
+        failed += !ok_runs + !ok_mesa;
+        std::fprintf(out, "check: %d of %d frames the same bytes in each of the %d run(s)%s\n",
+                     same_runs, frames, runs, ok_runs ? "" : " -- FAILED");
+        if (!mesa.empty()) {
+            std::fprintf(out,
+                         "check: Mesa (%s, LP_NUM_THREADS %d): %llu pixels compared, %llu within "
+                         "%d levels, %llu on an edge, %llu other%s\n",
+                         mesa[0].renderer.c_str(), mesa[0].lp_num_threads,
+                         (unsigned long long)compared, (unsigned long long)equal,
+                         sv::render::kFrameTolerance, (unsigned long long)on_edge,
+                         (unsigned long long)other, ok_mesa ? "" : " -- FAILED");
+        } else if (fo.mesa) {
+            std::fprintf(out, "NOTE: %s\n", note.c_str());
+        }
+        if (!fo.out_dir.empty()) {
+            sv::render::Image image(last.width, last.height);
+            image.rgb = last.rgb;
+            sv::render::write_png(fo.out_dir + "/frame_ours.png", image);
+            if (!mesa.empty()) {
+                image.rgb = mesa.back().mesa_rgb;
+                sv::render::write_png(fo.out_dir + "/frame_mesa.png", image);
+            }
+            std::fprintf(out, "images: %s/frame_ours.png%s\n", fo.out_dir.c_str(),
+                         mesa.empty() ? "" : ", frame_mesa.png");
+        }
+
+        JsonWriter j;
+        j.begin_object();
+        seed_json_header(j, "shadowvol-frame-bench/1", timer);
+        j.key("scene"), j.value(so.file);
+        j.key("width"), j.value(fo.width);
+        j.key("height"), j.value(fo.height);
+        j.key("threads"), j.value(threads);
+        j.key("frames"), j.value(frames);
+        j.key("runs_per_frame"), j.value(runs);
+        j.key("first_drawing_wall_ms"), j.value(wall / frames);
+        j.key("memory_read_gbps"), j.value(rate.read_bytes_per_second / 1e9);
+        j.key("memory_write_gbps"), j.value(rate.write_bytes_per_second / 1e9);
+        j.key("passes");
+        j.begin_array();
+        for (const Row &r : rows) {
+            j.begin_object(true);
+            j.key("pass"), j.value(r.name);
+            j.key("ours_ms"), j.value(r.ours);
+            if (r.floor >= 0) j.key("floor_ms"), j.value(r.floor);
+            if (r.mesa > 0) j.key("mesa_ms"), j.value(r.mesa);
+            j.end_object();
+        }
+        j.end_array();
+        j.key("mesa");
+        if (mesa.empty()) {
+            j.null();
+        } else {
+            j.begin_object();
+            j.key("renderer"), j.value(mesa[0].renderer);
+            j.key("lp_num_threads"), j.value(mesa[0].lp_num_threads);
+            j.key("runs_per_frame"), j.value(mesa[0].runs);
+            j.key("compared"), j.value((unsigned long long)compared);
+            j.key("equal"), j.value((unsigned long long)equal);
+            j.key("on_edge"), j.value((unsigned long long)on_edge);
+            j.key("other"), j.value((unsigned long long)other);
+            j.end_object();
+        }
+        j.key("same_bytes_every_run"), j.value(ok_runs);
+        j.key("ok"), j.value(failed == 0);
+        j.end_object();
+        *doc = j.str();
+        return failed;
+    });
+}
+
+} // namespace svbench

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# `shadowvol bench --frame --quick` at a small size: exit 0, the pass table
+# with every pass, the two checks of the run (our drawings the same bytes,
+# Mesa's picture agreeing off edges, where OSMesa is built), the PNGs, the
+# JSON (shadowvol-frame-bench/1) and the usage errors (exit 2).
+# usage: check_frame_bench.sh PATH/TO/shadowvol
+set -u
+sv="$1"
+fail=0
+err() { echo "FAIL: $*"; fail=1; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+
+"$sv" bench --frame --quick --size 192x108 --threads 2 --out "$tmp" --json "$tmp/f.json" \
+  >"$tmp/f.txt" 2>&1 || err "--frame exited $?: $(tail -3 "$tmp/f.txt")"
+grep -q "FAILED" "$tmp/f.txt" && err "--frame: a check FAILED: $(grep FAILED "$tmp/f.txt")"
+for pass in "pose, skin, planes" volumes depth stencil lighting frame; do
+  grep -q "^$pass " "$tmp/f.txt" || err "--frame: no '$pass' row"
+done
+grep -q "^check: 2 of 2 frames the same bytes" "$tmp/f.txt" || err "--frame: no same-bytes check"
+grep -Eq "^check: Mesa .* 0 other$" "$tmp/f.txt" || err "--frame: no Mesa check with 0 other"
+[ -s "$tmp/frame_ours.png" ] && [ -s "$tmp/frame_mesa.png" ] || err "--frame: PNGs missing"
+if command -v python3 >/dev/null; then
+  python3 - "$tmp/f.json" <<'PY' || err "--frame: bad JSON"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == "shadowvol-frame-bench/1"
+assert d["width"] == 192 and d["height"] == 108 and d["threads"] == 2
+assert d["frames"] == 2 and d["runs_per_frame"] == 1, d
+names = [p["pass"] for p in d["passes"]]
+assert names == ["pose, skin, planes", "volumes", "depth", "stencil", "lighting", "frame"], names
+for p in d["passes"]:
+    assert p["ours_ms"] >= 0, p
+for p in d["passes"][2:]:
+    assert p["floor_ms"] > 0 and p["mesa_ms"] > 0, p
+m = d["mesa"]
+assert m["lp_num_threads"] == 2 and m["runs_per_frame"] == 1, m
+assert m["other"] == 0 and m["equal"] + m["on_edge"] == m["compared"] > 0, m
+assert d["same_bytes_every_run"] is True and d["ok"] is True
+PY
+else
+  err "python3 not found: the JSON's fields cannot be checked (tools/run.sh test installs it)"
+fi
+for args in "--frame --scene" "--frame=1" "--frame --size 0x10" "--frame --threads 0" \
+            "--frame --model x.glb" "--size 64x64" "--frame --out"; do
+  # shellcheck disable=SC2086
+  "$sv" bench $args >"$tmp/u.txt" 2>&1
+  rc=$?
+  [ "$rc" = 2 ] || err "bench $args: exit $rc, expected 2"
+done
+[ "$fail" = 0 ] && echo "bench --frame: all checks passed"
+exit "$fail"
