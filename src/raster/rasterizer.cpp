@@ -82,6 +82,16 @@ struct Snapped {
  * the frame, which no vertex that clipping placed correctly can leave; the
  * bound walk_rows' proof needs (|X|, |Y| < 2^21 + 2^8) then holds for
  * every input. */
+/* nearbyint(v) in the default rounding mode (to nearest, ties to even)
+ * for |v| < 2^51, without a call to libm (x86-64's baseline has no
+ * roundsd): adding 1.5 * 2^52 leaves no fraction bits, so the sum is
+ * rounded to an integer by the addition itself, and the subtraction is
+ * exact. snap_polygon's values are below 2^22 after the guard band. */
+inline double round_half_even(double v) {
+    constexpr double kShift = 6755399441055744.0; /* 1.5 * 2^52 */
+    return (v + kShift) - kShift;
+}
+
 bool snap_polygon(const ClipVertex *poly, int n, int width, int height, Snapped *s) {
     for (int i = 0; i < n; i++) {
         const ClipVertex &q = poly[i];
@@ -90,8 +100,8 @@ bool snap_polygon(const ClipVertex *poly, int n, int width, int height, Snapped 
         }
         const double xs = std::clamp((q.x / q.w + 1) * 0.5 * width, -1.0, width + 1.0);
         const double ys = std::clamp((1 - q.y / q.w) * 0.5 * height, -1.0, height + 1.0);
-        s[i].X = (int64_t)std::nearbyint(xs * kSubPixel);
-        s[i].Y = (int64_t)std::nearbyint(ys * kSubPixel);
+        s[i].X = (int64_t)round_half_even(xs * kSubPixel);
+        s[i].Y = (int64_t)round_half_even(ys * kSubPixel);
         s[i].z = (q.z / q.w + 1) * 0.5;
     }
     return true;

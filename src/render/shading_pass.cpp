@@ -45,6 +45,7 @@ ShadeLight shade_light(const SceneLight &light) {
     l.cos_outer = std::cos(light.outer_degrees * kPi / 180.0);
     l.cos_inner = std::cos(light.inner_degrees * kPi / 180.0);
     l.has_soft_cone = l.cos_inner > l.cos_outer;
+    l.dark_cos2 = l.kind == 1 && l.cos_outer > 1e-6 ? l.cos_outer * l.cos_outer * (1 - 1e-9) : 0;
     return l;
 }
 
@@ -147,7 +148,7 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
         parallel(band_count(height), [&](int b) {
             const raster::RowBand band = band_rows(b, height);
             std::vector<double> &acc = accum[(std::size_t)b];
-            acc.resize(3 * padded * (std::size_t)kBandRows);
+            if (groups > 1) acc.resize(3 * padded * (std::size_t)kBandRows);
             std::vector<const uint8_t *> stencil_rows((std::size_t)std::max(group_lights, 0));
             ShadeRowInputs row;
             row.width = width;
@@ -173,7 +174,9 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
                 const std::size_t first = (std::size_t)py * width;
                 row.ny = 1 - ((py + 0.5) / height) * 2;
                 row.ids = &f.target.ids[first];
-                row.accum = acc.data() + 3 * padded * (std::size_t)(py - band.row_begin);
+                row.accum = groups > 1
+                                ? acc.data() + 3 * padded * (std::size_t)(py - band.row_begin)
+                                : nullptr;
                 for (int li = 0; li < row.num_lights; li++) {
                     stencil_rows[(std::size_t)li] =
                         &f.lights[(std::size_t)first_light + (std::size_t)li].stencil[first];

@@ -46,6 +46,13 @@ struct ShadeLight {
     double position[3], direction[3];
     double color[3];
     double intensity, inv_range2, cos_outer, cos_inner;
+    /* A spot's quick test (cos_outer > 0 only): a point P with
+     * d = position - P, n = -dot(d, direction) <= 0 or n^2 <
+     * dark_cos2 * dot(d, d) is outside the cone for certain (dark_cos2 is
+     * cos_outer^2 shrunk by 1e-9, far beyond the rounding of the cone's own
+     * test), so its light is 0 without the square root and divides. 0: no
+     * quick test. */
+    double dark_cos2;
 };
 
 /* A pixel not covered (sky), or a padding lane. */
@@ -67,7 +74,9 @@ struct ShadeRowInputs {
     double ambient = 0;
     bool first_group = true, last_group = true;
     /* Linear radiance before the albedo (in and out between groups of
-     * lights): red, green and blue planes of ACCUM_STRIDE doubles each. */
+     * lights): red, green and blue planes of ACCUM_STRIDE doubles each;
+     * read unless FIRST_GROUP, written unless LAST_GROUP (a frame of one
+     * group has none). */
     double *accum = nullptr;
     std::size_t accum_stride = 0;
     const uint8_t *display = nullptr; /* to_display's table: kDisplaySteps * kDisplayMax + 1 */

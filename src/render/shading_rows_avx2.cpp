@@ -101,6 +101,21 @@ SV_TARGET_AVX2 inline __m256d irradiance4(const ShadeLight &l, const Vec3x4 &p, 
                    _mm256_sub_pd(_mm256_set1_pd(l.position[1]), p.y),
                    _mm256_sub_pd(_mm256_set1_pd(l.position[2]), p.z)};
     const __m256d dist2 = dot4(d, d);
+    __m256d dark = zero; /* lanes outside the spot's cone for certain: 0, as the C returns */
+    if (l.dark_cos2 > 0) {
+        /* shading_terms.h's quick test of the spot's cone, on every lane. */
+        const Vec3x4 axis{_mm256_set1_pd(l.direction[0]), _mm256_set1_pd(l.direction[1]),
+                          _mm256_set1_pd(l.direction[2])};
+        const __m256d along = _mm256_xor_pd(dot4(d, axis), sign);
+        dark = _mm256_or_pd(_mm256_cmp_pd(along, zero, _CMP_LE_OQ),
+                            _mm256_cmp_pd(_mm256_mul_pd(along, along),
+                                          _mm256_mul_pd(_mm256_set1_pd(l.dark_cos2), dist2),
+                                          _CMP_LT_OQ));
+        if ((_mm256_movemask_pd(_mm256_andnot_pd(dark, live))) == 0) {
+            skip = true;
+            return zero;
+        }
+    }
     __m256d window = _mm256_set1_pd(1.0);
     if (l.has_range) {
         const __m256d q = _mm256_mul_pd(dist2, _mm256_set1_pd(l.inv_range2));
@@ -129,7 +144,7 @@ SV_TARGET_AVX2 inline __m256d irradiance4(const ShadeLight &l, const Vec3x4 &p, 
                                               _mm256_set1_pd(1.0));
         a = _mm256_mul_pd(a, _mm256_mul_pd(s, s));
     }
-    return a;
+    return _mm256_andnot_pd(dark, a);
 }
 
 } // namespace
@@ -190,8 +205,9 @@ SV_TARGET_AVX2 void shade_row_avx2(const ShadeRowInputs &row) {
                        _mm256_add_pd(eye.y, _mm256_mul_pd(dir.y, t)),
                        _mm256_add_pd(eye.z, _mm256_mul_pd(dir.z, t))};
 
-        double *acc_r = row.accum + px, *acc_g = acc_r + row.accum_stride,
-               *acc_b = acc_g + row.accum_stride;
+        /* The radiance planes of the sweeps before and after (none in a
+         * frame of one sweep). */
+        auto saved = [&](int c) { return row.accum + (std::size_t)c * row.accum_stride + px; };
         __m256d acc[3];
         if (row.first_group) {
             __m256d base = _mm256_set1_pd(row.ambient);
@@ -212,8 +228,7 @@ SV_TARGET_AVX2 void shade_row_avx2(const ShadeRowInputs &row) {
             }
             acc[0] = acc[1] = acc[2] = base;
         } else {
-            acc[0] = _mm256_loadu_pd(acc_r), acc[1] = _mm256_loadu_pd(acc_g),
-            acc[2] = _mm256_loadu_pd(acc_b);
+            for (int c = 0; c < 3; c++) acc[c] = _mm256_loadu_pd(saved(c));
         }
         const Vec3x4 to_eye{_mm256_sub_pd(eye.x, p.x), _mm256_sub_pd(eye.y, p.y),
                             _mm256_sub_pd(eye.z, p.z)};
@@ -246,8 +261,7 @@ SV_TARGET_AVX2 void shade_row_avx2(const ShadeRowInputs &row) {
             }
         }
         if (!row.last_group) {
-            _mm256_storeu_pd(acc_r, acc[0]), _mm256_storeu_pd(acc_g, acc[1]),
-                _mm256_storeu_pd(acc_b, acc[2]);
+            for (int c = 0; c < 3; c++) _mm256_storeu_pd(saved(c), acc[c]);
             continue;
         }
         alignas(32) int32_t surface[8];

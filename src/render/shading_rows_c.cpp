@@ -30,24 +30,30 @@ void shade_row_c(const ShadeRowInputs &row) {
         const double den = dot3(tri.n, dir);
         const double t = den != 0 ? tri.numerator / den : 0;
         for (int k = 0; k < 3; k++) p[k] = row.eye[k] + dir[k] * t;
-        double *acc[3] = {row.accum + px, row.accum + row.accum_stride + px,
-                          row.accum + 2 * row.accum_stride + px};
+        /* The radiance: from the sweep before (in ACCUM) or the ambient
+         * term; back to ACCUM for the sweep after. */
+        double acc[3];
+        auto saved = [&](int c) { return row.accum + (std::size_t)c * row.accum_stride + px; };
         if (row.first_group) {
             double base = row.ambient;
             if (tri.ground) base *= checker_odd(p[0], p[2]) ? 0.9 : 1.0;
-            *acc[0] = *acc[1] = *acc[2] = base;
+            acc[0] = acc[1] = acc[2] = base;
+        } else {
+            for (int c = 0; c < 3; c++) acc[c] = *saved(c);
         }
         const double to_eye[3] = {row.eye[0] - p[0], row.eye[1] - p[1], row.eye[2] - p[2]};
         if (dot3(tri.normal, to_eye) > 0) {
             for (int li = 0; li < row.num_lights; li++) {
                 if (row.stencil[li][px] != 0 || !((tri.facing_bits >> li) & 1)) continue;
                 const double en = irradiance(row.lights[li], p, tri.normal);
-                for (int c = 0; c < 3; c++) *acc[c] += en * row.lights[li].color[c];
+                for (int c = 0; c < 3; c++) acc[c] += en * row.lights[li].color[c];
             }
         }
         if (row.last_group) {
             const double *albedo = row.albedo + 3 * (std::size_t)tri.surface;
-            for (int c = 0; c < 3; c++) out[c] = row.display[display_index(*acc[c] * albedo[c])];
+            for (int c = 0; c < 3; c++) out[c] = row.display[display_index(acc[c] * albedo[c])];
+        } else {
+            for (int c = 0; c < 3; c++) *saved(c) = acc[c];
         }
     }
 }

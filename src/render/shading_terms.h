@@ -39,6 +39,12 @@ inline double irradiance(const ShadeLight &l, const double *p, const double *n) 
     }
     const double d[3] = {l.position[0] - p[0], l.position[1] - p[1], l.position[2] - p[2]};
     const double dist2 = dot3(d, d);
+    if (l.dark_cos2 > 0) {
+        /* Outside the spot's cone for certain: s below is 0, and so the
+         * light (a finite a times 0). */
+        const double along = -dot3(d, l.direction);
+        if (along <= 0 || along * along < l.dark_cos2 * dist2) return 0;
+    }
     const double inv = 1.0 / std::sqrt(dist2);
     const double dir[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
     double a = l.intensity * max0(dot3(n, dir)) / dist2;
