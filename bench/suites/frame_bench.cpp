@@ -135,17 +135,19 @@ int run_frame_bench(const SeedCommand &cmd, const FrameBenchOptions &fo) {
                      rate.read_bytes_per_second / 1e9, rate.write_bytes_per_second / 1e9,
                      rate.threads, rate.runs);
 
-        /* One volume cache for the whole run, as an interactive program
-         * keeps it: what depends on neither the view nor a moving light
+        /* One volume cache and one set of frame buffers for the whole run,
+         * as an interactive program keeps them: what depends on neither the view nor a moving light
          * (the static surfaces' volumes of the lights that stand still,
          * the casters' preparation) is built once. The volume pass is timed
          * in the first drawing of each frame only (the later ones find
          * its volumes cached); the other passes take their minimum. */
         sv::render::VolumeCache cache;
+        sv::render::FrameScratch scratch;
         RenderOptions o;
         o.width = fo.width, o.height = fo.height;
         o.threads = threads;
         o.cache = &cache;
+        o.scratch = &scratch;
         std::vector<PassTimes> ours((std::size_t)frames);
         std::vector<double> first_wall((std::size_t)frames);
         std::vector<sv::render::MesaFrameComparison> mesa;

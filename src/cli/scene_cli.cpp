@@ -335,6 +335,8 @@ int scene_main(int argc, char **argv) {
     fast.general_build = args.general_build;
     sv::render::VolumeCache cache;
     fast.cache = &cache;
+    sv::render::FrameScratch scratch; /* the frames' buffers, kept from frame to frame */
+    fast.scratch = &scratch;
     if (args.full) fast.shortcuts = sv::render::Shortcuts::none();
     sv::render::RenderOptions full = fast;
     full.shortcuts = sv::render::Shortcuts::none();

@@ -31,7 +31,8 @@ ClipVertices receivers_to_clip(const Scene &scene, const Mat4d &view_proj) {
 
 DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
                            const std::vector<int32_t> &surface_first_id,
-                           const raster::Rasterizer &rast, raster::Target &target) {
+                           const raster::Rasterizer &rast, raster::Target &target,
+                           BinnedTriangles &bt) {
     DepthPassResult result;
     const double t0 = now_seconds();
     const uint64_t k0 = ticks();
@@ -46,8 +47,7 @@ DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
         for (int t = 0; t < n; t += kSetupChunk)
             chunks.push_back({si, t, std::min(n, t + kSetupChunk)});
     }
-    BinnedTriangles bt;
-    bt.chunks.resize(chunks.size());
+    bt.clear_chunks(chunks.size());
     std::vector<raster::PassCounters> cc(chunks.size());
     parallel((int)chunks.size(), [&](int c) {
         const Chunk &ch = chunks[(std::size_t)c];

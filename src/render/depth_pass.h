@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pass_bins.h"
 #include "rasterizer.h"
 #include "shadowvol_scene.h"
 
@@ -29,10 +30,13 @@ struct DepthPassResult {
 
 /* Draws every surface of SCENE (its vertices CLIP) into TARGET, which must
  * be sized and cleared; triangle T of surface S gets the id
- * SURFACE_FIRST_ID[S] + T. Runs on the calling task arena's threads. */
+ * SURFACE_FIRST_ID[S] + T. BINS: the set-up records and bins, emptied and
+ * filled (a FrameScratch's, kept from frame to frame). Runs on the calling
+ * task arena's threads. */
 DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
                            const std::vector<int32_t> &surface_first_id,
-                           const raster::Rasterizer &rast, raster::Target &target);
+                           const raster::Rasterizer &rast, raster::Target &target,
+                           detail::BinnedTriangles &bins);
 
 } // namespace sv::render
 

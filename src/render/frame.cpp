@@ -20,6 +20,7 @@
 
 #include "depth_pass.h"
 #include "frame_math.h"
+#include "frame_scratch.h"
 #include "shading_pass.h"
 #include "stencil_pass.h"
 #include "volume_pass.h"
@@ -91,6 +92,9 @@ const char *fate_name(VolumeFate f) {
     }
 }
 
+FrameScratch::FrameScratch() : buffers_(new Buffers) {}
+FrameScratch::~FrameScratch() { delete buffers_; }
+
 Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     if (opt.width < 1 || opt.height < 1 || opt.width > kMaxFrameSide ||
         opt.height > kMaxFrameSide || (int64_t)opt.width * opt.height > kMaxFramePixels) {
@@ -136,10 +140,13 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     /* The cache: the caller's (shortcut 6), else one for this frame only. */
     VolumeCache local_cache;
     VolumeCache &cache = (opt.cache && opt.shortcuts.reuse_static) ? *opt.cache : local_cache;
+    FrameScratch local_scratch;
+    FrameScratch::Buffers &scratch = opt.scratch ? opt.scratch->buffers() : local_scratch.buffers();
 
     arena.execute([&] {
         const ClipVertices clip = receivers_to_clip(scene, f.view_proj);
-        const DepthPassResult depth = depth_pass(scene, clip, f.surface_first_id, rast, f.target);
+        const DepthPassResult depth = depth_pass(scene, clip, f.surface_first_id, rast, f.target,
+                                                 scratch.depth_bins);
         f.depth_counters = depth.counters;
         f.ticks_depth = depth.ticks;
         f.seconds_depth = depth.seconds;
@@ -184,7 +191,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
 
         const uint64_t k0 = ticks();
         ShadingResult shaded = shading_pass(scene, f, lit_facing(scene, f.lights, cache),
-                                            opt.ambient, kernels->isa);
+                                            opt.ambient, kernels->isa, scratch.shade_triangles);
         f.rgb = std::move(shaded.rgb);
         f.ticks_shading = ticks() - k0;
     });

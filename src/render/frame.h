@@ -127,6 +127,25 @@ private:
     std::vector<CasterEntry> *casters_;
 };
 
+/* Buffers one frame fills and the next can fill again: the depth pass's
+ * set-up records and bins, the lighting pass's triangle table. Kept by the
+ * caller across a sequence of frames (as VolumeCache), their memory stays
+ * with the process, where a buffer the size of a frame freed and allocated
+ * again each frame is returned to the kernel and faulted in page by page.
+ * Used by one render_frame at a time. */
+class FrameScratch {
+public:
+    FrameScratch();
+    ~FrameScratch();
+    FrameScratch(const FrameScratch &) = delete;
+    FrameScratch &operator=(const FrameScratch &) = delete;
+    struct Buffers; /* frame_scratch.h */
+    Buffers &buffers() { return *buffers_; }
+
+private:
+    Buffers *buffers_;
+};
+
 struct RenderOptions {
     int width = 1280, height = 1024;
     ModeChoice mode = ModeChoice::automatic;
@@ -150,6 +169,7 @@ struct RenderOptions {
      * counts are the same at every count. */
     int threads = 1;
     VolumeCache *cache = nullptr;                /* shortcut 6 needs one */
+    FrameScratch *scratch = nullptr;             /* nullptr: this frame's own */
     const raster::RowKernels *kernels = nullptr; /* nullptr: the best this CPU runs */
     const sv_variant *variant = nullptr;         /* nullptr: sv_best_variant() */
     const sv_facing_variant *facing = nullptr;   /* nullptr: sv_best_facing_variant() */

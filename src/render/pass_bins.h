@@ -44,8 +44,16 @@ struct BinnedTriangles {
     std::vector<raster::StencilMode> chunk_mode;
     std::vector<std::vector<std::pair<int, int>>> bands; /* (chunk, piece) */
     raster::PassCounters counters;                       /* triangle counts */
+    /* Empties every chunk, keeping its memory for the next set-up. */
+    void clear_chunks(std::size_t count) {
+        chunks.resize(count);
+        for (auto &c : chunks) c.clear();
+    }
     void bin(int height) {
-        bands.assign((std::size_t)band_count(height), {});
+        /* The bands' lists are emptied, not freed: a frame's bins are as
+         * large as the last one's. */
+        bands.resize((std::size_t)band_count(height));
+        for (auto &b : bands) b.clear();
         for (std::size_t c = 0; c < chunks.size(); c++) {
             for (std::size_t i = 0; i < chunks[c].size(); i++) {
                 const raster::SetupTriangle &t = chunks[c][i];

@@ -115,7 +115,7 @@ uint8_t display_byte(double linear) { return to_display8(linear); }
 
 ShadingResult shading_pass(const Scene &scene, const Frame &f,
                            const std::vector<const uint8_t *> &lit_facing, double ambient,
-                           unsigned isa) {
+                           unsigned isa, std::vector<ShadeTriangle> &triangles) {
     ShadingResult result;
     const uint64_t k0 = ticks();
     const int width = f.width, height = f.height;
@@ -139,7 +139,6 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
 
     /* Per band: the radiance accumulators between groups of lights. */
     std::vector<std::vector<double>> accum((std::size_t)band_count(height));
-    std::vector<ShadeTriangle> triangles;
     const int groups = std::max(1, (num_lights + kLightGroup - 1) / kLightGroup);
     for (int g = 0; g < groups; g++) {
         const int first_light = g * kLightGroup;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "frame.h"
+#include "shading_rows.h"
 
 namespace sv::render {
 
@@ -25,11 +26,12 @@ struct ShadingResult {
 /* Shades frame F (after its depth and stencil passes: its ids, camera
  * rays and each light's stencil) of SCENE. LIT_FACING: volume_pass.h's
  * lit_facing. ISA: the row kernels' (SV_ISA_* bits): AVX2 or AVX-512 runs
- * the AVX2 row kernel, else the C one; the bytes are the same. Runs on
- * the calling task arena's threads. */
+ * the AVX2 row kernel, else the C one; the bytes are the same. TRIANGLES:
+ * the per-triangle table, filled (a FrameScratch's). Runs on the calling
+ * task arena's threads. */
 ShadingResult shading_pass(const Scene &scene, const Frame &f,
                            const std::vector<const uint8_t *> &lit_facing, double ambient,
-                           unsigned isa);
+                           unsigned isa, std::vector<detail::ShadeTriangle> &triangles);
 
 /* Linear radiance (after the albedo) to the 8-bit value the pass writes:
  * the soft shoulder and gamma 2.2, through the pass's table. */

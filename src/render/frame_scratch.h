@@ -1,0 +1,25 @@
+/*
+ * What a FrameScratch (frame.h) keeps between frames (internal to
+ * src/render).
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_RENDER_FRAME_SCRATCH_H
+#define SV_RENDER_FRAME_SCRATCH_H
+
+#include <vector>
+
+#include "frame.h"
+#include "pass_bins.h"
+#include "shading_rows.h"
+
+namespace sv::render {
+
+struct FrameScratch::Buffers {
+    detail::BinnedTriangles depth_bins;                 /* depth_pass */
+    std::vector<detail::ShadeTriangle> shade_triangles; /* shading_pass */
+};
+
+} // namespace sv::render
+
+#endif
