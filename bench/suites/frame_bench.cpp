@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,10 +43,14 @@
 #include "images.h"
 #include "json_writer.h"
 #include "memory_rate.h"
-#include "sequence.h"
+#include "scene_presets.h"
+#include "workload.h"
 
 #ifndef SV_DEMO_SCENE
 #define SV_DEMO_SCENE "models/demo_scene.glb"
+#endif
+#ifndef SV_MODELS_DIR
+#define SV_MODELS_DIR "models"
 #endif
 
 namespace svbench {
@@ -101,242 +106,260 @@ double ms_of(uint64_t ticks, double hz) { return 1e3 * (double)ticks / hz; }
 
 } // namespace
 
+FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &fo, double hz) {
+    FrameTable t;
+    t.preset = fo.preset.empty() ? "demo" : fo.preset;
+    t.width = fo.width, t.height = fo.height;
+    t.threads = fo.threads > 0 ? fo.threads : tbb::info::default_concurrency();
+    t.frames = std::max(fo.frames, 1), t.runs = std::max(fo.runs, 1);
+    std::unique_ptr<ScenePreset> preset;
+    try {
+        preset = make_scene_preset(t.preset, (double)fo.width / fo.height, SV_MODELS_DIR,
+                                   cmd.sharedModels, SV_DEMO_SCENE);
+    } catch (const std::exception &e) { /* exit 3, as a model that cannot be loaded */
+        throw WorkloadError(std::string("--preset ") + t.preset + ": " + e.what());
+    }
+    t.scene = preset->describe();
+    const sv::Scene &first = preset->at(0);
+    const sv::Camera base_camera = first.camera;
+    for (std::size_t i = 0; i < first.lights.size(); i++) {
+        if (first.lights[i].kind != sv::LightKind::directional) {
+            t.moving_light = (int)i;
+            break;
+        }
+    }
+    t.rate = measure_memory_rate(t.threads, (std::size_t)64 << 20, 3);
+
+    /* One volume cache and one set of frame buffers for the whole run, as
+     * an interactive program keeps them: what depends on neither the view
+     * nor a moving light (the static surfaces' volumes of the lights that
+     * stand still, the casters' preparation) is built once. The volume
+     * pass is timed in the first drawing of each frame only (the later
+     * ones find its volumes cached); the other passes take their minimum. */
+    sv::render::VolumeCache cache;
+    sv::render::FrameScratch scratch;
+    RenderOptions o;
+    o.width = fo.width, o.height = fo.height;
+    o.threads = t.threads;
+    o.cache = &cache;
+    o.scratch = &scratch;
+    std::vector<PassTimes> ours((std::size_t)t.frames);
+    std::vector<double> first_wall((std::size_t)t.frames);
+    std::vector<Floors> floors;
+    Frame last;
+    sv::Scene scene;
+    /* Frame 0 is the warm-up: it builds what the cache keeps (an
+     * interactive program does so while loading) and is not timed. The
+     * timed frames are 1 .. FRAMES. */
+    for (int k = 0; k <= t.frames; k++) {
+        const uint64_t p0 = __rdtsc();
+        const sv::Scene &posed = preset->at(k);
+        const double pose_ms = 1e3 * (double)(__rdtsc() - p0) / hz;
+        scene = posed; /* a copy to move the camera and the light in (not timed) */
+        const double angle = k * kStepDegrees * kPi / 180.0;
+        scene.camera.eye = turn(base_camera.eye, base_camera.target, angle);
+        if (t.moving_light >= 0) {
+            sv::SceneLight &l = scene.lights[(std::size_t)t.moving_light];
+            l.position = turn(l.position, base_camera.target, angle / 2);
+            l.direction = turn_direction(l.direction, angle / 2);
+        }
+        if (k == 0) {
+            (void)sv::render::render_frame(scene, o);
+            continue;
+        }
+        PassTimes &best = ours[(std::size_t)k - 1];
+        std::vector<uint8_t> first_rgb;
+        bool same = true;
+        for (int r = 0; r < t.runs; r++) {
+            Frame f = sv::render::render_frame(scene, o);
+            PassTimes p;
+            p.volumes = ms_of(f.ticks_jobs, hz);
+            p.depth = ms_of(f.ticks_depth, hz);
+            for (const auto &lf : f.lights) p.stencil += ms_of(lf.ticks_stencil, hz);
+            p.lighting = ms_of(f.ticks_shading, hz);
+            if (r == 0) {
+                best = PassTimes{pose_ms, p.volumes, p.depth, p.stencil, p.lighting, 0};
+                first_wall[(std::size_t)k - 1] = ms_of(f.ticks_total, hz) + pose_ms;
+                first_rgb = f.rgb;
+            } else {
+                best.depth = std::min(best.depth, p.depth);
+                best.stencil = std::min(best.stencil, p.stencil);
+                best.lighting = std::min(best.lighting, p.lighting);
+                same = same && f.rgb == first_rgb;
+            }
+            if (r == t.runs - 1) last = std::move(f);
+        }
+        best.frame = best.pose + best.volumes + best.depth + best.stencil + best.lighting;
+        t.same_runs += same;
+        floors.push_back(floors_of(last));
+        if (fo.mesa && t.mesa_note.empty()) {
+            sv::render::MesaFrameComparison m =
+                sv::render::compare_frame_with_mesa(scene, last, o.ambient, t.threads, t.runs,
+                                                    &t.mesa_note);
+            if (m.ran) {
+                if (t.mesa_renderer.empty()) {
+                    t.mesa_renderer = m.renderer;
+                    t.lp_num_threads = m.lp_num_threads;
+                }
+                t.compared += m.compared, t.equal += m.equal, t.on_edge += m.on_edge;
+                t.other += m.other;
+                t.mesa.push_back(m);
+            }
+        }
+    }
+    t.mesa_wanted = fo.mesa;
+    t.last_rgb = last.rgb;
+    if (!t.mesa.empty()) t.last_mesa_rgb = t.mesa.back().mesa_rgb;
+
+    /* The rows: each pass's mean over the frames of its minimum. */
+    auto mean = [&](double PassTimes::*field) {
+        double sum = 0;
+        for (const PassTimes &p : ours) sum += p.*field;
+        return sum / t.frames;
+    };
+    auto mean_floor = [&](Bytes Floors::*field) {
+        double sum = 0;
+        for (const Floors &f : floors) sum += (f.*field).ms(t.rate);
+        return sum / t.frames;
+    };
+    auto mean_mesa = [&](double sv::render::MesaFrameComparison::*field) {
+        double sum = 0;
+        for (const auto &m : t.mesa) sum += 1e3 * (m.*field);
+        return t.mesa.empty() ? -1.0 : sum / (double)t.mesa.size();
+    };
+    using M = sv::render::MesaFrameComparison;
+    t.rows = {
+        {"pose, skin, planes", mean(&PassTimes::pose), -1, -1},
+        {"volumes", mean(&PassTimes::volumes), -1, -1},
+        {"depth", mean(&PassTimes::depth), mean_floor(&Floors::depth),
+         mean_mesa(&M::depth_seconds)},
+        {"stencil", mean(&PassTimes::stencil), mean_floor(&Floors::stencil),
+         mean_mesa(&M::stencil_seconds)},
+        {"lighting", mean(&PassTimes::lighting), mean_floor(&Floors::lighting),
+         mean_mesa(&M::lighting_seconds)},
+        {"frame", mean(&PassTimes::frame),
+         mean_floor(&Floors::depth) + mean_floor(&Floors::stencil) + mean_floor(&Floors::lighting),
+         mean_mesa(&M::total_seconds)},
+    };
+    for (double w : first_wall) t.first_drawing_wall_ms += w / t.frames;
+    return t;
+}
+
+void print_frame_table(FILE *out, const FrameTable &t) {
+    std::fprintf(out,
+                 "the whole frame: %s, %d frames 1/8 s apart after a warm-up frame, %dx%d, %d "
+                 "thread(s) on both sides, each frame drawn %d time(s) (the minimum kept); the "
+                 "camera orbits %.1f deg and light %d %.2f deg a frame\n",
+                 t.scene.c_str(), t.frames, t.width, t.height, t.threads, t.runs, kStepDegrees,
+                 t.moving_light, kStepDegrees / 2);
+    std::fprintf(out, "memory: %.1f GB/s read, %.1f GB/s write (%d thread(s), best of %d)\n",
+                 t.rate.read_bytes_per_second / 1e9, t.rate.write_bytes_per_second / 1e9,
+                 t.rate.threads, t.rate.runs);
+    std::fprintf(out, "%-20s %10s %10s %8s %10s %8s\n", "pass", "ours ms", "floor ms", "/floor",
+                 "Mesa ms", "Mesa/us");
+    for (const FrameTable::Row &r : t.rows) {
+        std::fprintf(out, "%-20s %10.2f ", r.name, r.ours);
+        if (r.floor >= 0) {
+            std::fprintf(out, "%10.2f %8.1f ", r.floor, r.ours / r.floor);
+        } else {
+            std::fprintf(out, "%10s %8s ", "-", "-");
+        }
+        if (r.mesa > 0) {
+            std::fprintf(out, "%10.2f %8.2f\n", r.mesa, r.mesa / r.ours);
+        } else {
+            std::fprintf(out, "%10s %8s\n", "-", "-");
+        }
+    }
+    std::fprintf(out,
+                 "(frame: the sum of the passes; the first drawing's wall time with posing: "
+                 "%.2f ms. Mesa's frame without a wait between passes, its passes with one; its "
+                 "volumes are given, not built)\n",
+                 t.first_drawing_wall_ms);
+    std::fprintf(out, "check: %d of %d frames the same bytes in each of the %d run(s)%s\n",
+                 t.same_runs, t.frames, t.runs, t.same_runs == t.frames ? "" : " -- FAILED");
+    if (!t.mesa.empty()) {
+        std::fprintf(out,
+                     "check: Mesa (%s, LP_NUM_THREADS %d): %llu pixels compared, %llu within %d "
+                     "levels, %llu on an edge, %llu other%s\n",
+                     t.mesa_renderer.c_str(), t.lp_num_threads, (unsigned long long)t.compared,
+                     (unsigned long long)t.equal, sv::render::kFrameTolerance,
+                     (unsigned long long)t.on_edge, (unsigned long long)t.other,
+                     t.other == 0 ? "" : " -- FAILED");
+        for (const auto &m : t.mesa) {
+            for (const std::string &w : m.first_other)
+                std::fprintf(out, "  other: %s\n", w.c_str());
+        }
+    } else if (t.mesa_wanted) {
+        std::fprintf(out, "NOTE: %s\n", t.mesa_note.c_str());
+    }
+}
+
+void frame_table_json(JsonWriter &j, const FrameTable &t) {
+    j.begin_object();
+    j.key("preset"), j.value(t.preset);
+    j.key("width"), j.value(t.width);
+    j.key("height"), j.value(t.height);
+    j.key("threads"), j.value(t.threads);
+    j.key("frames"), j.value(t.frames);
+    j.key("runs_per_frame"), j.value(t.runs);
+    j.key("first_drawing_wall_ms"), j.value(t.first_drawing_wall_ms);
+    j.key("memory_read_gbps"), j.value(t.rate.read_bytes_per_second / 1e9);
+    j.key("memory_write_gbps"), j.value(t.rate.write_bytes_per_second / 1e9);
+    j.key("passes");
+    j.begin_array();
+    for (const FrameTable::Row &r : t.rows) {
+        j.begin_object(true);
+        j.key("pass"), j.value(r.name);
+        j.key("ours_ms"), j.value(r.ours);
+        if (r.floor >= 0) j.key("floor_ms"), j.value(r.floor);
+        if (r.mesa > 0) j.key("mesa_ms"), j.value(r.mesa);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("mesa");
+    if (t.mesa.empty()) {
+        j.null();
+    } else {
+        j.begin_object();
+        j.key("renderer"), j.value(t.mesa_renderer);
+        j.key("lp_num_threads"), j.value(t.lp_num_threads);
+        j.key("runs_per_frame"), j.value(t.mesa[0].runs);
+        j.key("compared"), j.value((unsigned long long)t.compared);
+        j.key("equal"), j.value((unsigned long long)t.equal);
+        j.key("on_edge"), j.value((unsigned long long)t.on_edge);
+        j.key("other"), j.value((unsigned long long)t.other);
+        j.end_object();
+    }
+    j.key("same_bytes_every_run"), j.value(t.same_runs == t.frames);
+    j.key("ok"), j.value(t.failed() == 0);
+    j.end_object();
+}
+
 int run_frame_bench(const SeedCommand &cmd, const FrameBenchOptions &fo) {
     return run_seed_frame(cmd, "frame", [&](FILE *out, std::string *doc) {
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
-        const double hz = timer.tscHz;
-        const int threads = fo.threads > 0 ? fo.threads : tbb::info::default_concurrency();
-        const int frames = std::max(fo.frames, 1), runs = std::max(fo.runs, 1);
-        sv::SequenceOptions so;
-        so.file = fo.preset.empty() || fo.preset == "demo" ? std::string(SV_DEMO_SCENE) : fo.preset;
-        so.aspect = (double)fo.width / fo.height;
-        sv::SceneSequence seq(so);
-        const sv::Camera base_camera = seq.scene().camera;
-        int moving_light = -1;
-        for (std::size_t i = 0; i < seq.scene().lights.size(); i++) {
-            if (seq.scene().lights[i].kind != sv::LightKind::directional) {
-                moving_light = (int)i;
-                break;
-            }
-        }
-        const sv::SceneLight base_light = moving_light >= 0
-                                              ? seq.scene().lights[(std::size_t)moving_light]
-                                              : sv::SceneLight{};
-        const MemoryRate rate = measure_memory_rate(threads, (std::size_t)64 << 20, 3);
-
         print_seed_header(out, "shadowvol bench --frame: the whole frame, pass by pass", timer, -1);
-        std::fprintf(out,
-                     "scene: %s, %d frames 1/8 s apart after a warm-up frame, %dx%d, %d "
-                     "thread(s) on both sides, each frame drawn %d time(s) (the minimum kept); the "
-                     "camera orbits %.1f deg and light %d %.2f deg a frame\n",
-                     so.file.c_str(), frames, fo.width, fo.height, threads, runs, kStepDegrees,
-                     moving_light, kStepDegrees / 2);
-        std::fprintf(out, "memory: %.1f GB/s read, %.1f GB/s write (%d thread(s), best of %d)\n\n",
-                     rate.read_bytes_per_second / 1e9, rate.write_bytes_per_second / 1e9,
-                     rate.threads, rate.runs);
-
-        /* One volume cache and one set of frame buffers for the whole run,
-         * as an interactive program keeps them: what depends on neither the view nor a moving light
-         * (the static surfaces' volumes of the lights that stand still,
-         * the casters' preparation) is built once. The volume pass is timed
-         * in the first drawing of each frame only (the later ones find
-         * its volumes cached); the other passes take their minimum. */
-        sv::render::VolumeCache cache;
-        sv::render::FrameScratch scratch;
-        RenderOptions o;
-        o.width = fo.width, o.height = fo.height;
-        o.threads = threads;
-        o.cache = &cache;
-        o.scratch = &scratch;
-        std::vector<PassTimes> ours((std::size_t)frames);
-        std::vector<double> first_wall((std::size_t)frames);
-        std::vector<sv::render::MesaFrameComparison> mesa;
-        std::vector<Floors> floors;
-        int failed = 0, same_runs = 0;
-        std::string note;
-        Frame last;
-        /* Frame 0 is the warm-up: it builds what the cache keeps (an
-         * interactive program does so while loading) and is not timed.
-         * The timed frames are 1 .. FRAMES. */
-        for (int k = 0; k <= frames; k++) {
-            const uint64_t p0 = __rdtsc();
-            seq.set_time(seq.start() + k / 8.0);
-            sv::Scene &scene = seq.scene();
-            const double angle = k * kStepDegrees * kPi / 180.0;
-            scene.camera.eye = turn(base_camera.eye, base_camera.target, angle);
-            if (moving_light >= 0) {
-                sv::SceneLight &l = scene.lights[(std::size_t)moving_light];
-                l.position = turn(base_light.position, base_camera.target, angle / 2);
-                l.direction = turn_direction(base_light.direction, angle / 2);
-            }
-            if (k == 0) {
-                (void)sv::render::render_frame(scene, o);
-                continue;
-            }
-            PassTimes &best = ours[(std::size_t)k - 1];
-            best.pose = 1e3 * (double)(__rdtsc() - p0) / hz;
-            std::vector<uint8_t> first_rgb;
-            bool same = true;
-            for (int r = 0; r < runs; r++) {
-                Frame f = sv::render::render_frame(scene, o);
-                PassTimes t;
-                t.volumes = ms_of(f.ticks_jobs, hz);
-                t.depth = ms_of(f.ticks_depth, hz);
-                for (const auto &lf : f.lights) t.stencil += ms_of(lf.ticks_stencil, hz);
-                t.lighting = ms_of(f.ticks_shading, hz);
-                t.frame = ms_of(f.ticks_total, hz);
-                if (r == 0) {
-                    best = PassTimes{best.pose, t.volumes, t.depth, t.stencil, t.lighting, 0};
-                    first_wall[(std::size_t)k - 1] = t.frame + best.pose;
-                    first_rgb = f.rgb;
-                } else {
-                    best.depth = std::min(best.depth, t.depth);
-                    best.stencil = std::min(best.stencil, t.stencil);
-                    best.lighting = std::min(best.lighting, t.lighting);
-                    same = same && f.rgb == first_rgb;
-                }
-                if (r == runs - 1) last = std::move(f);
-            }
-            best.frame = best.pose + best.volumes + best.depth + best.stencil + best.lighting;
-            same_runs += same;
-            floors.push_back(floors_of(last));
-            if (fo.mesa && note.empty()) {
-                sv::render::MesaFrameComparison m =
-                    sv::render::compare_frame_with_mesa(scene, last, o.ambient, threads, runs,
-                                                        &note);
-                if (m.ran) mesa.push_back(std::move(m));
-            }
-        }
-
-        /* The table: each pass's mean over the frames of its minimum. */
-        auto mean = [&](double PassTimes::*field) {
-            double s = 0;
-            for (const PassTimes &t : ours) s += t.*field;
-            return s / frames;
-        };
-        auto mean_floor = [&](Bytes Floors::*field) {
-            double s = 0;
-            for (const Floors &f : floors) s += (f.*field).ms(rate);
-            return s / frames;
-        };
-        auto mean_mesa = [&](double sv::render::MesaFrameComparison::*field) {
-            double s = 0;
-            for (const auto &m : mesa) s += 1e3 * (m.*field);
-            return mesa.empty() ? 0.0 : s / (double)mesa.size();
-        };
-        struct Row {
-            const char *name;
-            double ours, floor, mesa;
-        };
-        const double floor_total = mean_floor(&Floors::depth) + mean_floor(&Floors::stencil) +
-                                   mean_floor(&Floors::lighting);
-        const std::vector<Row> rows = {
-            {"pose, skin, planes", mean(&PassTimes::pose), -1, -1},
-            {"volumes", mean(&PassTimes::volumes), -1, -1},
-            {"depth", mean(&PassTimes::depth), mean_floor(&Floors::depth),
-             mean_mesa(&sv::render::MesaFrameComparison::depth_seconds)},
-            {"stencil", mean(&PassTimes::stencil), mean_floor(&Floors::stencil),
-             mean_mesa(&sv::render::MesaFrameComparison::stencil_seconds)},
-            {"lighting", mean(&PassTimes::lighting), mean_floor(&Floors::lighting),
-             mean_mesa(&sv::render::MesaFrameComparison::lighting_seconds)},
-            {"frame", mean(&PassTimes::frame), floor_total,
-             mean_mesa(&sv::render::MesaFrameComparison::total_seconds)},
-        };
-        std::fprintf(out, "%-20s %10s %10s %8s %10s %8s\n", "pass", "ours ms", "floor ms", "/floor",
-                     "Mesa ms", "Mesa/us");
-        for (const Row &r : rows) {
-            std::fprintf(out, "%-20s %10.2f ", r.name, r.ours);
-            if (r.floor >= 0) {
-                std::fprintf(out, "%10.2f %8.1f ", r.floor, r.ours / r.floor);
-            } else {
-                std::fprintf(out, "%10s %8s ", "-", "-");
-            }
-            if (r.mesa > 0) {
-                std::fprintf(out, "%10.2f %8.2f\n", r.mesa, r.mesa / r.ours);
-            } else {
-                std::fprintf(out, "%10s %8s\n", "-", "-");
-            }
-        }
-        double wall = 0;
-        for (double w : first_wall) wall += w;
-        std::fprintf(out,
-                     "(frame: the sum of the passes; the first drawing's wall time with posing: "
-                     "%.2f ms. Mesa's frame without a wait between passes, its passes with one; "
-                     "its volumes are given, not built)\n",
-                     wall / frames);
-        uint64_t compared = 0, equal = 0, on_edge = 0, other = 0;
-        for (const auto &m : mesa) {
-            compared += m.compared, equal += m.equal, on_edge += m.on_edge, other += m.other;
-        }
-        const bool ok_runs = same_runs == frames, ok_mesa = other == 0;
-        failed += !ok_runs + !ok_mesa;
-        std::fprintf(out, "check: %d of %d frames the same bytes in each of the %d run(s)%s\n",
-                     same_runs, frames, runs, ok_runs ? "" : " -- FAILED");
-        if (!mesa.empty()) {
-            std::fprintf(out,
-                         "check: Mesa (%s, LP_NUM_THREADS %d): %llu pixels compared, %llu within "
-                         "%d levels, %llu on an edge, %llu other%s\n",
-                         mesa[0].renderer.c_str(), mesa[0].lp_num_threads,
-                         (unsigned long long)compared, (unsigned long long)equal,
-                         sv::render::kFrameTolerance, (unsigned long long)on_edge,
-                         (unsigned long long)other, ok_mesa ? "" : " -- FAILED");
-        } else if (fo.mesa) {
-            std::fprintf(out, "NOTE: %s\n", note.c_str());
-        }
+        const FrameTable t = measure_frame_table(cmd, fo, timer.tscHz);
+        print_frame_table(out, t);
         if (!fo.out_dir.empty()) {
-            sv::render::Image image(last.width, last.height);
-            image.rgb = last.rgb;
+            sv::render::Image image(t.width, t.height);
+            image.rgb = t.last_rgb;
             sv::render::write_png(fo.out_dir + "/frame_ours.png", image);
-            if (!mesa.empty()) {
-                image.rgb = mesa.back().mesa_rgb;
+            if (!t.last_mesa_rgb.empty()) {
+                image.rgb = t.last_mesa_rgb;
                 sv::render::write_png(fo.out_dir + "/frame_mesa.png", image);
             }
             std::fprintf(out, "images: %s/frame_ours.png%s\n", fo.out_dir.c_str(),
-                         mesa.empty() ? "" : ", frame_mesa.png");
+                         t.last_mesa_rgb.empty() ? "" : ", frame_mesa.png");
         }
-
         JsonWriter j;
         j.begin_object();
         seed_json_header(j, "shadowvol-frame-bench/1", timer);
-        j.key("scene"), j.value(so.file);
-        j.key("width"), j.value(fo.width);
-        j.key("height"), j.value(fo.height);
-        j.key("threads"), j.value(threads);
-        j.key("frames"), j.value(frames);
-        j.key("runs_per_frame"), j.value(runs);
-        j.key("first_drawing_wall_ms"), j.value(wall / frames);
-        j.key("memory_read_gbps"), j.value(rate.read_bytes_per_second / 1e9);
-        j.key("memory_write_gbps"), j.value(rate.write_bytes_per_second / 1e9);
-        j.key("passes");
-        j.begin_array();
-        for (const Row &r : rows) {
-            j.begin_object(true);
-            j.key("pass"), j.value(r.name);
-            j.key("ours_ms"), j.value(r.ours);
-            if (r.floor >= 0) j.key("floor_ms"), j.value(r.floor);
-            if (r.mesa > 0) j.key("mesa_ms"), j.value(r.mesa);
-            j.end_object();
-        }
-        j.end_array();
-        j.key("mesa");
-        if (mesa.empty()) {
-            j.null();
-        } else {
-            j.begin_object();
-            j.key("renderer"), j.value(mesa[0].renderer);
-            j.key("lp_num_threads"), j.value(mesa[0].lp_num_threads);
-            j.key("runs_per_frame"), j.value(mesa[0].runs);
-            j.key("compared"), j.value((unsigned long long)compared);
-            j.key("equal"), j.value((unsigned long long)equal);
-            j.key("on_edge"), j.value((unsigned long long)on_edge);
-            j.key("other"), j.value((unsigned long long)other);
-            j.end_object();
-        }
-        j.key("same_bytes_every_run"), j.value(ok_runs);
-        j.key("ok"), j.value(failed == 0);
+        j.key("frame");
+        frame_table_json(j, t);
         j.end_object();
         *doc = j.str();
-        return failed;
+        return t.failed();
     });
 }
 

@@ -6,8 +6,13 @@
 #ifndef SV_BENCH_FRAME_BENCH_H
 #define SV_BENCH_FRAME_BENCH_H
 
+#include <cstdint>
+#include <cstdio>
 #include <string>
+#include <vector>
 
+#include "frame_vs_mesa.h"
+#include "memory_rate.h"
 #include "seed_bench.h"
 
 namespace svbench {
@@ -21,6 +26,36 @@ struct FrameBenchOptions {
     bool mesa = true;    /* Mesa's same frame beside ours */
     std::string out_dir; /* "" none; else the last frame's PNGs, ours and Mesa's */
 };
+
+/* The table of a run: a row per pass (ms; floor and Mesa's ms where they
+ * apply, else -1), and the checks of the same run. */
+struct FrameTable {
+    std::string preset, scene; /* the name given, and what the scene holds */
+    int width = 0, height = 0, threads = 0, frames = 0, runs = 0;
+    int moving_light = -1;
+    MemoryRate rate;
+    struct Row {
+        const char *name;
+        double ours, floor, mesa;
+    };
+    std::vector<Row> rows;
+    double first_drawing_wall_ms = 0;
+    int same_runs = 0; /* frames whose drawings were the same bytes */
+    bool mesa_wanted = false;
+    std::string mesa_note, mesa_renderer;
+    int lp_num_threads = 0;
+    std::vector<sv::render::MesaFrameComparison> mesa; /* one per frame */
+    uint64_t compared = 0, equal = 0, on_edge = 0, other = 0;
+    std::vector<uint8_t> last_rgb, last_mesa_rgb; /* the last frame's pictures */
+    int failed() const { return (same_runs != frames) + (other != 0); }
+};
+
+/* Measures the table (HZ: the TSC rate). Throws WorkloadError when the
+ * preset cannot be loaded. */
+FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &fo, double hz);
+void print_frame_table(FILE *out, const FrameTable &t);
+class JsonWriter;
+void frame_table_json(JsonWriter &j, const FrameTable &t);
 
 int run_frame_bench(const SeedCommand &cmd, const FrameBenchOptions &fo);
 

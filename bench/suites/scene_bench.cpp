@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "frame.h"
+#include "frame_bench.h"
 #include "json_writer.h"
 #include "shadowvol_gltf.h"
 #include "shadowvol_mesh.h"
@@ -177,15 +178,27 @@ int run_preset_passes(const SeedCommand &cmd) {
                           -1);
         const PassTable t = pass_table(cmd, name, width, height);
         print_pass_table(out, t);
+        /* The whole frame, pass by pass, beside its floor and Mesa's same
+         * frame (issue 29; frame_bench.h), on every core. */
+        FrameBenchOptions fo;
+        fo.preset = name;
+        fo.width = width, fo.height = height;
+        fo.frames = cmd.quick ? 2 : 4;
+        fo.runs = cmd.quick ? 1 : 3;
+        std::fprintf(out, "\n");
+        const FrameTable frame = measure_frame_table(cmd, fo, timer.tscHz);
+        print_frame_table(out, frame);
         JsonWriter j;
         j.begin_object();
         seed_json_header(j, "shadowvol-scene-bench/1", timer);
         j.key("preset"), j.value(name);
         j.key("passes");
         pass_table_json(j, t);
+        j.key("frame");
+        frame_table_json(j, frame);
         j.end_object();
         *doc = j.str();
-        return t.failed();
+        return t.failed() + frame.failed();
     });
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -46,11 +47,22 @@ gl::MesaFrameLight mesa_light(const LightFrame &lf,
     return m;
 }
 
-/* Does pixel I's 3x3 neighbourhood show another triangle, or another
- * shadow-mask value of some light? */
-bool near_an_edge(const Frame &f, std::size_t i) {
+/* The ground's checker at pixel (X, Y) of surface SI, triangle T: odd? */
+bool checker_odd_at(const Scene &scene, const Frame &f, int si, int t, int x, int y) {
+    const Vec3d p = visible_point(f, scene, si, t, x, y);
+    return (((int64_t)std::floor(p.x * 2) + (int64_t)std::floor(p.z * 2)) & 1) != 0;
+}
+
+/* Does pixel I's 3x3 neighbourhood show another triangle, another
+ * shadow-mask value of some light, or (on the ground) a line of its
+ * checker? */
+bool near_an_edge(const Scene &scene, const Frame &f, std::size_t i) {
     const int w = f.width, h = f.height;
     const int x = (int)(i % (std::size_t)w), y = (int)(i / (std::size_t)w);
+    int si = -1, t = -1;
+    f.decode_id(f.target.ids[i], si, t);
+    const bool ground = scene.surfaces[(std::size_t)si].ground;
+    const bool odd = ground && checker_odd_at(scene, f, si, t, x, y);
     for (int dy = -1; dy <= 1; dy++) {
         for (int dx = -1; dx <= 1; dx++) {
             const int nx = x + dx, ny = y + dy;
@@ -60,6 +72,7 @@ bool near_an_edge(const Frame &f, std::size_t i) {
             for (const LightFrame &lf : f.lights) {
                 if ((lf.stencil[j] == 0) != (lf.stencil[i] == 0)) return true;
             }
+            if (ground && checker_odd_at(scene, f, si, t, nx, ny) != odd) return true;
         }
     }
     return false;
@@ -129,11 +142,20 @@ MesaFrameComparison compare_frame_with_mesa(const Scene &scene, const Frame &f, 
         out.compared++;
         if (diff <= kFrameTolerance) {
             out.equal++;
-        } else if (near_an_edge(f, i)) {
+        } else if (near_an_edge(scene, f, i)) {
             out.on_edge++;
         } else {
             out.other++;
             out.max_difference_other = std::max(out.max_difference_other, diff);
+            if (out.first_other.size() < 4) {
+                const uint8_t *o = &f.rgb[3 * i], *m = &out.mesa_rgb[3 * i];
+                char b[200];
+                std::snprintf(b, sizeof b,
+                              "pixel (%zu, %zu), triangle id %d: ours %d %d %d, Mesa's %d %d %d",
+                              i % (std::size_t)f.width, i / (std::size_t)f.width,
+                              (int)f.target.ids[i], o[0], o[1], o[2], m[0], m[1], m[2]);
+                out.first_other.push_back(b);
+            }
         }
     }
     return out;

@@ -7,10 +7,11 @@
  * Mesa shades in float with the normal from screen derivatives, we in
  * double with the stored plane: a pixel is "equal" when every channel is
  * within kFrameTolerance of ours; one that is not is "on an edge" when its
- * 3x3 neighbourhood shows another triangle or another shadow-mask value of
+ * 3x3 neighbourhood shows another triangle, another shadow-mask value of
  * some light (the rasterisers' sub-pixel snapping and the stencil's edge
- * and tie pixels meet there: gl_compare.h judges the stencils exactly),
- * else "other".
+ * and tie pixels meet there: gl_compare.h judges the stencils exactly) or
+ * a line of the ground's checker (float against double there), else
+ * "other".
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -36,8 +37,9 @@ struct MesaFrameComparison {
     double depth_seconds = 0, stencil_seconds = 0, lighting_seconds = 0; /* with waits */
     uint64_t compared = 0; /* pixels a surface covers in both */
     uint64_t equal = 0, on_edge = 0, other = 0;
-    int max_difference_other = 0;  /* levels, over the "other" pixels */
-    std::vector<uint8_t> mesa_rgb; /* Mesa's picture, displayed as ours (sky: ours) */
+    int max_difference_other = 0;         /* levels, over the "other" pixels */
+    std::vector<std::string> first_other; /* the first "other" pixels: where, ours and Mesa's */
+    std::vector<uint8_t> mesa_rgb;        /* Mesa's picture, displayed as ours (sky: ours) */
 };
 
 /* AMBIENT: the frame's (RenderOptions::ambient). THREADS: LP_NUM_THREADS

@@ -22,8 +22,10 @@ grep -Eq "^check: Mesa .* 0 other$" "$tmp/f.txt" || err "--frame: no Mesa check 
 if command -v python3 >/dev/null; then
   python3 - "$tmp/f.json" <<'PY' || err "--frame: bad JSON"
 import json, sys
-d = json.load(open(sys.argv[1]))
-assert d["schema"] == "shadowvol-frame-bench/1"
+top = json.load(open(sys.argv[1]))
+assert top["schema"] == "shadowvol-frame-bench/1"
+d = top["frame"]
+assert d["preset"] == "demo"
 assert d["width"] == 192 and d["height"] == 108 and d["threads"] == 2
 assert d["frames"] == 2 and d["runs_per_frame"] == 1, d
 names = [p["pass"] for p in d["passes"]]
@@ -41,11 +43,14 @@ else
   err "python3 not found: the JSON's fields cannot be checked (tools/run.sh test installs it)"
 fi
 for args in "--frame --scene" "--frame=1" "--frame --size 0x10" "--frame --threads 0" \
-            "--frame --model x.glb" "--size 64x64" "--frame --out"; do
+            "--frame --model x.glb" "--threads 2" "--frame --out" "--frame --caster-rule auto"; do
   # shellcheck disable=SC2086
   "$sv" bench $args >"$tmp/u.txt" 2>&1
   rc=$?
   [ "$rc" = 2 ] || err "bench $args: exit $rc, expected 2"
 done
+"$sv" bench --frame --preset no_such_file.glb --size 64x36 --no-mesa >"$tmp/u.txt" 2>&1
+rc=$?
+[ "$rc" = 3 ] || err "bench --frame --preset no_such_file.glb: exit $rc, expected 3"
 [ "$fail" = 0 ] && echo "bench --frame: all checks passed"
 exit "$fail"
