@@ -247,40 +247,12 @@ void Target::clear_depth() {
 
 void Target::clear_stencil() { std::fill(stencil.begin(), stencil.end(), 0); }
 
-Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
+namespace {
 
-void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
-                       std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents) const {
-    if (width < 1 || width > kMaxTargetSide || height < 1 || height > kMaxTargetSide) {
-        check_side("width", width);
-        check_side("height", height);
-    }
-    c.triangles++;
-    ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
-    int n = 3;
-    bool inside_all = true;
-    for (int p = 0; p < 5; p++) {
-        const double d0 = plane_distance(p, v[0]), d1 = plane_distance(p, v[1]),
-                     d2 = plane_distance(p, v[2]);
-        if (d0 < 0 && d1 < 0 && d2 < 0) {
-            c.triangles_outside++;
-            return;
-        }
-        if (d0 < 0 || d1 < 0 || d2 < 0) inside_all = false;
-    }
-    if (!inside_all) {
-        c.triangles_clipped++;
-        n = clip_polygon(poly, n);
-        if (n < 3) {
-            c.triangles_outside++;
-            return;
-        }
-    }
-    Snapped s[kMaxPolygon];
-    if (!snap_polygon(poly, n, width, height, s)) {
-        c.triangles_degenerate++;
-        return;
-    }
+/* Set-up's second half: the snapped polygon S of N corners into its
+ * pieces (the fan of triangles, edge functions, the depth plane). */
+void pieces_of(const Snapped *s, int n, int width, int height, int32_t id, PassCounters &c,
+               std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents) {
     const DepthPlane dp = canonical_plane(s, n);
     if (!dp.ok) {
         c.triangles_degenerate++;
@@ -340,6 +312,77 @@ void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id,
         }
     }
     if (!drew) c.triangles_degenerate++;
+}
+
+} // namespace
+
+Rasterizer::Rasterizer(const RowKernels *kernels) : kernels_(kernels) {}
+
+void Rasterizer::setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
+                       std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents) const {
+    if (width < 1 || width > kMaxTargetSide || height < 1 || height > kMaxTargetSide) {
+        check_side("width", width);
+        check_side("height", height);
+    }
+    c.triangles++;
+    ClipVertex poly[kMaxPolygon] = {v[0], v[1], v[2]};
+    int n = 3;
+    bool inside_all = true;
+    for (int p = 0; p < 5; p++) {
+        const double d0 = plane_distance(p, v[0]), d1 = plane_distance(p, v[1]),
+                     d2 = plane_distance(p, v[2]);
+        if (d0 < 0 && d1 < 0 && d2 < 0) {
+            c.triangles_outside++;
+            return;
+        }
+        if (d0 < 0 || d1 < 0 || d2 < 0) inside_all = false;
+    }
+    if (!inside_all) {
+        c.triangles_clipped++;
+        n = clip_polygon(poly, n);
+        if (n < 3) {
+            c.triangles_outside++;
+            return;
+        }
+    }
+    Snapped s[kMaxPolygon];
+    if (!snap_polygon(poly, n, width, height, s)) {
+        c.triangles_degenerate++;
+        return;
+    }
+    pieces_of(s, n, width, height, id, c, out, extents);
+}
+
+WindowVertex window_vertex(const ClipVertex &v, int width, int height) {
+    WindowVertex w;
+    for (int p = 0; p < 5; p++) {
+        if (plane_distance(p, v) < 0) w.outside = (uint8_t)(w.outside | (1u << p));
+    }
+    Snapped sn{};
+    w.drawable = snap_polygon(&v, 1, width, height, &sn);
+    w.X = sn.X, w.Y = sn.Y, w.z = sn.z;
+    return w;
+}
+
+void Rasterizer::setup_shared(const ClipVertex v[3], const WindowVertex w[3], int width, int height,
+                              int32_t id, PassCounters &c, std::vector<SetupTriangle> &out) const {
+    /* Inside every plane: nothing to clip, and the corners snap as set-up
+     * would snap them (the same formula, once per vertex). Else the whole
+     * set-up. */
+    if ((w[0].outside | w[1].outside | w[2].outside) != 0 || !w[0].drawable || !w[1].drawable ||
+        !w[2].drawable) {
+        setup(v, width, height, id, c, out);
+        return;
+    }
+    if (width < 1 || width > kMaxTargetSide || height < 1 || height > kMaxTargetSide) {
+        check_side("width", width);
+        check_side("height", height);
+    }
+    c.triangles++;
+    const Snapped s[3] = {{w[0].X, w[0].Y, w[0].z},
+                          {w[1].X, w[1].Y, w[1].z},
+                          {w[2].X, w[2].Y, w[2].z}};
+    pieces_of(s, 3, width, height, id, c, out, nullptr);
 }
 
 /* EMIT(span, y) for each row of TRI inside BAND. */

@@ -147,6 +147,18 @@ struct DepthBounds {
     float skip_at_or_below, skip_above;
 };
 
+/* A vertex's window position as set-up snaps it, and the clip planes it
+ * lies outside of: worked out once per vertex of a mesh whose triangles
+ * share their corners (the depth pass), so that a triangle inside every
+ * plane skips clipping and snapping (Rasterizer::setup_shared). */
+struct WindowVertex {
+    int64_t X = 0, Y = 0;  /* 1/256 pixel, y down */
+    double z = 0;          /* window depth */
+    uint8_t outside = 0;   /* bit P: outside clip plane P (near, left, right, bottom, top) */
+    bool drawable = false; /* w > 0 and finite: set-up can snap it */
+};
+WindowVertex window_vertex(const ClipVertex &v, int width, int height);
+
 /* A band of rows [row_begin, row_end) of a target. */
 struct RowBand {
     int row_begin, row_end;
@@ -175,6 +187,11 @@ public:
      * bounds) and each piece's extent is appended there, one per piece. */
     void setup(const ClipVertex v[3], int width, int height, int32_t id, PassCounters &c,
                std::vector<SetupTriangle> &out, std::vector<PieceExtent> *extents = nullptr) const;
+    /* setup() of a triangle whose corners' window_vertex() are W: the same
+     * pieces and counts, without clipping or snapping again when all three
+     * lie inside every plane. */
+    void setup_shared(const ClipVertex v[3], const WindowVertex w[3], int width, int height,
+                      int32_t id, PassCounters &c, std::vector<SetupTriangle> &out) const;
     /* The rows of T inside BAND: depth pass into T's depth and ids. */
     void walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &r) const;
     /* The rows of TRI inside BAND: stencil pass against DEPTH into

@@ -32,7 +32,7 @@ ClipVertices receivers_to_clip(const Scene &scene, const Mat4d &view_proj) {
 DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
                            const std::vector<int32_t> &surface_first_id,
                            const raster::Rasterizer &rast, raster::Target &target,
-                           BinnedTriangles &bt) {
+                           BinnedTriangles &bt, WindowVertices &window) {
     DepthPassResult result;
     const double t0 = now_seconds();
     const uint64_t k0 = ticks();
@@ -47,18 +47,32 @@ DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
         for (int t = 0; t < n; t += kSetupChunk)
             chunks.push_back({si, t, std::min(n, t + kSetupChunk)});
     }
+    /* Each vertex snapped once (a corner is shared by about six
+     * triangles): set-up then clips and snaps only the triangles that
+     * cross a plane of the view volume. */
+    window.resize((std::size_t)num_surfaces);
+    parallel(num_surfaces, [&](int si) {
+        const auto &cv = clip[(std::size_t)si];
+        auto &wv = window[(std::size_t)si];
+        wv.resize(cv.size());
+        for (std::size_t v = 0; v < cv.size(); v++)
+            wv[v] = raster::window_vertex(cv[v], width, height);
+    });
     bt.clear_chunks(chunks.size());
     std::vector<raster::PassCounters> cc(chunks.size());
     parallel((int)chunks.size(), [&](int c) {
         const Chunk &ch = chunks[(std::size_t)c];
         const PreparedSurface &p = scene.surfaces[(std::size_t)ch.surface].prepared;
         const auto &cv = clip[(std::size_t)ch.surface];
+        const auto &wv = window[(std::size_t)ch.surface];
         for (int t = ch.first; t < ch.last; t++) {
-            const raster::ClipVertex v[3] = {cv[(std::size_t)p.indices[3 * (std::size_t)t]],
-                                             cv[(std::size_t)p.indices[3 * (std::size_t)t + 1]],
-                                             cv[(std::size_t)p.indices[3 * (std::size_t)t + 2]]};
-            rast.setup(v, width, height, surface_first_id[(std::size_t)ch.surface] + t,
-                       cc[(std::size_t)c], bt.chunks[(std::size_t)c]);
+            const int *i = &p.indices[3 * (std::size_t)t];
+            const raster::ClipVertex v[3] = {cv[(std::size_t)i[0]], cv[(std::size_t)i[1]],
+                                             cv[(std::size_t)i[2]]};
+            const raster::WindowVertex w[3] = {wv[(std::size_t)i[0]], wv[(std::size_t)i[1]],
+                                               wv[(std::size_t)i[2]]};
+            rast.setup_shared(v, w, width, height, surface_first_id[(std::size_t)ch.surface] + t,
+                              cc[(std::size_t)c], bt.chunks[(std::size_t)c]);
         }
     });
     for (const auto &c : cc) result.counters.add(c);

@@ -20,6 +20,8 @@ namespace sv::render {
 /* Per surface, its vertices in clip space (the depth pass's input, and
  * the even vertices of every shadow volume's double-length buffer). */
 using ClipVertices = std::vector<std::vector<raster::ClipVertex>>;
+/* Per surface, its vertices as set-up snaps them (raster::window_vertex). */
+using WindowVertices = std::vector<std::vector<raster::WindowVertex>>;
 ClipVertices receivers_to_clip(const Scene &scene, const Mat4d &view_proj);
 
 struct DepthPassResult {
@@ -30,13 +32,13 @@ struct DepthPassResult {
 
 /* Draws every surface of SCENE (its vertices CLIP) into TARGET, which must
  * be sized and cleared; triangle T of surface S gets the id
- * SURFACE_FIRST_ID[S] + T. BINS: the set-up records and bins, emptied and
- * filled (a FrameScratch's, kept from frame to frame). Runs on the calling
- * task arena's threads. */
+ * SURFACE_FIRST_ID[S] + T. BT: the set-up records and bins, and WINDOW:
+ * the vertices snapped, emptied and filled (a FrameScratch's, kept from
+ * frame to frame). Runs on the calling task arena's threads. */
 DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
                            const std::vector<int32_t> &surface_first_id,
                            const raster::Rasterizer &rast, raster::Target &target,
-                           detail::BinnedTriangles &bins);
+                           detail::BinnedTriangles &bt, WindowVertices &window);
 
 } // namespace sv::render
 

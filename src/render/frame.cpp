@@ -146,7 +146,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     arena.execute([&] {
         const ClipVertices clip = receivers_to_clip(scene, f.view_proj);
         const DepthPassResult depth = depth_pass(scene, clip, f.surface_first_id, rast, f.target,
-                                                 scratch.depth_bins);
+                                                 scratch.depth_bins, scratch.depth_window);
         f.depth_counters = depth.counters;
         f.ticks_depth = depth.ticks;
         f.seconds_depth = depth.seconds;

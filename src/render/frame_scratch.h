@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "depth_pass.h"
 #include "frame.h"
 #include "pass_bins.h"
 #include "shading_rows.h"
@@ -16,7 +17,8 @@
 namespace sv::render {
 
 struct FrameScratch::Buffers {
-    detail::BinnedTriangles depth_bins;                 /* depth_pass */
+    detail::BinnedTriangles depth_bins;                 /* depth_pass: set-up records, bins */
+    WindowVertices depth_window;                        /* depth_pass: the vertices snapped */
     std::vector<detail::ShadeTriangle> shade_triangles; /* shading_pass */
 };
 
