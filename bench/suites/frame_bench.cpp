@@ -202,7 +202,7 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
                     t.lp_num_threads = m.lp_num_threads;
                 }
                 t.compared += m.compared, t.equal += m.equal, t.on_edge += m.on_edge;
-                t.other += m.other;
+                t.other += m.other, t.stencil_other += m.stencil_other;
                 t.mesa.push_back(m);
             }
         }
@@ -280,11 +280,12 @@ void print_frame_table(FILE *out, const FrameTable &t) {
     if (!t.mesa.empty()) {
         std::fprintf(out,
                      "check: Mesa (%s, LP_NUM_THREADS %d): %llu pixels compared, %llu within %d "
-                     "levels, %llu on an edge, %llu other%s\n",
+                     "levels, %llu on an edge, %llu other; stencils: %llu other%s\n",
                      t.mesa_renderer.c_str(), t.lp_num_threads, (unsigned long long)t.compared,
                      (unsigned long long)t.equal, sv::render::kFrameTolerance,
                      (unsigned long long)t.on_edge, (unsigned long long)t.other,
-                     t.other == 0 ? "" : " -- FAILED");
+                     (unsigned long long)t.stencil_other,
+                     t.other == 0 && t.stencil_other == 0 ? "" : " -- FAILED");
         for (const auto &m : t.mesa) {
             for (const std::string &w : m.first_other)
                 std::fprintf(out, "  other: %s\n", w.c_str());
@@ -328,6 +329,7 @@ void frame_table_json(JsonWriter &j, const FrameTable &t) {
         j.key("equal"), j.value((unsigned long long)t.equal);
         j.key("on_edge"), j.value((unsigned long long)t.on_edge);
         j.key("other"), j.value((unsigned long long)t.other);
+        j.key("stencil_other"), j.value((unsigned long long)t.stencil_other);
         j.end_object();
     }
     j.key("same_bytes_every_run"), j.value(t.same_runs == t.frames);

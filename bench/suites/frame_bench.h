@@ -45,9 +45,9 @@ struct FrameTable {
     std::string mesa_note, mesa_renderer;
     int lp_num_threads = 0;
     std::vector<sv::render::MesaFrameComparison> mesa; /* one per frame */
-    uint64_t compared = 0, equal = 0, on_edge = 0, other = 0;
+    uint64_t compared = 0, equal = 0, on_edge = 0, other = 0, stencil_other = 0;
     std::vector<uint8_t> last_rgb, last_mesa_rgb; /* the last frame's pictures */
-    int failed() const { return (same_runs != frames) + (other != 0); }
+    int failed() const { return (same_runs != frames) + (other != 0 || stencil_other != 0); }
 };
 
 /* Measures the table (HZ: the TSC rate). Throws WorkloadError when the

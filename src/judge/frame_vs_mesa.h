@@ -8,10 +8,12 @@
  * double with the stored plane: a pixel is "equal" when every channel is
  * within kFrameTolerance of ours; one that is not is "on an edge" when its
  * 3x3 neighbourhood shows another triangle, another shadow-mask value of
- * some light (the rasterisers' sub-pixel snapping and the stencil's edge
- * and tie pixels meet there: gl_compare.h judges the stencils exactly) or
- * a line of the ground's checker (float against double there), else
- * "other".
+ * some light or a line of the ground's checker (float against double
+ * there), or when some light's stencil in Mesa's frame differs from ours
+ * there on a volume's edge or at a depth tie (gl_compare.h's classes, from
+ * Mesa's stencils read back in an untimed drawing); else "other". A stencil
+ * difference gl_compare.h calls "other" is counted apart
+ * (stencil_other).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -37,7 +39,8 @@ struct MesaFrameComparison {
     double depth_seconds = 0, stencil_seconds = 0, lighting_seconds = 0; /* with waits */
     uint64_t compared = 0; /* pixels a surface covers in both */
     uint64_t equal = 0, on_edge = 0, other = 0;
-    int max_difference_other = 0;         /* levels, over the "other" pixels */
+    uint64_t stencil_other = 0;   /* stencil pixels gl_compare.h calls other, over the lights */
+    int max_difference_other = 0; /* levels, over the "other" pixels */
     std::vector<std::string> first_other; /* the first "other" pixels: where, ours and Mesa's */
     std::vector<uint8_t> mesa_rgb;        /* Mesa's picture, displayed as ours (sky: ours) */
 };

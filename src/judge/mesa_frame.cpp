@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesa_gl.h"
@@ -134,6 +136,9 @@ private:
         return at;
     }
     void validate(const MesaFrameJob &job) const;
+    /* Appends the light's stencil to OUT.stencils (and with DEPTH the
+     * depth to OUT.depth), row 0 at the top: one read of both, packed. */
+    void read_depth_stencil(MesaFrameResult &out, bool depth);
 
     const GlApi &gl_;
     int width_, height_;
@@ -180,6 +185,27 @@ void FrameDrawer::validate(const MesaFrameJob &job) const {
             validate_volume(light.volumes[v],
                             "light " + std::to_string(l) + " volume " + std::to_string(v));
     }
+}
+
+void FrameDrawer::read_depth_stencil(MesaFrameResult &out, bool depth) {
+    const std::size_t n = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    std::vector<uint32_t> packed(2 * n);
+    SV_GL(glPixelStorei(GL_PACK_ALIGNMENT, 4));
+    SV_GL(glReadPixels(0, 0, width_, height_, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV,
+                       packed.data()));
+    std::vector<uint8_t> stencil(n);
+    if (depth) out.depth.assign(n, 0.0f);
+    const std::size_t w = static_cast<std::size_t>(width_);
+    for (int row = 0; row < height_; ++row) {
+        const std::size_t src = static_cast<std::size_t>(height_ - 1 - row) * w;
+        const std::size_t dst = static_cast<std::size_t>(row) * w;
+        for (std::size_t x = 0; x < w; x++) {
+            /* Per pixel: the float depth, then the stencil in the low 8 bits. */
+            stencil[dst + x] = static_cast<uint8_t>(packed[2 * (src + x) + 1] & 0xFFu);
+            if (depth) std::memcpy(&out.depth[dst + x], &packed[2 * (src + x)], sizeof(float));
+        }
+    }
+    out.stencils.push_back(std::move(stencil));
 }
 
 MesaFrameResult FrameDrawer::draw(const MesaFrameJob &job) {
@@ -269,6 +295,7 @@ MesaFrameResult FrameDrawer::draw(const MesaFrameJob &job) {
                           l.shadow_light.w));
         draw_volumes(gl_, volumes[li]);
         pass_done(out.stencil_seconds, t0);
+        if (job.read_stencils) read_depth_stencil(out, li == 0);
 
         /* Its light where the stencil is 0, added. */
         t0 = std::chrono::steady_clock::now();

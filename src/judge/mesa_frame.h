@@ -59,6 +59,9 @@ struct MesaFrameJob {
      * then pays for the waits); false: one glFinish at the end, the total
      * only. */
     bool time_each_pass = false;
+    /* true: read back the depth after the pre-pass and each light's
+     * stencil after its volumes (for the comparison; not in timed runs). */
+    bool read_stencils = false;
 };
 
 struct MesaFrameResult {
@@ -70,6 +73,10 @@ struct MesaFrameResult {
     double stencil_seconds = 0;  /* every light's volumes (time_each_pass) */
     double lighting_seconds = 0; /* every light's lighting pass (time_each_pass) */
     double total_seconds = 0;    /* the frame, glFinish to glFinish */
+    /* read_stencils: the depth after the pre-pass and each light's stencil
+     * (row 0 = top), as MesaStencilResult holds them. */
+    std::vector<float> depth;
+    std::vector<std::vector<uint8_t>> stencils;
 };
 
 } // namespace sv::gl

@@ -17,7 +17,7 @@ for pass in "pose, skin, planes" volumes depth stencil lighting frame; do
   grep -q "^$pass " "$tmp/f.txt" || err "--frame: no '$pass' row"
 done
 grep -q "^check: 2 of 2 frames the same bytes" "$tmp/f.txt" || err "--frame: no same-bytes check"
-grep -Eq "^check: Mesa .* 0 other$" "$tmp/f.txt" || err "--frame: no Mesa check with 0 other"
+grep -Eq "^check: Mesa .* 0 other; stencils: 0 other$" "$tmp/f.txt" || err "--frame: no Mesa check with 0 other"
 [ -s "$tmp/frame_ours.png" ] && [ -s "$tmp/frame_mesa.png" ] || err "--frame: PNGs missing"
 if command -v python3 >/dev/null; then
   python3 - "$tmp/f.json" <<'PY' || err "--frame: bad JSON"
@@ -36,7 +36,8 @@ for p in d["passes"][2:]:
     assert p["floor_ms"] > 0 and p["mesa_ms"] > 0, p
 m = d["mesa"]
 assert m["lp_num_threads"] == 2 and m["runs_per_frame"] == 1, m
-assert m["other"] == 0 and m["equal"] + m["on_edge"] == m["compared"] > 0, m
+assert m["other"] == 0 and m["stencil_other"] == 0, m
+assert m["equal"] + m["on_edge"] == m["compared"] > 0, m
 assert d["same_bytes_every_run"] is True and d["ok"] is True
 PY
 else
