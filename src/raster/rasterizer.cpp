@@ -240,6 +240,25 @@ void Target::resize(int w, int h) {
     stencil.assign(n, 0);
 }
 
+void Target::allocate(int w, int h) {
+    check_side("width", w);
+    check_side("height", h);
+    width = w;
+    height = h;
+    const std::size_t n = (std::size_t)w * (std::size_t)h;
+    depth.resize(n);
+    ids.resize(n);
+    stencil.resize(n);
+}
+
+void Target::clear_rows(int row_begin, int row_end) {
+    const std::size_t a = (std::size_t)row_begin * (std::size_t)width,
+                      b = (std::size_t)row_end * (std::size_t)width;
+    std::fill(depth.begin() + (std::ptrdiff_t)a, depth.begin() + (std::ptrdiff_t)b, 1.0f);
+    std::fill(ids.begin() + (std::ptrdiff_t)a, ids.begin() + (std::ptrdiff_t)b, -1);
+    std::fill(stencil.begin() + (std::ptrdiff_t)a, stencil.begin() + (std::ptrdiff_t)b, 0);
+}
+
 void Target::clear_depth() {
     std::fill(depth.begin(), depth.end(), 1.0f);
     std::fill(ids.begin(), ids.end(), -1);

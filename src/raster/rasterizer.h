@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "row_kernels.h"
@@ -80,6 +81,13 @@ template <class T> struct FrameAllocator {
     template <class U> FrameAllocator(const FrameAllocator<U> &) noexcept {}
     T *allocate(std::size_t n);
     void deallocate(T *p, std::size_t n) noexcept;
+    /* resize(n) leaves new elements uninitialised (they are numbers): a
+     * frame's buffers are filled right after, band by band in parallel
+     * (Target::clear_rows), not zeroed first on one thread. */
+    template <class U> void construct(U *p) noexcept { ::new (static_cast<void *>(p)) U; }
+    template <class U, class... A> void construct(U *p, A &&...a) {
+        ::new (static_cast<void *>(p)) U(std::forward<A>(a)...);
+    }
     template <class U> bool operator==(const FrameAllocator<U> &) const noexcept { return true; }
     template <class U> bool operator!=(const FrameAllocator<U> &) const noexcept { return false; }
 };
@@ -108,6 +116,11 @@ struct Target {
     /* Throws std::invalid_argument unless 1 <= WIDTH, HEIGHT <=
      * kMaxTargetSide. */
     void resize(int width, int height);
+    /* resize() without the fill: the buffers' contents are undefined until
+     * clear_rows() has run over every row (for a fill spread over threads). */
+    void allocate(int width, int height);
+    /* Rows [ROW_BEGIN, ROW_END): depth 1, ids -1, stencil 0. */
+    void clear_rows(int row_begin, int row_end);
     void clear_depth();   /* depth 1, ids -1 */
     void clear_stencil(); /* 0 */
 };

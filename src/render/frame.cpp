@@ -21,6 +21,7 @@
 #include "depth_pass.h"
 #include "frame_math.h"
 #include "frame_scratch.h"
+#include "pass_bins.h"
 #include "shading_pass.h"
 #include "stencil_pass.h"
 #include "volume_pass.h"
@@ -131,7 +132,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     f.variant = variant->name;
     f.stencil_method = stencil_method_name(opt.stencil);
     const raster::Rasterizer rast(kernels);
-    f.target.resize(opt.width, opt.height);
+    f.target.allocate(opt.width, opt.height); /* cleared below, band by band */
     int32_t next_id = 0;
     for (const SceneSurface &s : scene.surfaces) {
         f.surface_first_id.push_back(next_id);
@@ -144,6 +145,10 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     FrameScratch::Buffers &scratch = opt.scratch ? opt.scratch->buffers() : local_scratch.buffers();
 
     arena.execute([&] {
+        parallel(band_count(f.height), [&](int b) {
+            const raster::RowBand band = band_rows(b, f.height);
+            f.target.clear_rows(band.row_begin, band.row_end);
+        });
         const ClipVertices clip = receivers_to_clip(scene, f.view_proj);
         const DepthPassResult depth = depth_pass(scene, clip, f.surface_first_id, rast, f.target,
                                                  scratch.depth_bins, scratch.depth_window);

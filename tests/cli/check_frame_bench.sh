@@ -13,7 +13,7 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 "$sv" bench --frame --quick --size 192x108 --threads 2 --out "$tmp" --json "$tmp/f.json" \
   >"$tmp/f.txt" 2>&1 || err "--frame exited $?: $(tail -3 "$tmp/f.txt")"
 grep -q "FAILED" "$tmp/f.txt" && err "--frame: a check FAILED: $(grep FAILED "$tmp/f.txt")"
-for pass in "pose, skin, planes" volumes depth stencil lighting frame; do
+for pass in "pose, skin, planes" volumes depth stencil lighting "clear, copies" frame; do
   grep -q "^$pass " "$tmp/f.txt" || err "--frame: no '$pass' row"
 done
 grep -q "^check: 2 of 2 frames the same bytes" "$tmp/f.txt" || err "--frame: no same-bytes check"
@@ -29,10 +29,11 @@ assert d["preset"] == "demo"
 assert d["width"] == 192 and d["height"] == 108 and d["threads"] == 2
 assert d["frames"] == 2 and d["runs_per_frame"] == 1, d
 names = [p["pass"] for p in d["passes"]]
-assert names == ["pose, skin, planes", "volumes", "depth", "stencil", "lighting", "frame"], names
+assert names == ["pose, skin, planes", "volumes", "depth", "stencil", "lighting",
+                 "clear, copies", "frame"], names
 for p in d["passes"]:
     assert p["ours_ms"] >= 0, p
-for p in d["passes"][2:]:
+for p in d["passes"][2:5] + d["passes"][6:]:
     assert p["floor_ms"] > 0 and p["mesa_ms"] > 0, p
 m = d["mesa"]
 assert m["lp_num_threads"] == 2 and m["runs_per_frame"] == 1, m
