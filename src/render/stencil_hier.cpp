@@ -3,7 +3,8 @@
  * Akenine-Moeller, "A Hierarchical Shadow Volume Algorithm", 2004,
  * sections 3-5 and appendix A), exact against brute force:
  *
- *  - the screen in tiles (RenderOptions::stencil_tile, 8 by default) with
+ *  - the screen in tiles (RenderOptions::stencil_tile, kDefaultStencilTile
+ *    by default; the seed's are 8x8) with
  *    the depth pass's range per tile (tile_depth_range.h);
  *  - stage 1, per volume and tile row: every piece against the boxes of
  *    the tiles it overlaps (tile_classify.h). A piece that may cross the
@@ -89,13 +90,11 @@ struct SegmentColumns {
     int first[4], last[4], n = 0;
     /* Segments [BEGIN, END) of SEGS; false when there are more than four
      * (the caller then takes every tile as met). */
-    bool add(const std::vector<VolumePieces::Segment> &segs, int begin, int end, const TileGrid &g,
-             int Y0, int Y1) {
+    bool add(const std::vector<SegmentLine> &segs, int begin, int end, const TileGrid &g, int Y0,
+             int Y1) {
         if (end - begin > 4) return false;
         for (int si = begin; si < end; si++) {
-            const VolumePieces::Segment &sg = segs[(std::size_t)si];
-            if (segment_columns_in_row(sg.x0, sg.y0, sg.x1, sg.y1, g, Y0, Y1, first[n], last[n]))
-                n++;
+            if (segment_columns_in_row(segs[(std::size_t)si], g, Y0, Y1, first[n], last[n])) n++;
         }
         return true;
     }
@@ -105,6 +104,11 @@ struct SegmentColumns {
         return hit;
     }
 };
+
+/* Tiles per side of a coarse tile: seed 004's test one level up, so a
+ * long sliver in front of or behind a coarse tile's box decides its
+ * fine tiles without testing each. */
+constexpr int kCoarse = 4;
 
 struct RowTotals {
     raster::RowCounts walked;
@@ -125,71 +129,115 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
     const uint64_t k0 = ticks();
     result.stencil.assign((std::size_t)width * height, 0);
     const TileGrid grid = tile_depth_ranges(in.target->depth.data(), width, height, in.tile);
+    const TileGrid coarse = coarser_grid(grid, kCoarse);
     const VolumePieces vp = set_up_volume_pieces(in);
     result.counters = vp.counters;
-    /* Pieces binned to tile rows by their extent, in submission order (so
-     * a volume's pieces are consecutive in every row). */
-    std::vector<std::vector<int>> rows((std::size_t)grid.tiles_y);
+    /* Pieces binned to bands (a row of coarse tiles) by their extent, in
+     * submission order (so a volume's pieces are consecutive in every
+     * band). */
+    std::vector<std::vector<int>> bands((std::size_t)coarse.tiles_y);
     for (int q = 0; q < (int)vp.pieces.size(); q++) {
         const raster::PieceExtent &e = vp.extents[(std::size_t)q];
         int first = 0, last = 0;
-        tile_span(e.min_y, e.max_y, grid.side, grid.tiles_y, first, last);
-        for (int ty = first; ty <= last; ty++) rows[(std::size_t)ty].push_back(q);
+        tile_span(e.min_y, e.max_y, coarse.side, coarse.tiles_y, first, last);
+        for (int cy = first; cy <= last; cy++) bands[(std::size_t)cy].push_back(q);
     }
     std::vector<PieceEdges> edges;
     edges.reserve(vp.pieces.size());
     for (const raster::PieceExtent &e : vp.extents) edges.emplace_back(e);
-    std::vector<RowTotals> totals((std::size_t)grid.tiles_y);
-    parallel(grid.tiles_y, [&](int ty) {
-        const std::vector<int> &bin = rows[(std::size_t)ty];
-        RowTotals &tot = totals[(std::size_t)ty];
-        const int Y0 = grid.y0(ty), Y1 = grid.y1(ty);
+    std::vector<SegmentLine> open_lines, cap_lines;
+    open_lines.reserve(vp.open_segments.size());
+    for (const VolumePieces::Segment &sg : vp.open_segments)
+        open_lines.emplace_back(sg.x0, sg.y0, sg.x1, sg.y1);
+    cap_lines.reserve(vp.cap_segments.size());
+    for (const VolumePieces::Segment &sg : vp.cap_segments)
+        cap_lines.emplace_back(sg.x0, sg.y0, sg.x1, sg.y1);
+    /* The faults are about the fine tiles' tests: the coarse level stays
+     * out of their way. */
+    const bool use_coarse = !in.faults.tile_box_test_too_tight && !in.faults.sample_outside_tile;
+    std::vector<RowTotals> totals((std::size_t)coarse.tiles_y);
+    parallel(coarse.tiles_y, [&](int cy) {
+        const std::vector<int> &bin = bands[(std::size_t)cy];
+        RowTotals &tot = totals[(std::size_t)cy];
+        const int ty0 = cy * kCoarse, ty1 = std::min(grid.tiles_y, ty0 + kCoarse);
+        const int band_rows = ty1 - ty0;
         const std::size_t nx = (std::size_t)grid.tiles_x;
-        /* Per tile of the row, for the volume at hand: 0 untouched, 1
-         * classified, 2 boundary; its sampled count. Across volumes: the
-         * counts to add wholesale, and whether any volume walked it. */
-        std::vector<uint8_t> state(nx, 0), count(nx, 0), wholesale(nx, 0), walked(nx, 0);
-        std::vector<int> touched;
+        /* Per tile of the band (row r, column tx at r * nx + tx), for the
+         * volume at hand: 0 untouched, 1 counted, 2 boundary; its sampled
+         * count. Across volumes: the counts to add wholesale, and whether
+         * any volume walked it. */
+        const std::size_t n = nx * (std::size_t)band_rows;
+        std::vector<uint8_t> state(n, 0), count(n, 0), wholesale(n, 0), walked(n, 0);
+        std::vector<std::size_t> touched;
+        bool row_boundary[kCoarse] = {};
+        auto touch = [&](std::size_t t) {
+            if (state[t] == 0) {
+                state[t] = 1;
+                count[t] = 0;
+                touched.push_back(t);
+            }
+        };
+        /* What one piece needs in one fine row of the band, computed when
+         * first asked for. */
+        struct FineRow {
+            bool known = false, reached = false;
+            bool segments_known = false, open_whole = false, cap_whole = false;
+            int first = 0, last = 0;
+            RowExtent extent{};
+            SegmentColumns open, cap;
+        };
+        std::vector<FineRow> fine_rows;
         for (std::size_t i = 0; i < bin.size();) {
             const int vol = vp.volume[(std::size_t)bin[i]];
             std::size_t j = i;
             while (j < bin.size() && vp.volume[(std::size_t)bin[j]] == vol) j++;
             const bool zfail = vp.zfail[(std::size_t)vol];
+            /* Per piece of the volume and fine row: kept for stage 2. */
+            fine_rows.assign((j - i) * (std::size_t)kCoarse, FineRow{});
             for (std::size_t k = i; k < j; k++) {
                 const int q = bin[k];
                 const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
                 const raster::PieceExtent &e = vp.extents[(std::size_t)q];
-                int first = 0, last = 0;
-                RowExtent row_extent{};
-                if (!piece_columns_in_row(edges[(std::size_t)q], grid, Y0, Y1, first, last,
-                                          &row_extent)) {
-                    continue;
-                }
                 const bool receiver = vp.receiver[(std::size_t)q] != 0;
-                /* The columns this row's part of each open edge may meet
-                 * (a tile there is a boundary tile wherever the piece
-                 * counts), and for the receiver's own triangle those of
-                 * each edge where the receiver's triangles do not close. */
                 const uint8_t open = vp.open[(std::size_t)q];
-                bool open_whole = (open & kOpenWhole) != 0;
-                SegmentColumns open_columns, cap_columns;
-                if (open && !open_whole) {
-                    open_whole = !open_columns.add(vp.open_segments, vp.open_first[(std::size_t)q],
-                                                   vp.open_first[(std::size_t)q + 1], grid, Y0, Y1);
-                }
-                bool cap_whole = false;
-                if (receiver) {
-                    cap_whole = !cap_columns.add(vp.cap_segments, vp.cap_first[(std::size_t)q],
-                                                 vp.cap_first[(std::size_t)q + 1], grid, Y0, Y1);
-                }
-                for (int tx = first; tx <= last; tx++) {
-                    uint8_t &st = state[(std::size_t)tx];
-                    if (st == 2) continue;
+                const uint8_t delta = vp.delta[(std::size_t)q];
+                FineRow *fine = &fine_rows[(k - i) * (std::size_t)kCoarse];
+                auto fine_row = [&](int r) -> const FineRow & {
+                    FineRow &f = fine[r];
+                    if (f.known) return f;
+                    f.known = true;
+                    const int ty = ty0 + r;
+                    f.reached = piece_columns_in_row(edges[(std::size_t)q], grid, grid.y0(ty),
+                                                     grid.y1(ty), f.first, f.last, &f.extent);
+                    return f;
+                };
+                /* ... and the columns its segments may meet there. */
+                auto fine_segments = [&](int r) {
+                    FineRow &f = fine[r];
+                    if (f.segments_known) return;
+                    f.segments_known = true;
+                    const int ty = ty0 + r;
+                    f.open_whole = (open & kOpenWhole) != 0;
+                    if (open && !f.open_whole) {
+                        f.open_whole = !f.open.add(open_lines, vp.open_first[(std::size_t)q],
+                                                   vp.open_first[(std::size_t)q + 1], grid,
+                                                   grid.y0(ty), grid.y1(ty));
+                    }
+                    if (receiver) {
+                        f.cap_whole = !f.cap.add(cap_lines, vp.cap_first[(std::size_t)q],
+                                                 vp.cap_first[(std::size_t)q + 1], grid,
+                                                 grid.y0(ty), grid.y1(ty));
+                    }
+                };
+                /* One fine tile: the seed's stage 1 test. */
+                auto classify_fine = [&](int r, int tx, const FineRow &f) {
+                    const std::size_t t = (std::size_t)r * nx + (std::size_t)tx;
+                    if (state[t] == 2) return;
                     TileSide side = TileSide::behind;
                     if (!receiver) {
-                        side = classify_in_row(p, e, grid, tx, ty, row_extent, in.faults);
-                        if (side == TileSide::misses) continue;
-                    } else if (cap_whole || cap_columns.meet(tx)) {
+                        side = classify_in_row(p, e, grid, tx, ty0 + r, f.extent, in.faults);
+                        if (side == TileSide::misses) return;
+                    } else if (f.cap_whole || f.cap.meet(tx)) {
                         /* The receiver's own triangle fails its test at every
                          * pixel it covers: "behind" in every tile, except
                          * where an edge at which the receiver's triangles do
@@ -197,84 +245,164 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                          * count otherwise). */
                         side = TileSide::crosses;
                     }
-                    if (st == 0) {
-                        st = 1;
-                        count[(std::size_t)tx] = 0;
-                        touched.push_back(tx);
-                    }
+                    touch(t);
                     if (side == TileSide::crosses) {
-                        st = 2;
-                        continue;
+                        state[t] = 2;
+                        return;
                     }
-                    if ((side == TileSide::behind) != zfail) continue; /* does not count */
-                    if (open_whole || open_columns.meet(tx)) {
-                        st = 2;
-                        continue;
+                    if ((side == TileSide::behind) != zfail) return; /* does not count */
+                    if (f.open_whole || f.open.meet(tx)) {
+                        state[t] = 2;
+                        return;
                     }
                     int sx = 0, sy = 0;
-                    tile_sample(grid, tx, ty, in.faults, sx, sy);
-                    if (covers_pixel(p, sx, sy)) {
-                        count[(std::size_t)tx] = (uint8_t)(count[(std::size_t)tx] +
-                                                           vp.delta[(std::size_t)q]);
+                    tile_sample(grid, tx, ty0 + r, in.faults, sx, sy);
+                    if (covers_pixel(p, sx, sy)) count[t] = (uint8_t)(count[t] + delta);
+                };
+                int cfirst = 0, clast = 0;
+                RowExtent cextent{};
+                if (!piece_columns_in_row(edges[(std::size_t)q], coarse, coarse.y0(cy),
+                                          coarse.y1(cy), cfirst, clast, &cextent)) {
+                    continue;
+                }
+                /* The coarse tiles an open edge (or the receiver's unclosed
+                 * edge) may meet are left to the fine tiles. */
+                bool coarse_whole = (open & kOpenWhole) != 0;
+                SegmentColumns copen, ccap;
+                if (use_coarse && open && !coarse_whole) {
+                    coarse_whole = !copen.add(open_lines, vp.open_first[(std::size_t)q],
+                                              vp.open_first[(std::size_t)q + 1], coarse,
+                                              coarse.y0(cy), coarse.y1(cy));
+                }
+                if (use_coarse && receiver && !coarse_whole) {
+                    coarse_whole = !ccap.add(cap_lines, vp.cap_first[(std::size_t)q],
+                                             vp.cap_first[(std::size_t)q + 1], coarse,
+                                             coarse.y0(cy), coarse.y1(cy));
+                }
+                for (int cx = cfirst; cx <= clast; cx++) {
+                    const int tx_lo = cx * kCoarse,
+                              tx_hi = std::min(grid.tiles_x - 1, tx_lo + kCoarse - 1);
+                    if (use_coarse && !coarse_whole && !copen.meet(cx) && !ccap.meet(cx)) {
+                        /* Seed 004's test one level up: a piece in front of
+                         * or behind the coarse tile's box is so for each of
+                         * its tiles (their boxes lie inside it). */
+                        const TileSide side = receiver ? TileSide::behind
+                                                       : classify_in_row(p, e, coarse, cx, cy,
+                                                                         cextent, in.faults, false);
+                        if (side == TileSide::misses) continue;
+                        if (side != TileSide::crosses) {
+                            if ((side == TileSide::behind) != zfail) continue; /* no count */
+                            /* It counts where it covers a tile's sample (the
+                             * tile's first pixel): none when one edge leaves
+                             * every sample of the block outside. */
+                            if (!covers_any_sample(p, grid, tx_lo, tx_hi, ty0, ty1 - 1)) continue;
+                            for (int r = 0; r < band_rows; r++) {
+                                for (int tx = tx_lo; tx <= tx_hi; tx++) {
+                                    const std::size_t t = (std::size_t)r * nx + (std::size_t)tx;
+                                    if (state[t] == 2 ||
+                                        !covers_pixel(p, grid.x0(tx), grid.y0(ty0 + r))) {
+                                        continue;
+                                    }
+                                    touch(t);
+                                    count[t] = (uint8_t)(count[t] + delta);
+                                }
+                            }
+                            continue;
+                        }
+                    }
+                    for (int r = 0; r < band_rows; r++) {
+                        const FineRow &f = fine_row(r);
+                        if (!f.reached) continue;
+                        fine_segments(r);
+                        for (int tx = std::max(f.first, tx_lo); tx <= std::min(f.last, tx_hi);
+                             tx++) {
+                            classify_fine(r, tx, f);
+                        }
                     }
                 }
             }
-            bool any_boundary = false;
-            for (int tx : touched) {
+            for (std::size_t t : touched) {
                 tot.pairs++;
-                if (state[(std::size_t)tx] == 2) {
+                if (state[t] == 2) {
                     tot.boundary_pairs++;
-                    walked[(std::size_t)tx] = 1;
-                    any_boundary = true;
+                    walked[t] = 1;
+                    row_boundary[t / nx] = true;
                 } else {
-                    wholesale[(std::size_t)tx] = (uint8_t)(wholesale[(std::size_t)tx] +
-                                                           count[(std::size_t)tx]);
+                    wholesale[t] = (uint8_t)(wholesale[t] + count[t]);
                 }
             }
-            if (any_boundary) {
-                const raster::StencilMode mode = zfail ? raster::StencilMode::zfail
-                                                       : raster::StencilMode::zpass;
+            const raster::StencilMode mode = zfail ? raster::StencilMode::zfail
+                                                   : raster::StencilMode::zpass;
+            for (int r = 0; r < band_rows; r++) {
+                if (!row_boundary[r]) continue;
+                row_boundary[r] = false;
+                const int ty = ty0 + r, Y0 = grid.y0(ty), Y1 = grid.y1(ty);
+                const uint8_t *row_state = state.data() + (std::size_t)r * nx;
                 for (std::size_t k = i; k < j; k++) {
-                    const raster::SetupTriangle &p = vp.pieces[(std::size_t)bin[k]];
+                    const int q = bin[k];
+                    const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
                     if (p.x_first > p.x_last || p.y_first > p.y_last || p.y_last < Y0 ||
                         p.y_first >= Y1) {
                         continue;
                     }
-                    int first = 0, last = 0;
-                    if (!piece_columns_in_row(edges[(std::size_t)bin[k]], grid, Y0, Y1, first,
-                                              last)) {
-                        continue;
+                    const bool receiver = vp.receiver[(std::size_t)q] != 0;
+                    /* The receiver's own triangle fails everywhere: nothing to
+                     * walk in z-pass. */
+                    if (receiver && !zfail) continue;
+                    FineRow &f = fine_rows[(k - i) * (std::size_t)kCoarse + (std::size_t)r];
+                    if (!f.known) {
+                        f.known = true;
+                        f.reached = piece_columns_in_row(edges[(std::size_t)q], grid, Y0, Y1,
+                                                         f.first, f.last, &f.extent);
                     }
+                    if (!f.reached) continue;
+                    const RowExtent &row_extent = f.extent;
+                    int first = f.first, last = f.last;
                     first = std::max(first, p.x_first / grid.side);
                     last = std::min(last, p.x_last / grid.side);
-                    /* Each run of consecutive boundary tiles in one walk. */
+                    /* In a boundary tile, a piece that neither crosses the box
+                     * nor counts in the volume's mode adds nothing at any of
+                     * its pixels: only the others are walked. */
+                    auto walks = [&](int tx) {
+                        if (row_state[tx] != 2) return false;
+                        if (receiver) return true;
+                        const TileSide side = classify_in_row(p, vp.extents[(std::size_t)q], grid,
+                                                              tx, ty, row_extent, in.faults, false);
+                        if (side == TileSide::misses) return false;
+                        return side == TileSide::crosses || (side == TileSide::behind) == zfail;
+                    };
+                    /* Each run of consecutive tiles to walk in one walk. */
                     for (int tx = first; tx <= last; tx++) {
-                        if (state[(std::size_t)tx] != 2) continue;
+                        if (!walks(tx)) continue;
                         int run_end = tx;
-                        while (run_end < last && state[(std::size_t)run_end + 1] == 2) run_end++;
+                        while (run_end < last && walks(run_end + 1)) run_end++;
                         raster::SetupTriangle clamped = p;
                         clamped.x_first = std::max(p.x_first, grid.x0(tx));
                         clamped.x_last = std::min(p.x_last, grid.x1(run_end) - 1);
                         rast.walk_stencil(clamped, in.target->depth.data(), result.stencil.data(),
                                           width, height, {Y0, Y1}, mode, tot.walked);
-                        tx = run_end;
+                        tx = run_end + 1; /* run_end + 1 does not walk (or is past LAST) */
                     }
                 }
             }
-            for (int tx : touched) state[(std::size_t)tx] = 0;
+            for (std::size_t t : touched) state[t] = 0;
             touched.clear();
             i = j;
         }
-        for (int tx = 0; tx < grid.tiles_x; tx++) {
-            tot.boundary_tiles += walked[(std::size_t)tx];
-            const uint8_t add = wholesale[(std::size_t)tx];
-            if (add == 0) continue;
-            const int X0 = grid.x0(tx), X1 = grid.x1(tx);
-            for (int y = Y0; y < Y1; y++) {
-                uint8_t *row = result.stencil.data() + (std::size_t)y * (std::size_t)width;
-                for (int x = X0; x < X1; x++) row[x] = (uint8_t)(row[x] + add);
+        for (int r = 0; r < band_rows; r++) {
+            const int ty = ty0 + r, Y0 = grid.y0(ty), Y1 = grid.y1(ty);
+            for (int tx = 0; tx < grid.tiles_x; tx++) {
+                const std::size_t t = (std::size_t)r * nx + (std::size_t)tx;
+                tot.boundary_tiles += walked[t];
+                const uint8_t add = wholesale[t];
+                if (add == 0) continue;
+                const int X0 = grid.x0(tx), X1 = grid.x1(tx);
+                for (int y = Y0; y < Y1; y++) {
+                    uint8_t *row = result.stencil.data() + (std::size_t)y * (std::size_t)width;
+                    for (int x = X0; x < X1; x++) row[x] = (uint8_t)(row[x] + add);
+                }
+                tot.wholesale_pixels += (uint64_t)(X1 - X0) * (uint64_t)(Y1 - Y0);
             }
-            tot.wholesale_pixels += (uint64_t)(X1 - X0) * (uint64_t)(Y1 - Y0);
         }
     });
     for (const RowTotals &t : totals) {

@@ -258,7 +258,7 @@ inline bool piece_columns_in_row(const PieceEdges &e, const TileGrid &g, int Y0,
     }
     /* A tile is 2^10 to 2^13 units wide: multiplying by its inverse is
      * exact. */
-    const double per_tile = 1.0 / (kSub * g.side);
+    const double per_tile = g.inv_side * (1.0 / kSub);
     const double f = std::floor((lo_x - 1) * per_tile), l = std::floor((hi_x + 1) * per_tile);
     if (l < 0 || f > g.tiles_x - 1) return false;
     first = (int)std::max(0.0, f);
@@ -269,13 +269,13 @@ inline bool piece_columns_in_row(const PieceEdges &e, const TileGrid &g, int Y0,
 /* Piece P against tile TX of the row whose extent ROW piece_columns_in_row
  * gave (the tile one of the columns it returned): the plane's range over
  * the rectangle ROW leaves of the square first, the clip to the square
- * only where that cannot decide. The columns come from the piece's edges,
+ * only where that cannot decide (without CLIP: "crosses" there). The columns come from the piece's edges,
  * so no edge test is needed; a tile the piece only nearly reaches is
  * classified as if it reached it, which costs nothing: its sample is not
  * covered, and "crosses" only walks pixels the walk finds empty. */
 inline TileSide classify_in_row(const raster::SetupTriangle &p, const raster::PieceExtent &ext,
                                 const TileGrid &g, int tx, int ty, const RowExtent &row,
-                                const StencilFaults &faults) {
+                                const StencilFaults &faults, bool clip = true) {
     if (faults.tile_box_test_too_tight) return classify_piece(p, ext, g, tx, ty, faults);
     const int X0 = g.x0(tx), X1 = g.x1(tx), Y0 = g.y0(ty), Y1 = g.y1(ty);
     const std::size_t t = (std::size_t)ty * (std::size_t)g.tiles_x + (std::size_t)tx;
@@ -294,30 +294,43 @@ inline TileSide classify_in_row(const raster::SetupTriangle &p, const raster::Pi
         const TileSide quick = side_of_range(lo, hi, margin, z_min, z_max);
         if (quick != TileSide::crosses) return quick;
     }
+    if (!clip) return TileSide::crosses;
     if (!depth_range_in_square(p, ext, X0, X1, Y0, Y1, lo, hi, margin)) return TileSide::misses;
     return side_of_range(lo, hi, margin, z_min, z_max);
 }
 
+/* A segment (window pixels) as segment_columns_in_row walks it: its upper
+ * end, its y range and its slope dx/dy, computed once. */
+struct SegmentLine {
+    double x_top, y_top, x_bottom, y_bottom, slope; /* slope 0 where flat */
+    SegmentLine(double x0, double y0, double x1, double y1) {
+        const bool down = y0 <= y1;
+        x_top = down ? x0 : x1, y_top = down ? y0 : y1;
+        x_bottom = down ? x1 : x0, y_bottom = down ? y1 : y0;
+        slope = y_top == y_bottom ? 0 : (x_bottom - x_top) / (y_bottom - y_top);
+    }
+};
+
 /* The tile columns [FIRST, LAST] of tile row [Y0, Y1) whose squares,
  * widened by 1/8 pixel (the rasteriser's snapped edge is within 1/512
- * pixel of segment S, window pixels), S may meet: the x extent of S inside
- * the row's slab, widened. False: none. */
-inline bool segment_columns_in_row(double x0, double y0, double x1, double y1, const TileGrid &g,
-                                   int Y0, int Y1, int &first, int &last) {
+ * pixel of segment S), S may meet: the x extent of S inside the row's
+ * slab, widened. False: none. */
+inline bool segment_columns_in_row(const SegmentLine &s, const TileGrid &g, int Y0, int Y1,
+                                   int &first, int &last) {
     constexpr double kWiden = 2.0 / 16;
     const double lo_y = Y0 - kWiden, hi_y = Y1 + kWiden;
+    const double ya = std::max(s.y_top, lo_y), yb = std::min(s.y_bottom, hi_y);
+    if (!(ya <= yb)) return false;
     double lo_x = 0, hi_x = 0;
-    if (y0 == y1) {
-        if (y0 < lo_y || y0 > hi_y) return false;
-        lo_x = std::min(x0, x1), hi_x = std::max(x0, x1);
+    if (s.y_top == s.y_bottom) {
+        lo_x = std::min(s.x_top, s.x_bottom), hi_x = std::max(s.x_top, s.x_bottom);
     } else {
-        const double ya = std::max(std::min(y0, y1), lo_y), yb = std::min(std::max(y0, y1), hi_y);
-        if (!(ya <= yb)) return false;
-        const double slope = (x1 - x0) / (y1 - y0);
-        const double xa = x0 + slope * (ya - y0), xb = x0 + slope * (yb - y0);
+        const double xa = s.x_top + s.slope * (ya - s.y_top),
+                     xb = s.x_top + s.slope * (yb - s.y_top);
         lo_x = std::min(xa, xb), hi_x = std::max(xa, xb);
     }
-    const double f = std::floor((lo_x - kWiden) / g.side), l = std::floor((hi_x + kWiden) / g.side);
+    const double f = std::floor((lo_x - kWiden) * g.inv_side),
+                 l = std::floor((hi_x + kWiden) * g.inv_side);
     if (!(l >= 0) || !(f <= g.tiles_x - 1)) return false;
     first = (int)std::max(0.0, f);
     last = (int)std::min((double)(g.tiles_x - 1), l);
@@ -330,6 +343,23 @@ inline void tile_sample(const TileGrid &g, int tx, int ty, const StencilFaults &
     sx = g.x0(tx);
     sy = g.y0(ty);
     if (faults.sample_outside_tile) sx = g.x1(tx) < g.width ? g.x1(tx) : g.x0(tx) - 1;
+}
+
+/* Can piece P cover the sample (first pixel) of any tile in columns
+ * [TX0, TX1] and rows [TY0, TY1]? False only when one edge function is
+ * negative at all of them (linear: its largest value is at a corner of
+ * the samples' grid). */
+inline bool covers_any_sample(const raster::SetupTriangle &p, const TileGrid &g, int tx0, int tx1,
+                              int ty0, int ty1) {
+    const int x0 = g.x0(tx0), y0 = g.y0(ty0);
+    const int64_t span_x = (int64_t)(tx1 - tx0) * g.side, span_y = (int64_t)(ty1 - ty0) * g.side;
+    for (int e = 0; e < 3; e++) {
+        const int64_t at = p.e_origin[e] + p.step_x[e] * x0 + p.step_y[e] * y0;
+        const int64_t most = at + std::max<int64_t>(p.step_x[e] * span_x, 0) +
+                             std::max<int64_t>(p.step_y[e] * span_y, 0);
+        if (most < 0) return false;
+    }
+    return true;
 }
 
 /* Does piece P cover pixel (X, Y)'s centre (the row kernels' exact test)? */

@@ -14,6 +14,7 @@ namespace sv::render::detail {
 TileGrid tile_depth_ranges(const float *depth, int width, int height, int side) {
     TileGrid g;
     g.side = side;
+    g.inv_side = 1.0 / side;
     g.width = width;
     g.height = height;
     g.tiles_x = (width + side - 1) / side;
@@ -37,6 +38,29 @@ TileGrid tile_depth_ranges(const float *depth, int width, int height, int side) 
             }
         }
     });
+    return g;
+}
+
+TileGrid coarser_grid(const TileGrid &fine, int factor) {
+    TileGrid g;
+    g.side = fine.side * factor;
+    g.inv_side = 1.0 / g.side;
+    g.width = fine.width;
+    g.height = fine.height;
+    g.tiles_x = (fine.tiles_x + factor - 1) / factor;
+    g.tiles_y = (fine.tiles_y + factor - 1) / factor;
+    const std::size_t n = (std::size_t)g.tiles_x * (std::size_t)g.tiles_y;
+    g.z_min.assign(n, 1.0f);
+    g.z_max.assign(n, 0.0f);
+    for (int ty = 0; ty < fine.tiles_y; ty++) {
+        for (int tx = 0; tx < fine.tiles_x; tx++) {
+            const std::size_t f = (std::size_t)ty * (std::size_t)fine.tiles_x + (std::size_t)tx;
+            const std::size_t c = (std::size_t)(ty / factor) * (std::size_t)g.tiles_x +
+                                  (std::size_t)(tx / factor);
+            g.z_min[c] = std::min(g.z_min[c], fine.z_min[f]);
+            g.z_max[c] = std::max(g.z_max[c], fine.z_max[f]);
+        }
+    }
     return g;
 }
 

@@ -15,6 +15,7 @@ namespace sv::render::detail {
 
 struct TileGrid {
     int side = 8;
+    double inv_side = 1.0 / 8; /* 1 / side, exact (a power of two) */
     int width = 0, height = 0; /* the frame's pixels */
     int tiles_x = 0, tiles_y = 0;
     std::vector<float> z_min, z_max; /* per tile, row-major */
@@ -27,6 +28,12 @@ struct TileGrid {
 
 /* Runs on the calling task arena's threads (a tile row each). */
 TileGrid tile_depth_ranges(const float *depth, int width, int height, int side);
+
+/* FINE's tiles in blocks of FACTOR x FACTOR: each block a tile of side
+ * FACTOR * FINE.side whose depth range holds those of its tiles (coarse
+ * tile (cx, cy) holds fine tiles [cx * FACTOR, cx * FACTOR + FACTOR) x
+ * [cy * FACTOR, ...), cut at the frame's edge). */
+TileGrid coarser_grid(const TileGrid &fine, int factor);
 
 } // namespace sv::render::detail
 
