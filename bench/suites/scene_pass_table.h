@@ -26,12 +26,14 @@ struct PassTableOptions {
     int frames = 4; /* 1/8 s apart */
     int runs = 3;   /* renders per frame, method and thread count: the minimum is kept */
     int threads_all = 1;
-    int stencil_tile = 0; /* hier's tile side; 0: the frame's default */
+    int stencil_tile = 0;  /* hier's tile side; 0: the frame's default */
+    bool tile_rows = true; /* hier at the other tile sides too (1 thread) */
 };
 
 struct PassRow {
     std::string pass;   /* "stencil" */
     std::string method; /* bf, db, hier */
+    int tile = 0;       /* hier's tile side (0: not hier) */
     int threads = 1;
     double ms_per_frame = 0;       /* mean over frames of the minimum over runs */
     uint64_t pixels_per_frame = 0; /* pixels tested (hier: its per-pixel stage only) */

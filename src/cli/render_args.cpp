@@ -45,13 +45,19 @@ bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &a
     return true;
 }
 
-bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil) {
+bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil, int &stencil_tile) {
     if (a.is("--stencil")) {
         const std::string m = a.value();
         if (!sv::render::stencil_method_by_name(m, stencil)) {
             usage_error("--stencil needs " + sv::render::stencil_method_names() + ", not '" +
                         quoted(m) + "'");
         }
+    } else if (a.is("--stencil-tile")) {
+        const std::string t = a.value();
+        const int side = t == "4" ? 4 : t == "8" ? 8 : t == "16" ? 16 : t == "32" ? 32 : 0;
+        if (!sv::render::valid_stencil_tile(side))
+            usage_error("--stencil-tile needs 4, 8, 16 or 32, not '" + quoted(t) + "'");
+        stencil_tile = side;
     } else {
         return false;
     }
@@ -97,7 +103,7 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
             return r;
         } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
                                               r.has_camera) ||
-                   parse_render_pass_option(a, r.stencil) ||
+                   parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
                    parse_caster_rule_option(a, r.caster_rule) ||
                    parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode)) {
             /* the options scene shares: --add, --ground, --light, --camera; --stencil;

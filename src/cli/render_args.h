@@ -26,6 +26,7 @@ struct RenderArgs {
     int width = 1280, height = 1024;
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
+    int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     std::string out_dir = "shadowvol-render";
@@ -51,10 +52,11 @@ bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &a
                                 bool &has_camera);
 
 /* The options render and scene share for how the frame's passes run:
- * --stencil METHOD (stencil_method.h). Consumes A's value and returns true
- * when A is one of them; false (nothing consumed) otherwise. Throws
- * UsageError for a value no method has. */
-bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil);
+ * --stencil METHOD (stencil_method.h), --stencil-tile 4|8|16|32 (hier's
+ * tile side). Consumes A's value and returns true when A is one of them;
+ * false (nothing consumed) otherwise. Throws UsageError for a value no
+ * method or tile side has. */
+bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil, int &stencil_tile);
 
 /* --caster-rule auto|closed|general (shadowvol_casters.h), shared by
  * render, scene and bench --scene. As parse_render_pass_option. */

@@ -86,7 +86,8 @@ void render_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
-        "                        [--stencil bf|db|hier] [--caster-rule auto|closed|general]\n"
+        "                        [--stencil bf|db|hier] [--stencil-tile N]\n"
+        "                        [--caster-rule auto|closed|general]\n"
         "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
         "\n"
         "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
@@ -116,8 +117,9 @@ void render_usage(FILE *out) {
         "                    rectangle may lie inside it)\n"
         "  --stencil S       how the stencil pass fills: bf (brute force: every volume\n"
         "                    triangle walked per pixel; the reference, and the default),\n"
-        "                    db (behind per-volume depth bounds) or hier (8x8 tiles\n"
+        "                    db (behind per-volume depth bounds) or hier (tiles\n"
         "                    classified per volume, seed 004); all leave the same bytes\n"
+        "  --stencil-tile N  hier's tile side: 4, 8 (the seed's), 16 or 32 (default)\n"
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
@@ -235,6 +237,7 @@ int render_main(int argc, char **argv) {
     opt.height = args.height;
     opt.mode = args.mode;
     opt.stencil = args.stencil;
+    opt.stencil_tile = args.stencil_tile;
     opt.caster_rule = args.caster_rule;
     opt.general_build = args.general_build;
     opt.kernels = kernels;

@@ -30,7 +30,7 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
             return r;
         } else if (parse_scene_content_option(a, r.seq.adds, r.seq.ground, r.seq.lights,
                                               r.seq.camera, r.seq.has_camera) ||
-                   parse_render_pass_option(a, r.stencil) ||
+                   parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
                    parse_caster_rule_option(a, r.caster_rule) ||
                    parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode)) {
             /* the options render shares: --add, --ground, --light, --camera; --stencil;

@@ -25,6 +25,7 @@ struct SceneArgs {
     int threads = 0;   /* 0: every core */
     bool full = false; /* render with no shortcuts */
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
+    int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;

@@ -185,7 +185,8 @@ void scene_usage(FILE *out) {
         "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]]] [--add FILE[@...]] [--animation A]\n"
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
         "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
-        "                       [--caster-rule auto|closed|general] [--out DIR] [--json FILE]\n"
+        "                       [--stencil-tile N] [--caster-rule auto|closed|general]\n"
+        "                       [--out DIR] [--json FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
         "KHR_lights_punctual lights and its camera, frame by frame. Each frame builds only\n"
@@ -217,6 +218,7 @@ void scene_usage(FILE *out) {
         "  --stencil S       how the stencil pass fills: bf (brute force, the reference;\n"
         "                    the default), db (depth bounds) or hier (tiles, seed 004);\n"
         "                    the same bytes by each\n"
+        "  --stencil-tile N  hier's tile side: 4, 8 (the seed's), 16 or 32 (default)\n"
         "  --mode M          zpass, zfail or auto (default: z-fail only where the near\n"
         "                    plane may be in shadow)\n"
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
@@ -330,6 +332,7 @@ int scene_main(int argc, char **argv) {
     fast.height = args.height;
     fast.threads = threads;
     fast.stencil = args.stencil;
+    fast.stencil_tile = args.stencil_tile;
     fast.mode = args.mode;
     fast.caster_rule = args.caster_rule;
     fast.general_build = args.general_build;

@@ -33,8 +33,13 @@ struct StencilFaults {
     bool sample_outside_tile = false;     /* the tile's sample point in the next tile */
 };
 
-/* The hierarchical method's tile side in pixels (4, 8, 16 or 32). */
-constexpr int kDefaultStencilTile = 8;
+/* The hierarchical method's tile side in pixels (4, 8, 16 or 32). The
+ * default is the side `shadowvol bench --scene` measured fastest on each
+ * of its presets (docs/RENDERING.md, "Tile size"): bigger tiles test more
+ * pixels per pixel-walked tile but classify four or sixteen times fewer
+ * tiles, and classification is what a tile costs on a CPU. Measured by
+ * the bench, never during a render. */
+constexpr int kDefaultStencilTile = 32;
 bool valid_stencil_tile(int side);
 
 /* The method's name on the command line and in the JSON report. */

@@ -52,7 +52,12 @@ for m in bf db hier; do
       --json "$tmp/m_$m.json" >"$tmp/out" 2>"$tmp/err" || err "--stencil $m exited $?: $(cat "$tmp/err")"
   grep -q "\"stencil\": \"$m\"" "$tmp/m_$m.json" || err "--stencil $m: the JSON does not name it"
 done
-for m in db hier; do
+for t in 4 32; do
+  "$sv" render --add "$models/character_1344.glb@0.5,0,0,90,1.5" --ground --light point:auto \
+      --light dir:0.3,-1,0.2 --size 157x93 --threads 3 --no-gl --stencil hier --stencil-tile $t \
+      --out "$tmp/m_hier$t" >"$tmp/out" 2>"$tmp/err" || err "--stencil-tile $t exited $?: $(cat "$tmp/err")"
+done
+for m in db hier hier4 hier32; do
   cmp -s "$tmp/m_bf/stencil.png" "$tmp/m_$m/stencil.png" || err "--stencil $m: stencil.png differs from bf's"
   cmp -s "$tmp/m_bf/shaded.png" "$tmp/m_$m/shaded.png" || err "--stencil $m: shaded.png differs from bf's"
 done
@@ -74,6 +79,11 @@ expect 2 --mode sideways
 expect 2 --stencil sideways
 grep -q -- '--stencil needs bf' "$tmp/err" || err "--stencil sideways: the message does not list the methods: $(cat "$tmp/err")"
 expect 2 --stencil
+for t in 0 7 64 -8 8x 1e1; do
+  expect 2 --stencil-tile "$t"
+  grep -q -- '--stencil-tile needs 4, 8, 16 or 32' "$tmp/err" || err "--stencil-tile $t: the message does not list the sides: $(cat "$tmp/err")"
+done
+expect 2 --stencil-tile
 expect 2 --caster-rule sideways
 grep -q -- '--caster-rule needs auto, closed or general' "$tmp/err" || err "--caster-rule sideways: the message does not list the rules: $(cat "$tmp/err")"
 expect 2 --general-build sideways

@@ -18,7 +18,7 @@ for preset in simple knights demo "$demo"; do
   rc=$?
   [ $rc -eq 0 ] || { err "--preset $preset exited $rc: $(cat "$tmp/err")"; continue; }
   for m in bf db hier; do
-    grep -qE "^stencil +$m +1 +[0-9.]+ +[0-9.]+ +[0-9]+ +[0-9.]+ +[0-9]+ +yes$" "$tmp/out" \
+    grep -qE "^stencil +$m +[-0-9]+ +1 +[0-9.]+ +[0-9.]+ +[0-9]+ +[0-9.]+ +[0-9]+ +yes$" "$tmp/out" \
       || err "--preset $preset: no checked 1-thread row for $m: $(cat "$tmp/out")"
   done
   rows=$(grep -c '"pass": "stencil"' "$tmp/p.json")
@@ -32,10 +32,14 @@ done
 # hier tests fewer pixels than bf on the crowd (the ratio is printed).
 "$sv" bench --scene --preset knights --size 320x256 --quick >"$tmp/out" 2>&1 \
   || err "knights at 320x256: $(cat "$tmp/out")"
-bf=$(awk '$1 == "stencil" && $2 == "bf" && $3 == 1 {print $6}' "$tmp/out")
-hier=$(awk '$1 == "stencil" && $2 == "hier" && $3 == 1 {print $6}' "$tmp/out")
+bf=$(awk '$1 == "stencil" && $2 == "bf" && $4 == 1 {print $7; exit}' "$tmp/out")
+hier=$(awk '$1 == "stencil" && $2 == "hier" && $4 == 1 {print $7; exit}' "$tmp/out")
 [ -n "$bf" ] && [ -n "$hier" ] && [ "$hier" -lt "$bf" ] \
   || err "knights: hier tested ${hier:-?} pixels, bf ${bf:-?}"
+# The tile-size rows: hier on 1 thread at each of 4, 8, 16 and 32, checked.
+for t in 4 8 16 32; do
+  grep -qE "^stencil +hier +$t +1 .* yes$" "$tmp/out" || err "knights: no checked row for hier's tile $t"
+done
 
 # Bad input.
 "$sv" bench --scene --preset "$tmp/none.glb" --quick >"$tmp/out" 2>"$tmp/err"

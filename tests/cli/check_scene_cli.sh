@@ -123,6 +123,10 @@ expect 2 --animation ""
 expect 2 --light spot:0,3,0,0,-1,0,50,40
 expect 2 --sideways
 expect 2 --stencil sideways
+expect 2 --stencil hier --stencil-tile 12
+grep -q -- '--stencil-tile needs 4, 8, 16 or 32' "$tmp/err" || err "--stencil-tile 12: the message does not list the sides: $(cat "$tmp/err")"
+expect 2 --stencil-tile
+expect 0 --stencil hier --stencil-tile 4
 expect 2 --caster-rule sideways
 expect 2 --mode sideways
 expect 3 "$tmp/missing.glb"
