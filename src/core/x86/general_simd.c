@@ -13,8 +13,9 @@
  * reference does, beside facing_simd.c, and the compiler keeps the ABI.
  *
  * Silhouette (the pairs, the bulk of an open surface's edges): per block
- * of 8 (AVX2) or 16 (AVX-512) pairs, p1 and p2 are transposed out of the
- * SilEdges, their facing bytes gathered, and the masks C1 = f1 ^ f2 (f =
+ * of 16 pairs (AVX-512), p1 and p2 are transposed out of the SilEdges,
+ * their facing bytes gathered (AVX2: 8 pairs, looked up one by one), and
+ * the masks C1 = f1 ^ f2 (f =
  * byte != 0: the triangles' paper facing) and C2 = g1 ^ g2 (g = byte !=
  * 2: their reverses') select the pairs that draw a quad; each selected
  * pair goes to a list on the stack as 16 * pair + a code (C1, C2, f1, g1),
@@ -28,7 +29,7 @@
  * drawn together (C1 = C2 unless a triangle is culled): one list entry
  * for the two.
  *
- * Facing bytes are gathered as the aligned 32-bit words that hold them
+ * AVX-512 gathers the facing bytes as the aligned 32-bit words that hold them
  * (vpgatherdd, then a shift): a word never crosses a page, so the read
  * cannot fault, but it may read up to 3 bytes before facing[0] and after
  * facing[numTriangles] within their words (documented in shadowvol.h).
@@ -37,9 +38,8 @@
  * output register of 16 ints made by two vpermt2d (the triangle as it is
  * and reversed, blended by the per-triangle form) plus the far caps' +1,
  * then compressed by the triangles that cast (or stored whole when all 16
- * cast, as on a general shell where nothing is culled). AVX2: the reference's
- * expression made branch-free (six ints written per triangle, the pointer
- * advanced by 6 when it casts).
+ * cast, as on a general shell where nothing is culled). AVX2: the
+ * reference's caps (see sv_create_general_cap_triangles_avx2).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -115,18 +115,6 @@ static int *rest_c(int *si, const uint8_t *facing, const sv_general_edges *e, in
 
 #define SV_TARGET_AVX2 __attribute__((target("avx2,bmi,bmi2,popcnt")))
 
-/* Facing bytes of triangles P (8 lanes) from the aligned words holding
- * them. */
-SV_TARGET_AVX2 static inline __m256i facing_bytes8(const uint8_t *facing, __m256i p) {
-    const uintptr_t misalign = (uintptr_t)facing & 3u;
-    const int *base = (const int *)(const void *)(facing - misalign);
-    const __m256i q = _mm256_add_epi32(p, _mm256_set1_epi32((int)misalign));
-    const __m256i words = _mm256_i32gather_epi32(base, _mm256_srli_epi32(q, 2),
-                                                 4); /* aligned words */
-    const __m256i shift = _mm256_slli_epi32(_mm256_and_si256(q, _mm256_set1_epi32(3)), 3);
-    return _mm256_and_si256(_mm256_srlv_epi32(words, shift), _mm256_set1_epi32(0xFF));
-}
-
 /* Left-packs the lanes of V whose bit is set in MASK (8 bits) into OUT
  * (writes 8 ints, advances by the count). */
 SV_TARGET_AVX2 static inline int pack8(int *out, __m256i v, unsigned mask) {
@@ -141,52 +129,39 @@ SV_TARGET_AVX2 static inline int pack8(int *out, __m256i v, unsigned mask) {
     return _mm_popcnt_u32(mask);
 }
 
+/* The code of a pair (above) from its two bytes, by a table of the nine
+ * byte pairs, each entry the definition itself. */
+#define PAIR_CODE(b1, b2)                                                                          \
+    ((((b1) != 0) != ((b2) != 0)) * kFirst + (((b1) != 2) != ((b2) != 2)) * kSecond +              \
+     ((b1) != 0) * kF1 + ((b1) != 2) * kG1)
+static const uint8_t pair_code[3][3] = {
+    {PAIR_CODE(0, 0), PAIR_CODE(0, 1), PAIR_CODE(0, 2)},
+    {PAIR_CODE(1, 0), PAIR_CODE(1, 1), PAIR_CODE(1, 2)},
+    {PAIR_CODE(2, 0), PAIR_CODE(2, 1), PAIR_CODE(2, 2)},
+};
+
 SV_TARGET_AVX2 static int *pairs_avx2(int *si, const uint8_t *facing, const SilEdge *pairs,
                                       int numPairs) {
+    /* Scalar look-ups (a vpgatherdd of 8 lanes costs more than 16 byte
+     * loads here, as the paper's AVX2 CreateSilTriangles found), the
+     * selected pairs left-packed branch-free, 8 at a time by pack8. */
     int list[CHUNK + 8];
-    const __m256i pick = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
-    const __m256i zero = _mm256_setzero_si256(), two = _mm256_set1_epi32(2);
     for (int c = 0; c < numPairs; c += CHUNK) {
         const int end = numPairs - c < CHUNK ? numPairs : c + CHUNK;
         int n = 0, i = c;
         for (; i + 8 <= end; i += 8) {
-            /* (p1 p2 v1 v2) x 8 -> P1, P2. */
-            const __m256i a = _mm256_loadu_si256((const __m256i *)(const void *)&pairs[i]);
-            const __m256i b = _mm256_loadu_si256((const __m256i *)(const void *)&pairs[i + 2]);
-            const __m256i x = _mm256_loadu_si256((const __m256i *)(const void *)&pairs[i + 4]);
-            const __m256i y = _mm256_loadu_si256((const __m256i *)(const void *)&pairs[i + 6]);
-            /* per 128-bit lane: (p1 p2) of edges i, i+2 | i+1, i+3 */
-            const __m256i ab = _mm256_unpacklo_epi64(a, b), xy = _mm256_unpacklo_epi64(x, y);
-            /* p1_0 p1_1 p2_0 p2_1 p1_2 p1_3 p2_2 p2_3, then p1 0-3, p2 0-3 */
-            const __m256i lo = _mm256_permute4x64_epi64(_mm256_permutevar8x32_epi32(ab, pick),
-                                                        0xD8);
-            const __m256i hi = _mm256_permute4x64_epi64(_mm256_permutevar8x32_epi32(xy, pick),
-                                                        0xD8);
-            const __m256i P1 = _mm256_permute2x128_si256(lo, hi, 0x20);
-            const __m256i P2 = _mm256_permute2x128_si256(lo, hi, 0x31);
-            const __m256i b1 = facing_bytes8(facing, P1), b2 = facing_bytes8(facing, P2);
-            /* all ones where f (byte != 0), g (byte != 2) are 0 */
-            const __m256i nf1 = _mm256_cmpeq_epi32(b1, zero), nf2 = _mm256_cmpeq_epi32(b2, zero);
-            const __m256i ng1 = _mm256_cmpeq_epi32(b1, two), ng2 = _mm256_cmpeq_epi32(b2, two);
-            const __m256i c1 = _mm256_xor_si256(nf1, nf2), c2 = _mm256_xor_si256(ng1, ng2);
-            __m256i code = _mm256_and_si256(c1, _mm256_set1_epi32(kFirst));
-            code = _mm256_or_si256(code, _mm256_and_si256(c2, _mm256_set1_epi32(kSecond)));
-            code = _mm256_or_si256(code, _mm256_andnot_si256(nf1, _mm256_set1_epi32(kF1)));
-            code = _mm256_or_si256(code, _mm256_andnot_si256(ng1, _mm256_set1_epi32(kG1)));
-            const __m256i entry = _mm256_or_si256(
-                _mm256_slli_epi32(_mm256_add_epi32(_mm256_set1_epi32(i),
-                                                   _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)),
-                                  4),
-                code);
-            const unsigned sel = (unsigned)_mm256_movemask_ps(
-                _mm256_castsi256_ps(_mm256_or_si256(c1, c2)));
-            n += pack8(list + n, entry, sel);
+            int entry[8];
+            unsigned sel = 0;
+            for (int k = 0; k < 8; k++) {
+                const SilEdge *e = &pairs[i + k];
+                const int code = pair_code[facing[e->p1]][facing[e->p2]];
+                entry[k] = 16 * (i + k) + code;
+                sel |= (unsigned)((code & (kFirst | kSecond)) != 0) << k;
+            }
+            n += pack8(list + n, _mm256_loadu_si256((const __m256i *)(const void *)entry), sel);
         }
         for (; i < end; i++) {
-            const int b1 = facing[pairs[i].p1], b2 = facing[pairs[i].p2];
-            const int f1 = b1 != SV_GENERAL_DARK, g1 = b1 != SV_GENERAL_LIT;
-            const int code = (f1 != (b2 != SV_GENERAL_DARK)) * kFirst +
-                             (g1 != (b2 != SV_GENERAL_LIT)) * kSecond + f1 * kF1 + g1 * kG1;
+            const int code = pair_code[facing[pairs[i].p1]][facing[pairs[i].p2]];
             list[n] = 16 * i + code;
             n += (code & (kFirst | kSecond)) != 0;
         }
@@ -215,33 +190,14 @@ SV_TARGET_AVX2 int sv_create_general_sil_triangles_avx2(int *shadowIndices, cons
     return (int)(si - shadowIndices);
 }
 
-/* Six ints per triangle, branch-free: X, I1, Z (the near cap) and Z+1,
- * I1+1, X+1 (the far cap), with (X, Z) = (i2, i0) for byte 0 and (i0, i2)
- * for byte 2; the pointer advances unless the byte is 1. */
-static int caps_scalar(int *shadowIndices, const uint8_t *facing, const int *indices,
-                       int numIndices) {
-    int *si = shadowIndices;
-    for (int i = 0, j = 0; i < numIndices; i += 3, j++) {
-        const int b = facing[j];
-        const int i0 = indices[i] * 2, i1 = indices[i + 1] * 2, i2 = indices[i + 2] * 2;
-        const int lit = -(b == SV_GENERAL_LIT); /* all ones for byte 2 */
-        const int x = i2 ^ ((i0 ^ i2) & lit), z = i0 ^ ((i0 ^ i2) & lit);
-        si[0] = x;
-        si[1] = i1;
-        si[2] = z;
-        si[3] = z + 1;
-        si[4] = i1 + 1;
-        si[5] = x + 1;
-        si += 6 & -(b != SV_GENERAL_NONE);
-    }
-    return (int)(si - shadowIndices);
-}
-
+/* No AVX2 cap kernel beats the reference here: a branch-free scalar one
+ * (six ints written per triangle, the pointer advanced when it casts) took
+ * 1.3-1.5x its time on the open character and the demo terrain, and
+ * without AVX-512's compress a vector one must left-pack 96 ints per 16
+ * triangles by tables. So the AVX2 row's caps are the reference's. */
 SV_TARGET_AVX2 int sv_create_general_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,
                                                         const int *indices, int numIndices) {
-    if (numIndices < 3 * SMALL)
-        return sv_create_general_cap_triangles_c_ref(shadowIndices, facing, indices, numIndices);
-    return caps_scalar(shadowIndices, facing, indices, numIndices);
+    return sv_create_general_cap_triangles_c_ref(shadowIndices, facing, indices, numIndices);
 }
 
 #endif /* SV_HAVE_ASM_AVX2 */
