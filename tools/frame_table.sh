@@ -39,7 +39,7 @@ import json, sys
 d, counts = sys.argv[1], sys.argv[2:]
 print(f"{'threads':>7} {'pass':<20} {'ours ms':>9} {'floor ms':>9} {'/floor':>7} {'Mesa ms':>9} {'Mesa/us':>8}")
 for t in counts:
-    j = json.load(open(f"{d}/frame_{t}.json"))
+    j = json.load(open(f"{d}/frame_{t}.json"))["frame"]
     for p in j["passes"]:
         fl = p.get("floor_ms"); me = p.get("mesa_ms")
         print(f"{t:>7} {p['pass']:<20} {p['ours_ms']:9.2f} "
@@ -48,5 +48,6 @@ for t in counts:
     m = j["mesa"]
     print(f"{'':>7} checks: same bytes every run {j['same_bytes_every_run']}; Mesa "
           f"(LP_NUM_THREADS {m['lp_num_threads']}) {m['equal']} equal, {m['on_edge']} on an edge, "
-          f"{m['other']} other; memory {j['memory_read_gbps']:.1f}/{j['memory_write_gbps']:.1f} GB/s")
+          f"{m['other']} other, stencils {m['stencil_other']} other; "
+          f"memory {j['memory_read_gbps']:.1f}/{j['memory_write_gbps']:.1f} GB/s")
 PY
