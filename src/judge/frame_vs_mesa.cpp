@@ -37,15 +37,7 @@ gl::MesaFrameLight mesa_light(const LightFrame &lf,
     m.cos_outer = (float)std::cos(l.outer_degrees * kPi / 180.0);
     m.cos_inner = (float)std::cos(l.inner_degrees * kPi / 180.0);
     m.shadow_light = lf.shadow_light;
-    for (const Volume &vol : lf.volumes) {
-        gl::MesaVolume v;
-        v.shadow_vertices = buffers[(std::size_t)vol.surface].data();
-        v.num_shadow_vertices = (int)buffers[(std::size_t)vol.surface].size();
-        v.indices = vol.indices.data();
-        v.num_indices = vol.drawn_indices();
-        v.zfail = vol.zfail;
-        m.volumes.push_back(v);
-    }
+    m.volumes = mesa_volumes(lf, buffers);
     return m;
 }
 
@@ -104,10 +96,7 @@ MesaFrameComparison compare_frame_with_mesa(const Scene &scene, const Frame &f, 
     job.ambient = (float)ambient;
     for (const SceneSurface &s : scene.surfaces) {
         gl::MesaFrameSurface m;
-        m.mesh.positions = s.prepared.positions.data();
-        m.mesh.num_vertices = s.prepared.num_vertices();
-        m.mesh.indices = s.prepared.indices.data();
-        m.mesh.num_indices = s.prepared.num_indices();
+        m.mesh = mesa_receiver(s);
         for (int c = 0; c < 3; c++) m.albedo[c] = s.albedo[(std::size_t)c];
         m.ground = s.ground;
         job.surfaces.push_back(m);

@@ -51,6 +51,30 @@ GlComparison classify_differences(const Scene &scene, const Frame &f, int light,
     return g;
 }
 
+gl::MesaMesh mesa_receiver(const SceneSurface &s) {
+    gl::MesaMesh m;
+    m.positions = s.prepared.positions.data();
+    m.num_vertices = s.prepared.num_vertices();
+    m.indices = s.prepared.indices.data();
+    m.num_indices = s.prepared.num_indices();
+    return m;
+}
+
+std::vector<gl::MesaVolume> mesa_volumes(const LightFrame &lf,
+                                         const std::vector<AlignedVector<Vec4>> &buffers) {
+    std::vector<gl::MesaVolume> out;
+    for (const Volume &vol : lf.volumes) {
+        gl::MesaVolume v;
+        v.shadow_vertices = buffers[(std::size_t)vol.surface].data();
+        v.num_shadow_vertices = (int)buffers[(std::size_t)vol.surface].size();
+        v.indices = vol.indices.data();
+        v.num_indices = vol.drawn_indices();
+        v.zfail = vol.zfail;
+        out.push_back(v);
+    }
+    return out;
+}
+
 std::vector<GlComparison> compare_with_mesa(const Scene &scene, const Frame &f,
                                             std::string *renderer, std::string *note) {
     std::string why;
@@ -71,23 +95,8 @@ std::vector<GlComparison> compare_with_mesa(const Scene &scene, const Frame &f,
         job.height = f.height;
         std::copy(f.view_proj.m, f.view_proj.m + 16, job.view_proj);
         job.light = lf.shadow_light;
-        for (const SceneSurface &s : scene.surfaces) {
-            gl::MesaMesh m;
-            m.positions = s.prepared.positions.data();
-            m.num_vertices = s.prepared.num_vertices();
-            m.indices = s.prepared.indices.data();
-            m.num_indices = s.prepared.num_indices();
-            job.receivers.push_back(m);
-        }
-        for (const Volume &vol : lf.volumes) {
-            gl::MesaVolume v;
-            v.shadow_vertices = buffers[(std::size_t)vol.surface].data();
-            v.num_shadow_vertices = (int)buffers[(std::size_t)vol.surface].size();
-            v.indices = vol.indices.data();
-            v.num_indices = vol.drawn_indices();
-            v.zfail = vol.zfail;
-            job.volumes.push_back(v);
-        }
+        for (const SceneSurface &s : scene.surfaces) job.receivers.push_back(mesa_receiver(s));
+        job.volumes = mesa_volumes(lf, buffers);
         /* Twice, timing the faster: the first draw in a context pays for
          * llvmpipe compiling its shaders and stencil states (measured:
          * over a millisecond with nothing to draw). */

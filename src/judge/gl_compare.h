@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "frame.h"
+#include "mesa_stencil.h"
 
 namespace sv::render {
 
@@ -34,6 +35,13 @@ struct GlComparison {
     double mesa_depth_seconds = 0, mesa_stencil_seconds = 0;
     std::vector<uint8_t> mesa_stencil; /* row 0 = top */
 };
+
+/* Surface S as the Mesa judges draw it in their depth pre-pass, and light
+ * LF's volumes as their draws over BUFFERS (each surface's
+ * shadow_vertices(), which must outlive the draws). */
+gl::MesaMesh mesa_receiver(const SceneSurface &s);
+std::vector<gl::MesaVolume> mesa_volumes(const LightFrame &lf,
+                                         const std::vector<AlignedVector<Vec4>> &buffers);
 
 /* One comparison per light of F; empty (and *NOTE says why) when no GL
  * context can be made. *RENDERER: GL_RENDERER and GL_VERSION. */
