@@ -183,7 +183,7 @@ int run_preset_passes(const SeedCommand &cmd) {
         FrameBenchOptions fo;
         fo.preset = name;
         fo.width = width, fo.height = height;
-        fo.frames = cmd.quick ? 2 : 4;
+        fo.frames = cmd.quick ? 1 : 4;
         fo.runs = cmd.quick ? 1 : 3;
         std::fprintf(out, "\n");
         const FrameTable frame = measure_frame_table(cmd, fo, timer.tscHz);
