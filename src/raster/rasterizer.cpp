@@ -17,6 +17,7 @@
 
 #include "fill_rule.h"
 #include "row_kernels_c.h"
+#include "row_walk.h"
 
 namespace sv::raster {
 namespace {
@@ -113,13 +114,6 @@ inline bool snapped_less(const Snapped &a, const Snapped &b) {
     return a.z < b.z;
 }
 
-/* floor(v) for |v| <= 2^62, without a call to libm (x86-64's baseline
- * has no roundsd). */
-inline int64_t floor_to_int(double v) {
-    const int64_t t = (int64_t)v;
-    return (double)t > v ? t - 1 : t;
-}
-
 inline int64_t floor_div(int64_t a, int64_t b) { /* b > 0 */
     return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
@@ -170,19 +164,6 @@ DepthPlane canonical_plane(const Snapped *v, int n) {
         }
     }
     return plane_of(s[bi], s[bj], s[bk]);
-}
-
-/* The slivers of a shadow volume walk down the rows a few pixels at a time,
- * a new cache line of depth (and of stencil) per row, with a stride the
- * hardware prefetchers follow poorly: ask for the line a few rows ahead. */
-constexpr int kPrefetchRows = 6;
-inline void prefetch_ahead(const float *depth, uint8_t *stencil, int width, int height, int y,
-                           int x) {
-    if (y + kPrefetchRows >= height) return;
-    const std::size_t i = (std::size_t)(y + kPrefetchRows) * (std::size_t)width +
-                          (std::size_t)(x & ~15);
-    __builtin_prefetch(depth + i);
-    if (stencil) __builtin_prefetch(stencil + i, 1);
 }
 
 } // namespace
@@ -404,108 +385,24 @@ void Rasterizer::setup_shared(const ClipVertex v[3], const WindowVertex w[3], in
     pieces_of(s, 3, width, height, id, c, out, nullptr);
 }
 
-/* EMIT(span, y) for each row of TRI inside BAND. */
-template <class Emit>
-void Rasterizer::walk_rows(const SetupTriangle &tri, RowBand band, Emit &&emit) {
-    const int y_first = std::max(tri.y_first, band.row_begin);
-    const int y_last = std::min(tri.y_last, band.row_end - 1);
-    if (y_first > y_last) return;
-    /* Each edge's x bound on a row, -E_row / step_x, stepped by its slope
-     * from row to row (one add): a conservative span padded by a pixel;
-     * the kernel's integer test is the exact one, so where the walk starts
-     * (the band's first row or the triangle's) changes no pixel. The
-     * padding holds: after snapping |X|, |Y| < 2^21 + 2^8 (snap_polygon's
-     * guard band, kMaxTargetSide), so |E| < 2^44,
-     * |step_x| >= 256 (when not 0) and |bound| < 2^36, whose ulp is 2^-16
-     * pixel; 8192 rows of additions stay below 0.13 pixel. */
-    double bound[3], slope[3];
-    int64_t e_row[3];
-    for (int e = 0; e < 3; e++) {
-        e_row[e] = tri.e_origin[e] + tri.step_y[e] * y_first;
-        if (tri.step_x[e] != 0) {
-            bound[e] = -(double)e_row[e] / (double)tri.step_x[e];
-            slope[e] = -(double)tri.step_y[e] / (double)tri.step_x[e];
-        } else {
-            bound[e] = slope[e] = 0;
-        }
-    }
-    for (int y = y_first; y <= y_last; y++) {
-        int lo = tri.x_first, hi = tri.x_last;
-        bool empty = false;
-        for (int e = 0; e < 3; e++) {
-            if (tri.step_x[e] == 0) {
-                empty |= e_row[e] < 0;
-                continue;
-            }
-            double b = bound[e];
-            b = b < -1e9 ? -1e9 : b > 1e9 ? 1e9 : b;
-            const int64_t ib = floor_to_int(b);
-            if (tri.step_x[e] > 0) {
-                lo = ib - 1 > lo ? (int)(ib - 1) : lo;
-            } else {
-                hi = ib + 1 < hi ? (int)(ib + 1) : hi;
-            }
-            bound[e] += slope[e];
-        }
-        if (empty || lo > hi) {
-            for (int e = 0; e < 3; e++) e_row[e] += tri.step_y[e];
-            continue;
-        }
-        RowSpan span;
-        for (int e = 0; e < 3; e++) {
-            span.e[e] = e_row[e] + tri.step_x[e] * lo;
-            span.step[e] = tri.step_x[e];
-        }
-        span.zrow = tri.z0 + tri.b * (((double)y + 0.5) - tri.y0);
-        span.dzdx = tri.a;
-        span.x0 = tri.x0;
-        span.x_begin = lo;
-        span.x_end = hi + 1;
-        emit(span, y);
-        for (int e = 0; e < 3; e++) e_row[e] += tri.step_y[e];
-    }
-}
-
 void Rasterizer::walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &r) const {
-    walk_rows(tri, band, [&](const RowSpan &span, int y) {
-        const std::size_t row = (std::size_t)y * (std::size_t)t.width;
-        prefetch_ahead(t.depth.data(), nullptr, t.width, t.height, y, span.x_begin);
-        const RowBuffers b{t.depth.data() + row, t.ids.data() + row, nullptr};
-        if (span.x_end - span.x_begin <= kShortSpan) {
-            c_rows::depth_c(span, b, tri.id, r);
-        } else {
-            kernels_->depth(span, b, tri.id, r);
-        }
-    });
+    kernels_->walk_depth(tri, band, {t.depth.data(), t.ids.data(), nullptr, t.width, t.height}, r);
 }
 
 void Rasterizer::walk_stencil(const SetupTriangle &tri, const float *depth, uint8_t *stencil,
                               int width, int height, RowBand band, StencilMode mode,
                               RowCounts &r) const {
-    /* z-pass: front +1, back -1; z-fail: back +1, front -1. */
-    const uint8_t delta = ((mode == StencilMode::zpass) == tri.front) ? 1 : 255;
-    walk_rows(tri, band, [&](const RowSpan &span, int y) {
-        const std::size_t row = (std::size_t)y * (std::size_t)width;
-        prefetch_ahead(depth, stencil, width, height, y, span.x_begin);
-        const RowBuffers b{const_cast<float *>(depth) + row, nullptr, stencil + row};
-        if (span.x_end - span.x_begin <= kShortSpan) {
-            /* The C rows, inline: the same bits as every kernel's. */
-            if (mode == StencilMode::zpass) {
-                c_rows::stencil_c<false>(span, b, delta, r);
-            } else {
-                c_rows::stencil_c<true>(span, b, delta, r);
-            }
-        } else {
-            (mode == StencilMode::zpass ? kernels_->zpass : kernels_->zfail)(span, b, delta, r);
-        }
-    });
+    const WalkBuffers b{const_cast<float *>(depth), nullptr, stencil, width, height};
+    const uint8_t delta = detail::stencil_delta(mode, tri.front);
+    (mode == StencilMode::zpass ? kernels_->walk_zpass : kernels_->walk_zfail)(tri, band, b, delta,
+                                                                               r);
 }
 
 void Rasterizer::walk_stencil_bounded(const SetupTriangle &tri, const float *depth,
                                       uint8_t *stencil, int width, RowBand band, StencilMode mode,
                                       DepthBounds bounds, RowCounts &r) const {
-    const uint8_t delta = ((mode == StencilMode::zpass) == tri.front) ? 1 : 255;
-    walk_rows(tri, band, [&](const RowSpan &span, int y) {
+    const uint8_t delta = detail::stencil_delta(mode, tri.front);
+    detail::walk_rows(tri, band, [&](const RowSpan &span, int y) {
         const std::size_t row = (std::size_t)y * (std::size_t)width;
         const RowBuffers b{const_cast<float *>(depth) + row, nullptr, stencil + row};
         if (mode == StencilMode::zpass) {

@@ -43,7 +43,7 @@
 namespace sv::raster {
 
 /* The largest target side the fixed-point edge functions are proved for
- * (rasterizer.cpp, walk_rows: 1/256-pixel coordinates below 2^21 + 2^8):
+ * (row_walk.h, walk_rows: 1/256-pixel coordinates below 2^21 + 2^8):
  * Target::resize and Rasterizer::setup refuse larger ones
  * (std::invalid_argument). */
 constexpr int kMaxTargetSide = 8192;
@@ -245,8 +245,6 @@ public:
 
 private:
     const RowKernels *kernels_;
-    template <class Emit>
-    static void walk_rows(const SetupTriangle &tri, RowBand band, Emit &&emit);
 };
 
 } // namespace sv::raster

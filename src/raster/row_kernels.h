@@ -1,18 +1,22 @@
 /*
- * The inner loop of the rasteriser: one row span of one triangle. The
- * triangle setup (rasterizer.cpp) hands over the three edge functions at
- * the span's first pixel and their steps per pixel, and the depth plane;
- * the kernel tests coverage pixel by pixel exactly (64-bit integers), then
- * depth, then updates depth or stencil.
+ * The inner loops of the rasteriser, one set per instruction set: the
+ * triangle walks, each a whole set-up triangle's rows inside a band in
+ * one call. Set-up (rasterizer.cpp) hands over the three edge functions
+ * (64-bit integers, exact), their steps per pixel and per row, the depth
+ * plane and the pixel bounds; a walk finds each row's span (row_walk.h),
+ * tests coverage pixel by pixel exactly, then depth, then updates depth
+ * or stencil.
  *
- * Three versions compute bit-identical buffers and counts (a test checks):
- *   c       one pixel per step;
- *   avx2    8 pixels per step: the edge functions in 4 x 64-bit lanes (two
- *           registers per edge), depth in 4 x double lanes, one 8-wide
- *           float compare; the tail of fewer than 8 pixels in C;
- *   avx512  16 pixels per step (two zmm of 8 x 64-bit per edge, 16 floats),
- *           opmasks for coverage, the test and the span's tail: no scalar
- *           tail, masked loads and stores only where the span is.
+ * Three versions compute bit-identical buffers and counts (tests check):
+ *   c       row_walk.h's spans through the C rows of row_kernels_c.h, one
+ *           pixel per step (triangle_walk_c.cpp; the reference);
+ *   avx2    the span bounds of the three edges in one vector, blocks of 8
+ *           pixels from the span's first (triangle_walk_avx2.cpp);
+ *   avx512  the same spans, blocks of 8 or 16 pixels under opmasks
+ *           (triangle_walk_avx512.cpp).
+ * A shadow volume's silhouette quads are slivers, a few pixels by hundreds
+ * of rows: what a row costs around its pixels (a call, the span, a scalar
+ * loop) is what the SIMD walks take away.
  * Depth is computed identically in all three: dx = ((double)x + 0.5) - x0;
  * z = (float)(zrow + dzdx * dx), no FMA (the files are compiled with
  * -ffp-contract=off, and the SIMD code uses separate mul and add).
@@ -26,6 +30,7 @@
 
 namespace sv::raster {
 
+/* One row's span of a triangle, for the C rows (row_kernels_c.h). */
 struct RowSpan {
     /* Edge functions at pixel x_begin, biased by the fill rule: the pixel
      * is covered when all three are >= 0. step: change per pixel in x. */
@@ -36,23 +41,15 @@ struct RowSpan {
     int x_begin, x_end; /* pixels [x_begin, x_end) of the row */
 };
 
-/* Spans of at most this many pixels go to the C kernel from the SIMD ones:
- * a shadow volume's silhouette quads are long slivers, most of whose rows
- * are a few pixels wide, and there the vector set-up costs more than it
- * saves (measured with a sliver of 3 and of 8 pixels per row: C 44 and 105
- * ns a row, AVX2 63 and 115; from 16 pixels on AVX2 is ahead). The result
- * is the same either way: the versions are bit-identical. */
-constexpr int kShortSpan = 8;
-
-/* Bytes the SIMD kernels may READ past a row's last pixel (a whole vector
- * of depth from the span's last block; nothing outside [x_begin, x_end) is
- * ever written). Masked loads would avoid it, but on AMD cores a masked
- * load is many times slower than a plain one (measured: the AVX2 stencil
- * kernel spent two thirds of its time in vmaskmovps). FrameAllocator
+/* Bytes the SIMD walks may READ past a row's last pixel (a whole vector
+ * of depth from a span's last block; nothing outside a span is ever
+ * written). Masked loads would avoid it, but on AMD cores a masked load is
+ * many times slower than a plain one (measured: an AVX2 stencil kernel
+ * spent two thirds of its time in vmaskmovps). FrameAllocator
  * (rasterizer.h) leaves this much after every buffer. */
 constexpr int kFrameSlack = 64;
 
-/* Row pointers (the row's pixel 0). */
+/* Row pointers (the row's pixel 0), for the C rows. */
 struct RowBuffers {
     float *depth;
     int32_t *ids;     /* depth pass only */
@@ -64,22 +61,39 @@ struct RowCounts {
     uint64_t written = 0; /* pixels updated */
 };
 
-/* depth:  covered and z < depth  ->  depth = z, ids = id
- * zpass:  covered and z < depth  ->  stencil += delta (mod 256)
- * zfail:  covered and !(z < depth) -> stencil += delta (mod 256)
- * The counts are ADDED to *n (a caller sums a triangle's rows there: a
- * struct returned in rax:rdx and summed into memory was stored as two
- * halves and reloaded as one vector by the compiler, a store-forwarding
- * stall on every row). */
-typedef void (*row_depth_fn)(const RowSpan &s, const RowBuffers &b, int32_t id, RowCounts &n);
-typedef void (*row_stencil_fn)(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowCounts &n);
+struct SetupTriangle; /* rasterizer.h */
+struct RowBand;       /* rasterizer.h */
+
+/* A target's buffers for a triangle walk: WIDTH x HEIGHT pixels each,
+ * depth with kFrameSlack readable bytes after it (ids and stencil need
+ * none). */
+struct WalkBuffers {
+    float *depth;
+    int32_t *ids;     /* depth pass only */
+    uint8_t *stencil; /* stencil passes only */
+    int width, height;
+};
+
+/* The rows of TRI inside BAND, each pixel:
+ *   depth:  covered and z < depth  ->  depth = z, ids = tri.id
+ *   zpass:  covered and z < depth  ->  stencil += delta (mod 256)
+ *   zfail:  covered and !(z < depth) -> stencil += delta (mod 256)
+ * The counts are ADDED to N. A walk writes nothing outside its spans, and
+ * reads and rewrites unchanged bytes only within the triangle's pixel
+ * bounds [x_first, x_last] of the rows it walks: a caller that clamps a
+ * triangle to the pixels it owns (as the hierarchical stencil does per
+ * tile) keeps the walk's writes there. */
+typedef void (*walk_depth_fn)(const SetupTriangle &tri, const RowBand &band, const WalkBuffers &b,
+                              RowCounts &n);
+typedef void (*walk_stencil_fn)(const SetupTriangle &tri, const RowBand &band, const WalkBuffers &b,
+                                uint8_t delta, RowCounts &n);
 
 struct RowKernels {
     const char *name;
     unsigned isa; /* SV_ISA_* bits the CPU must have (shadowvol.h) */
-    row_depth_fn depth;
-    row_stencil_fn zpass;
-    row_stencil_fn zfail;
+    walk_depth_fn walk_depth;
+    walk_stencil_fn walk_zpass;
+    walk_stencil_fn walk_zfail;
 };
 
 /* c, avx2, avx512: every version compiled in (check isa against
@@ -89,7 +103,7 @@ const RowKernels *row_kernels_by_name(const char *name);
 /* The last entry that sv_cpu_isa() allows (the SV_ISA limit applies). */
 const RowKernels *row_kernels_best();
 
-/* The individual versions (row_kernels_*.cpp). */
+/* The individual versions (triangle_walk_*.cpp). */
 extern const RowKernels kRowKernelsC;
 extern const RowKernels kRowKernelsAvx2;
 extern const RowKernels kRowKernelsAvx512;

@@ -1,24 +1,22 @@
 /*
- * The table of row kernels, with the plain C++ ones of row_kernels_c.h.
+ * The table of the rasteriser's kernels (row_kernels.h), and the C
+ * version's entry.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include "row_kernels.h"
-#include "row_kernels_c.h"
+#include "triangle_walk.h"
 
 #include "shadowvol.h"
 
 namespace sv::raster {
 namespace {
 
-using c_rows::depth_c;
-using c_rows::stencil_c;
-
 const RowKernels *const kAll[] = {&kRowKernelsC, &kRowKernelsAvx2, &kRowKernelsAvx512};
 
 } // namespace
 
-const RowKernels kRowKernelsC = {"c", SV_ISA_NONE, depth_c, stencil_c<false>, stencil_c<true>};
+const RowKernels kRowKernelsC = {"c", SV_ISA_NONE, walk_depth_c, walk_zpass_c, walk_zfail_c};
 
 const RowKernels *const *row_kernels_all(int *count) {
     *count = (int)(sizeof kAll / sizeof kAll[0]);

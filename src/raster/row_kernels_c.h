@@ -1,9 +1,8 @@
 /*
- * The row kernels in plain C++, one pixel per step, as inline templates:
- * the reference that the SIMD versions must match bit for bit
- * (row_kernels_c.cpp puts them in the table), and the path the rasteriser
- * takes itself for short spans (no call through the kernel table for a
- * row of a few pixels: most rows of a shadow volume's slivers).
+ * The rows in plain C++, one pixel per step, as inline templates: the
+ * reference walk's pixels (triangle_walk_c.cpp), which the SIMD walks
+ * must match bit for bit, and the depth-bounds walk's
+ * (Rasterizer::walk_stencil_bounded).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */

@@ -1,7 +1,7 @@
 /*
  * The rasteriser (src/raster): watertightness, the fill rule, clipping,
  * vertices at w = 0, 8-bit wrap-around, a canonical depth, and the SIMD
- * row kernels bit-identical to the C.
+ * triangle walks bit-identical to the C.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -461,32 +461,109 @@ SV_TIERED_TEST(Raster, SimdKernelsMatchTheCBitForBit) {
     }
 }
 
-SV_TIERED_TEST(Raster, KernelsWriteNothingOutsideTheSpan) {
-    /* One row span at every start and end inside a row of 40 pixels, over
-     * a buffer whose other pixels hold a pattern: every kernel changes
-     * only pixels of [x_begin, x_end), and matches the C there. */
+SV_TIERED_TEST(Raster, TriangleWalksMatchTheCInAnyBandAndClamp) {
+    /* The triangle walks (row_kernels.h) of every version over random
+     * set-up triangles (slivers among them), each walked in bands of 1 to
+     * 9 rows as the passes' threads walk them, and clamped to a column
+     * range as the hierarchical stencil clamps a piece to its tile: the
+     * depth, ids, stencil and counts of the C walk over the whole frame,
+     * and nothing written outside the clamp. */
+    const std::vector<const RowKernels *> ks = runnable_kernels();
+    const int w = 83, h = 47;
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<double> u(-1.3, 1.3);
+    const Rasterizer setup_r(&kRowKernelsC);
+    for (int trial = 0; trial < 200; trial++) {
+        std::vector<SetupTriangle> pieces;
+        PassCounters pc;
+        for (int i = 0; i < 12; i++) {
+            ClipVertex v[3] = {{u(rng), u(rng), u(rng) * 0.9, 1},
+                               {u(rng), u(rng), u(rng) * 0.9, 1},
+                               {u(rng), u(rng), u(rng) * 0.9, 1}};
+            if (i % 3 == 0) v[1] = {v[0].x + 0.004, v[0].y + u(rng), v[0].z, 1}; /* a sliver */
+            setup_r.setup(v, w, h, i, pc, pieces);
+        }
+        FrameBuffer<float> depth0((std::size_t)w * h);
+        for (float &d : depth0) d = (float)(0.5 + 0.45 * u(rng) / 1.3);
+        const int clamp_lo = (int)(rng() % 40), clamp_hi = clamp_lo + (int)(rng() % 50);
+        const int mode = trial % 3; /* depth, z-pass, z-fail */
+        auto run = [&](const RowKernels *k, bool banded, FrameBuffer<float> &depth,
+                       FrameBuffer<int32_t> &ids, std::vector<uint8_t> &st, RowCounts &n) {
+            depth = depth0;
+            ids.assign((std::size_t)w * h, -1);
+            st.assign((std::size_t)w * h, 7);
+            std::mt19937 band_rng(trial);
+            for (SetupTriangle p : pieces) {
+                p.x_first = std::max(p.x_first, clamp_lo);
+                p.x_last = std::min(p.x_last, clamp_hi);
+                if (p.x_first > p.x_last) continue;
+                const WalkBuffers b{depth.data(), ids.data(), st.data(), w, h};
+                for (int y0 = 0; y0 < h;) {
+                    const int y1 = banded ? std::min(h, y0 + 1 + (int)(band_rng() % 9)) : h;
+                    const RowBand band{y0, y1};
+                    if (mode == 0)
+                        k->walk_depth(p, band, b, n);
+                    else
+                        (mode == 1 ? k->walk_zpass : k->walk_zfail)(p, band, b, p.front ? 1 : 255,
+                                                                    n);
+                    y0 = y1;
+                }
+            }
+        };
+        FrameBuffer<float> d_ref;
+        FrameBuffer<int32_t> i_ref;
+        std::vector<uint8_t> s_ref;
+        RowCounts n_ref;
+        run(&kRowKernelsC, false, d_ref, i_ref, s_ref, n_ref);
+        for (int i = 0; i < w * h; i++) {
+            const int x = i % w;
+            if (x >= clamp_lo && x <= clamp_hi) continue;
+            ASSERT_EQ(d_ref[(std::size_t)i], depth0[(std::size_t)i]) << "outside the clamp";
+            ASSERT_EQ(s_ref[(std::size_t)i], 7) << "outside the clamp";
+        }
+        for (const RowKernels *k : ks) {
+            FrameBuffer<float> d;
+            FrameBuffer<int32_t> ids;
+            std::vector<uint8_t> st;
+            RowCounts n;
+            run(k, true, d, ids, st, n);
+            ASSERT_EQ(0, std::memcmp(d.data(), d_ref.data(), (std::size_t)w * h * 4))
+                << k->name << " trial " << trial;
+            ASSERT_TRUE(ids == i_ref) << k->name << " trial " << trial;
+            ASSERT_TRUE(st == s_ref) << k->name << " trial " << trial;
+            ASSERT_EQ(n.tested, n_ref.tested) << k->name << " trial " << trial;
+            ASSERT_EQ(n.written, n_ref.written) << k->name << " trial " << trial;
+        }
+    }
+}
+
+SV_TIERED_TEST(Raster, WalksWriteNothingOutsideTheSpan) {
+    /* A triangle covering all of a one-row target, its pixel bounds
+     * clamped to every [x0, x1) inside a row of 40 pixels, over buffers
+     * whose other pixels hold a pattern (the stencil without slack, as a
+     * frame's per-light stencils): every walk changes only pixels of
+     * [x0, x1), and changes each of them. */
     for (const RowKernels *k : runnable_kernels()) {
         for (int x0 = 0; x0 < 40; x0++) {
-            for (int x1 = x0; x1 <= 40; x1++) {
+            for (int x1 = x0 + 1; x1 <= 40; x1++) {
                 FrameBuffer<float> depth(120, 0.25f);
                 FrameBuffer<int32_t> ids(120, -5);
-                FrameBuffer<uint8_t> st(120, 77);
+                std::vector<uint8_t> st(120, 77);
                 for (int mode = 0; mode < 3; mode++) {
-                    RowSpan s{};
-                    s.e[0] = s.e[1] = s.e[2] = 0; /* everything covered */
-                    s.step[0] = s.step[1] = s.step[2] = 0;
-                    s.zrow = mode == 0 ? 0.1 : 0.3; /* depth pass: nearer; stencil: behind */
-                    s.dzdx = 0;
-                    s.x0 = 0;
-                    s.x_begin = x0;
-                    s.x_end = x1;
-                    const RowBuffers b{depth.data() + 40, ids.data() + 40, st.data() + 40};
+                    SetupTriangle t{};
+                    t.e_origin[0] = t.e_origin[1] = t.e_origin[2] = 0; /* everything covered */
+                    t.z0 = mode == 0 ? 0.1 : 0.3; /* depth pass: nearer; stencil: behind */
+                    t.x_first = 40 + x0;
+                    t.x_last = 40 + x1 - 1;
+                    t.y_first = t.y_last = 0;
+                    t.id = 9;
+                    const WalkBuffers b{depth.data(), ids.data(), st.data(), 120, 1};
                     RowCounts n;
                     if (mode == 0)
-                        k->depth(s, b, 9, n);
+                        k->walk_depth(t, {0, 1}, b, n);
                     else
-                        (mode == 1 ? k->zpass : k->zfail)(s, b, 1, n);
-                    ASSERT_EQ(n.tested, (uint64_t)(x1 - x0));
+                        (mode == 1 ? k->walk_zpass : k->walk_zfail)(t, {0, 1}, b, 1, n);
+                    ASSERT_EQ(n.tested, (uint64_t)(x1 - x0)) << k->name;
                 }
                 for (int i = 0; i < 120; i++) {
                     const bool in = i >= 40 + x0 && i < 40 + x1;
