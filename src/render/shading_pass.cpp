@@ -122,8 +122,9 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
     const int num_lights = (int)f.lights.size();
     const std::size_t padded = ((std::size_t)width + 3) & ~std::size_t{3};
     result.rgb.assign((std::size_t)width * height * 3, 0);
-    const ShadeRowKernel kernel = (isa & (SV_ISA_AVX2 | SV_ISA_AVX512)) != 0 ? shade_row_avx2
-                                                                             : shade_row_c;
+    const ShadeRowKernel kernel = (isa & SV_ISA_AVX512) != 0 ? shade_row_avx512
+                                  : (isa & SV_ISA_AVX2) != 0 ? shade_row_avx2
+                                                             : shade_row_c;
 
     std::vector<double> column_nx(padded, 0.0);
     for (int px = 0; px < width; px++) column_nx[(std::size_t)px] = ((px + 0.5) / width) * 2 - 1;

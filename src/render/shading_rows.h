@@ -1,7 +1,7 @@
 /*
  * The lighting pass's row kernels (internal to src/render): one row of
- * pixels shaded from per-triangle terms gathered into arrays, in C and in
- * AVX2 (four pixels per step, in double).
+ * pixels shaded from per-triangle terms gathered into arrays, in C, in
+ * AVX2 (four pixels per step, in double) and in AVX-512 (eight).
  *
  * Every version computes, per pixel and in the same order, the very
  * operations the pass was first written with (visible_point's ray and
@@ -92,6 +92,7 @@ using ShadeRowKernel = void (*)(const ShadeRowInputs &row);
 
 void shade_row_c(const ShadeRowInputs &row);
 void shade_row_avx2(const ShadeRowInputs &row);
+void shade_row_avx512(const ShadeRowInputs &row);
 
 } // namespace sv::render::detail
 
