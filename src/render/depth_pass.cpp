@@ -15,15 +15,42 @@ namespace sv::render {
 
 using namespace detail;
 
+namespace {
+
+/* A run of one surface's vertices: the unit of the per-vertex work spread
+ * over threads (the demo's terrain alone holds most of a frame's
+ * vertices, so one task per surface left it on one thread). */
+struct VertexRun {
+    int surface, first, last;
+};
+constexpr int kVertexRun = 8192;
+
+std::vector<VertexRun> vertex_runs(const Scene &scene) {
+    std::vector<VertexRun> runs;
+    for (int si = 0; si < (int)scene.surfaces.size(); si++) {
+        const int n = scene.surfaces[(std::size_t)si].prepared.num_vertices();
+        for (int v = 0; v < n; v += kVertexRun)
+            runs.push_back({si, v, std::min(n, v + kVertexRun)});
+    }
+    return runs;
+}
+
+} // namespace
+
 ClipVertices receivers_to_clip(const Scene &scene, const Mat4d &view_proj) {
     const int num_surfaces = (int)scene.surfaces.size();
     ClipVertices clip((std::size_t)num_surfaces);
-    parallel(num_surfaces, [&](int si) {
-        const PreparedSurface &p = scene.surfaces[(std::size_t)si].prepared;
-        clip[(std::size_t)si].resize((std::size_t)p.num_vertices());
-        for (int v = 0; v < p.num_vertices(); v++) {
+    for (int si = 0; si < num_surfaces; si++) {
+        clip[(std::size_t)si].resize(
+            (std::size_t)scene.surfaces[(std::size_t)si].prepared.num_vertices());
+    }
+    const std::vector<VertexRun> runs = vertex_runs(scene);
+    parallel((int)runs.size(), [&](int r) {
+        const VertexRun &run = runs[(std::size_t)r];
+        const PreparedSurface &p = scene.surfaces[(std::size_t)run.surface].prepared;
+        for (int v = run.first; v < run.last; v++) {
             const Vec3d q = vertex(p, v);
-            clip[(std::size_t)si][(std::size_t)v] = to_clip(view_proj, q.x, q.y, q.z, 1.0);
+            clip[(std::size_t)run.surface][(std::size_t)v] = to_clip(view_proj, q.x, q.y, q.z, 1.0);
         }
     });
     return clip;
@@ -51,12 +78,17 @@ DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
      * triangles): set-up then clips and snaps only the triangles that
      * cross a plane of the view volume. */
     window.resize((std::size_t)num_surfaces);
-    parallel(num_surfaces, [&](int si) {
-        const auto &cv = clip[(std::size_t)si];
-        auto &wv = window[(std::size_t)si];
-        wv.resize(cv.size());
-        for (std::size_t v = 0; v < cv.size(); v++)
-            wv[v] = raster::window_vertex(cv[v], width, height);
+    for (int si = 0; si < num_surfaces; si++) {
+        window[(std::size_t)si].resize(clip[(std::size_t)si].size());
+    }
+    const std::vector<VertexRun> runs = vertex_runs(scene);
+    parallel((int)runs.size(), [&](int r) {
+        const VertexRun &run = runs[(std::size_t)r];
+        const auto &cv = clip[(std::size_t)run.surface];
+        auto &wv = window[(std::size_t)run.surface];
+        for (int v = run.first; v < run.last; v++) {
+            wv[(std::size_t)v] = raster::window_vertex(cv[(std::size_t)v], width, height);
+        }
     });
     bt.clear_chunks(chunks.size());
     std::vector<raster::PassCounters> cc(chunks.size());
@@ -74,17 +106,16 @@ DepthPassResult depth_pass(const Scene &scene, const ClipVertices &clip,
             rast.setup_shared(v, w, width, height, surface_first_id[(std::size_t)ch.surface] + t,
                               cc[(std::size_t)c], bt.chunks[(std::size_t)c]);
         }
+        bt.bin_chunk((std::size_t)c, height);
     });
     for (const auto &c : cc) result.counters.add(c);
-    bt.bin(height);
     const int num_bands = band_count(height);
     std::vector<raster::RowCounts> rc((std::size_t)num_bands);
     parallel(num_bands, [&](int b) {
         const raster::RowBand band = band_rows(b, height);
-        for (const auto &[c, i] : bt.bands[(std::size_t)b]) {
-            rast.walk_depth(bt.chunks[(std::size_t)c][(std::size_t)i], target, band,
-                            rc[(std::size_t)b]);
-        }
+        bt.for_each_in_band(b, [&](std::size_t, const raster::SetupTriangle &t) {
+            rast.walk_depth(t, target, band, rc[(std::size_t)b]);
+        });
     });
     for (const auto &r : rc) raster::Rasterizer::add_depth_counts(r, result.counters);
     result.ticks = ticks() - k0;

@@ -37,30 +37,40 @@ template <class Body> void parallel(int n, Body &&body) {
         tbb::simple_partitioner());
 }
 
-/* Triangles set up in chunks (in parallel), then binned to bands in
- * submission order, so every band walks its triangles in that order. */
+/* Triangles set up in chunks (in parallel), each chunk binned to bands by
+ * the thread that set it up; a band walks the chunks in order and each
+ * chunk's pieces in order, so every band sees its triangles in submission
+ * order (and no thread bins the whole frame alone). */
 struct BinnedTriangles {
     std::vector<std::vector<raster::SetupTriangle>> chunks;
     std::vector<raster::StencilMode> chunk_mode;
-    std::vector<std::vector<std::pair<int, int>>> bands; /* (chunk, piece) */
-    raster::PassCounters counters;                       /* triangle counts */
-    /* Empties every chunk, keeping its memory for the next set-up. */
+    /* chunk_bands[c][b]: chunk c's pieces that reach band b, in order. */
+    std::vector<std::vector<std::vector<int>>> chunk_bands;
+    raster::PassCounters counters; /* triangle counts */
+    /* COUNT empty chunks, keeping their memory (and their bins') for the
+     * next set-up: a frame's are as large as the last one's. */
     void clear_chunks(std::size_t count) {
         chunks.resize(count);
         for (auto &c : chunks) c.clear();
+        chunk_bands.resize(count);
     }
-    void bin(int height) {
-        /* The bands' lists are emptied, not freed: a frame's bins are as
-         * large as the last one's. */
-        bands.resize((std::size_t)band_count(height));
-        for (auto &b : bands) b.clear();
-        for (std::size_t c = 0; c < chunks.size(); c++) {
-            for (std::size_t i = 0; i < chunks[c].size(); i++) {
-                const raster::SetupTriangle &t = chunks[c][i];
-                for (int b = t.y_first / kBandRows; b <= t.y_last / kBandRows; b++) {
-                    bands[(std::size_t)b].push_back({(int)c, (int)i});
-                }
+    /* Bins chunk C's pieces (after its set-up, on the same thread). */
+    void bin_chunk(std::size_t c, int height) {
+        std::vector<std::vector<int>> &bins = chunk_bands[c];
+        bins.resize((std::size_t)band_count(height));
+        for (auto &b : bins) b.clear();
+        const std::vector<raster::SetupTriangle> &pieces = chunks[c];
+        for (std::size_t i = 0; i < pieces.size(); i++) {
+            const raster::SetupTriangle &t = pieces[i];
+            for (int b = t.y_first / kBandRows; b <= t.y_last / kBandRows; b++) {
+                bins[(std::size_t)b].push_back((int)i);
             }
+        }
+    }
+    /* F(chunk, piece) for band B's pieces in submission order. */
+    template <class F> void for_each_in_band(int b, F &&f) const {
+        for (std::size_t c = 0; c < chunks.size(); c++) {
+            for (const int i : chunk_bands[c][(std::size_t)b]) f(c, chunks[c][(std::size_t)i]);
         }
     }
 };

@@ -1,9 +1,9 @@
 /*
  * The brute-force stencil method ("bf", the reference of every other):
  * the light's double-length vertex buffers through the paper's vertex
- * program, every drawn volume triangle set up (in chunks, in parallel),
- * binned to screen bands in submission order, and each band's rows
- * walked per pixel against the depth.
+ * program, every drawn volume triangle set up (in chunks, in parallel,
+ * each chunk binned to screen bands by its thread), and each band's rows
+ * walked per pixel against the depth, in submission order.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -28,7 +28,7 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
     const std::vector<std::vector<raster::ClipVertex>> sv_clip = shadow_vertex_buffers(in);
     BinnedTriangles bt;
-    bt.chunks.resize(chunks.size());
+    bt.clear_chunks(chunks.size());
     std::vector<raster::PassCounters> cc(chunks.size());
     parallel((int)chunks.size(), [&](int c) {
         const VolumeChunk &ch = chunks[(std::size_t)c];
@@ -40,6 +40,7 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
                                              cv[(std::size_t)vol.indices[3 * (std::size_t)t + 2]]};
             rast.setup(v, width, height, 0, cc[(std::size_t)c], bt.chunks[(std::size_t)c]);
         }
+        bt.bin_chunk((std::size_t)c, height);
     });
     for (std::size_t c = 0; c < chunks.size(); c++) {
         result.counters.add(cc[c]);
@@ -47,16 +48,14 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
                                     ? raster::StencilMode::zfail
                                     : raster::StencilMode::zpass);
     }
-    bt.bin(height);
     const int num_bands = band_count(height);
     std::vector<raster::RowCounts> rc((std::size_t)num_bands);
     parallel(num_bands, [&](int b) {
         const raster::RowBand band = band_rows(b, height);
-        for (const auto &[c, i] : bt.bands[(std::size_t)b]) {
-            rast.walk_stencil(bt.chunks[(std::size_t)c][(std::size_t)i], in.target->depth.data(),
-                              result.stencil.data(), width, height, band,
-                              bt.chunk_mode[(std::size_t)c], rc[(std::size_t)b]);
-        }
+        bt.for_each_in_band(b, [&](std::size_t c, const raster::SetupTriangle &t) {
+            rast.walk_stencil(t, in.target->depth.data(), result.stencil.data(), width, height,
+                              band, bt.chunk_mode[c], rc[(std::size_t)b]);
+        });
     });
     for (const auto &r : rc) raster::Rasterizer::add_stencil_counts(r, result.counters);
     result.ticks = ticks() - k0;
