@@ -130,6 +130,7 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
             break;
         }
     }
+    t.hz = hz;
     t.rate = measure_memory_rate(t.threads, (std::size_t)64 << 20, 3);
 
     /* One volume cache and one set of frame buffers for the whole run, as
@@ -198,6 +199,17 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
                      best.other;
         t.same_runs += same;
         floors.push_back(floors_of(last));
+        FrameTable::Work &w = t.work;
+        w.depth_triangles += (double)last.depth_counters.triangles / t.frames;
+        w.depth_rows += (double)last.depth_counters.rows / t.frames;
+        w.depth_pixels += (double)last.depth_counters.pixels_tested / t.frames;
+        for (const auto &lf : last.lights) {
+            w.stencil_triangles += (double)lf.stencil_counters.triangles / t.frames;
+            w.stencil_rows += (double)lf.stencil_counters.rows / t.frames;
+            w.stencil_pixels += (double)lf.stencil_counters.pixels_tested / t.frames;
+        }
+        w.pixels = (double)last.width * last.height;
+        w.lights = (double)last.lights.size();
         if (fo.mesa && t.mesa_note.empty()) {
             sv::render::MesaFrameComparison m =
                 sv::render::compare_frame_with_mesa(scene, last, o.ambient, t.threads, t.runs,
@@ -277,6 +289,23 @@ void print_frame_table(FILE *out, const FrameTable &t) {
             std::fprintf(out, "%10s %8s\n", "-", "-");
         }
     }
+    /* Ticks per unit of work, from a pass's ms (-1: no such row). */
+    auto per = [&](const char *pass, double units) {
+        for (const FrameTable::Row &r : t.rows) {
+            if (std::string(r.name) == pass && units > 0) return r.ours * 1e-3 * t.hz / units;
+        }
+        return -1.0;
+    };
+    const FrameTable::Work &w = t.work;
+    std::fprintf(out,
+                 "work a frame: depth %.0f triangles, %.2f M rows, %.2f M pixels tested (%.0f "
+                 "ticks a triangle); stencil %.0f volume triangles, %.2f M rows, %.2f M pixels "
+                 "tested (%.1f ticks a row); lighting %.2f M pixels x %.0f light(s) (%.1f ticks a "
+                 "pixel and light)\n",
+                 w.depth_triangles, w.depth_rows / 1e6, w.depth_pixels / 1e6,
+                 per("depth", w.depth_triangles), w.stencil_triangles, w.stencil_rows / 1e6,
+                 w.stencil_pixels / 1e6, per("stencil", w.stencil_rows), w.pixels / 1e6, w.lights,
+                 per("lighting", w.pixels * std::max(w.lights, 1.0)));
     std::fprintf(out,
                  "(frame: the sum of the rows; the first drawing's wall time with posing: "
                  "%.2f ms. Mesa's frame without a wait between passes, its passes with one; its "
@@ -324,6 +353,18 @@ void frame_table_json(JsonWriter &j, const FrameTable &t) {
         j.end_object();
     }
     j.end_array();
+    j.key("work_per_frame");
+    j.begin_object(true);
+    j.key("depth_triangles"), j.value(t.work.depth_triangles);
+    j.key("depth_rows"), j.value(t.work.depth_rows);
+    j.key("depth_pixels_tested"), j.value(t.work.depth_pixels);
+    j.key("stencil_triangles"), j.value(t.work.stencil_triangles);
+    j.key("stencil_rows"), j.value(t.work.stencil_rows);
+    j.key("stencil_pixels_tested"), j.value(t.work.stencil_pixels);
+    j.key("pixels"), j.value(t.work.pixels);
+    j.key("lights"), j.value(t.work.lights);
+    j.end_object();
+    j.key("tsc_hz"), j.value(t.hz);
     j.key("mesa");
     if (t.mesa.empty()) {
         j.null();

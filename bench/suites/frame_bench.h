@@ -39,6 +39,14 @@ struct FrameTable {
         double ours, floor, mesa;
     };
     std::vector<Row> rows;
+    /* What each pass works through, a frame's mean (the last drawing of
+     * each frame): what bounds it, beside its time. */
+    struct Work {
+        double depth_triangles = 0, depth_rows = 0, depth_pixels = 0;
+        double stencil_triangles = 0, stencil_rows = 0, stencil_pixels = 0;
+        double pixels = 0, lights = 0;
+    } work;
+    double hz = 0; /* TSC ticks a second */
     double first_drawing_wall_ms = 0;
     int same_runs = 0; /* frames whose drawings were the same bytes */
     bool mesa_wanted = false;

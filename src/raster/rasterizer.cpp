@@ -188,6 +188,7 @@ void PassCounters::add(const PassCounters &o) {
     triangles_degenerate += o.triangles_degenerate;
     pixels_tested += o.pixels_tested;
     pixels_written += o.pixels_written;
+    rows += o.rows;
     depth_bytes_read += o.depth_bytes_read;
     depth_bytes_written += o.depth_bytes_written;
     stencil_bytes_read += o.stencil_bytes_read;
@@ -405,6 +406,7 @@ void Rasterizer::walk_stencil_bounded(const SetupTriangle &tri, const float *dep
     detail::walk_rows(tri, band, [&](const RowSpan &span, int y) {
         const std::size_t row = (std::size_t)y * (std::size_t)width;
         const RowBuffers b{const_cast<float *>(depth) + row, nullptr, stencil + row};
+        r.rows++;
         if (mode == StencilMode::zpass) {
             c_rows::stencil_bounded_c<false>(span, b, delta, bounds.skip_at_or_below,
                                              bounds.skip_above, r);
@@ -416,6 +418,7 @@ void Rasterizer::walk_stencil_bounded(const SetupTriangle &tri, const float *dep
 }
 
 void Rasterizer::add_depth_counts(const RowCounts &r, PassCounters &c) {
+    c.rows += r.rows;
     c.pixels_tested += r.tested;
     c.pixels_written += r.written;
     c.depth_bytes_read += 4 * r.tested;
@@ -423,6 +426,7 @@ void Rasterizer::add_depth_counts(const RowCounts &r, PassCounters &c) {
 }
 
 void Rasterizer::add_stencil_counts(const RowCounts &r, PassCounters &c) {
+    c.rows += r.rows;
     c.pixels_tested += r.tested;
     c.pixels_written += r.written;
     c.depth_bytes_read += 4 * r.tested;

@@ -64,6 +64,7 @@ struct PassCounters {
     uint64_t triangles_degenerate = 0; /* zero area after snapping */
     uint64_t pixels_tested = 0;
     uint64_t pixels_written = 0;
+    uint64_t rows = 0; /* row spans walked (a sliver's cost is per row as much as per pixel) */
     uint64_t depth_bytes_read = 0;
     uint64_t depth_bytes_written = 0;
     uint64_t stencil_bytes_read = 0;

@@ -59,6 +59,7 @@ struct RowBuffers {
 struct RowCounts {
     uint64_t tested = 0;  /* covered pixels (each reads one depth) */
     uint64_t written = 0; /* pixels updated */
+    uint64_t rows = 0;    /* rows walked: rows whose span (row_walk.h) is not empty */
 };
 
 struct SetupTriangle; /* rasterizer.h */

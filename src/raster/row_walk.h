@@ -41,6 +41,14 @@ inline double row_depth(const SetupTriangle &tri, int y) {
     return tri.z0 + tri.b * (((double)y + 0.5) - tri.y0);
 }
 
+/* Whether a row is outside an edge with no step in x (a horizontal
+ * edge): E_ROW is the row's edge functions. walk_rows skips such a row. */
+inline bool outside_flat_edge(const SetupTriangle &tri, const int64_t e_row[3]) {
+    bool out = false;
+    for (int e = 0; e < 3; e++) out |= tri.step_x[e] == 0 && e_row[e] < 0;
+    return out;
+}
+
 /* z-pass: front faces +1, back faces -1; z-fail: back +1, front -1 (mod
  * 256). */
 inline uint8_t stencil_delta(StencilMode mode, bool front) {

@@ -155,11 +155,15 @@ SV_TARGET_AVX512 void walk(const SetupTriangle &tri, const RowBand &band, const 
     detail::SpanBounds sb = detail::span_bounds(tri, e_row);
     const PixelConstants c = pixel_constants(tri, value);
     /* Local counts: a stencil byte store may alias n, a local cannot. */
-    uint64_t tested = 0, written = 0;
+    uint64_t tested = 0, written = 0, rows = 0;
+    /* A horizontal edge (no step in x) bounds no span: a row outside it
+     * is skipped, as walk_rows skips it (rare: tested only then). */
+    const bool flat = tri.step_x[0] == 0 || tri.step_x[1] == 0 || tri.step_x[2] == 0;
     for (int y = y_first; y <= y_last; y++) {
         int lo = 0, hi = 0;
         detail::next_span(sb, lo, hi);
-        if (lo <= hi) {
+        if (lo <= hi && !(flat && detail::outside_flat_edge(tri, e_row))) {
+            rows++;
             const std::size_t row = (std::size_t)y * (std::size_t)b.width;
             detail::prefetch_ahead(b.depth, b.stencil, b.width, b.height, y, lo);
             const __m512d zrow = _mm512_set1_pd(detail::row_depth(tri, y));
@@ -181,6 +185,7 @@ SV_TARGET_AVX512 void walk(const SetupTriangle &tri, const RowBand &band, const 
     }
     n.tested += tested;
     n.written += written;
+    n.rows += rows;
 }
 
 } // namespace

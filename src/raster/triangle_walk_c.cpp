@@ -16,6 +16,7 @@ void walk_depth_c(const SetupTriangle &tri, const RowBand &band, const WalkBuffe
         const std::size_t row = (std::size_t)y * (std::size_t)b.width;
         detail::prefetch_ahead(b.depth, nullptr, b.width, b.height, y, span.x_begin);
         c_rows::depth_c(span, {b.depth + row, b.ids + row, nullptr}, tri.id, n);
+        n.rows++;
     });
 }
 
@@ -26,6 +27,7 @@ static void walk_stencil_c(const SetupTriangle &tri, const RowBand &band, const 
         const std::size_t row = (std::size_t)y * (std::size_t)b.width;
         detail::prefetch_ahead(b.depth, b.stencil, b.width, b.height, y, span.x_begin);
         c_rows::stencil_c<kFail>(span, {b.depth + row, nullptr, b.stencil + row}, delta, n);
+        n.rows++;
     });
 }
 

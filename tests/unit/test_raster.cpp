@@ -457,6 +457,7 @@ SV_TIERED_TEST(Raster, SimdKernelsMatchTheCBitForBit) {
                 << ks[k]->name << " trial " << trial;
             ASSERT_EQ(counters[0].pixels_tested, counters[k].pixels_tested) << ks[k]->name;
             ASSERT_EQ(counters[0].pixels_written, counters[k].pixels_written) << ks[k]->name;
+            ASSERT_EQ(counters[0].rows, counters[k].rows) << ks[k]->name;
         }
     }
 }
@@ -533,6 +534,7 @@ SV_TIERED_TEST(Raster, TriangleWalksMatchTheCInAnyBandAndClamp) {
             ASSERT_TRUE(st == s_ref) << k->name << " trial " << trial;
             ASSERT_EQ(n.tested, n_ref.tested) << k->name << " trial " << trial;
             ASSERT_EQ(n.written, n_ref.written) << k->name << " trial " << trial;
+            ASSERT_EQ(n.rows, n_ref.rows) << k->name << " trial " << trial;
         }
     }
 }
