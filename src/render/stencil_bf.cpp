@@ -26,7 +26,7 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     const uint64_t k0 = ticks();
     result.stencil.assign((std::size_t)width * height, 0);
     const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
-    const std::vector<std::vector<raster::ClipVertex>> sv_clip = shadow_vertex_buffers(in);
+    const std::vector<ShadowVertexBuffer> sv_clip = shadow_vertex_buffers(in);
     BinnedTriangles bt;
     bt.clear_chunks(chunks.size());
     std::vector<raster::PassCounters> cc(chunks.size());

@@ -62,18 +62,26 @@ std::vector<VolumeChunk> volume_chunks(const std::vector<Volume> &volumes) {
     return chunks;
 }
 
-std::vector<std::vector<raster::ClipVertex>> shadow_vertex_buffers(const StencilPassInputs &in) {
+std::vector<ShadowVertexBuffer> shadow_vertex_buffers(const StencilPassInputs &in) {
     const std::vector<Volume> &volumes = *in.volumes;
-    std::vector<std::vector<raster::ClipVertex>> sv_clip(volumes.size());
+    std::vector<ShadowVertexBuffer> sv_clip(volumes.size());
     detail::parallel((int)volumes.size(), [&](int vi) {
         const Volume &vol = volumes[(std::size_t)vi];
         const PreparedSurface &p = in.scene->surfaces[(std::size_t)vol.surface].prepared;
-        auto &out = sv_clip[(std::size_t)vi];
-        out.resize(2 * (std::size_t)p.num_vertices());
-        for (int v = 0; v < p.num_vertices(); v++) {
-            out[2 * (std::size_t)v] = (*in.receivers)[(std::size_t)vol.surface][(std::size_t)v];
-            out[2 * (std::size_t)v + 1] = shadow_vertex_to_clip(in.view_proj, p, 2 * v + 1,
-                                                                in.light);
+        const std::size_t n = 2 * (std::size_t)p.num_vertices();
+        /* Not value-initialised: the pages of vertices no index uses are
+         * never touched. */
+        sv_clip[(std::size_t)vi].reset(new raster::ClipVertex[n]);
+        raster::ClipVertex *out = sv_clip[(std::size_t)vi].get();
+        const std::vector<raster::ClipVertex> &receiver = (*in.receivers)[(std::size_t)vol.surface];
+        std::vector<uint8_t> done(n, 0);
+        const int drawn = vol.drawn_indices();
+        for (int k = 0; k < drawn; k++) {
+            const int i = vol.indices[(std::size_t)k];
+            if (done[(std::size_t)i]) continue;
+            done[(std::size_t)i] = 1;
+            out[i] = (i & 1) == 0 ? receiver[(std::size_t)(i / 2)]
+                                  : shadow_vertex_to_clip(in.view_proj, p, i, in.light);
         }
     });
     return sv_clip;

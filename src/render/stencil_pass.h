@@ -11,6 +11,7 @@
 #define SV_RENDER_STENCIL_PASS_H
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "depth_pass.h"
@@ -52,7 +53,12 @@ struct VolumeChunk {
     int volume, first, last; /* triangles [first, last) of volume VOLUME */
 };
 std::vector<VolumeChunk> volume_chunks(const std::vector<Volume> &volumes);
-std::vector<std::vector<raster::ClipVertex>> shadow_vertex_buffers(const StencilPassInputs &in);
+/* A volume's double-length vertex buffer in clip space: only the vertices
+ * its drawn indices use are computed (a surface's vertices are many, and
+ * a volume uses few of them: the demo terrain's 53k vertices against a
+ * volume of a few thousand indices); the others are left undefined. */
+using ShadowVertexBuffer = std::unique_ptr<raster::ClipVertex[]>;
+std::vector<ShadowVertexBuffer> shadow_vertex_buffers(const StencilPassInputs &in);
 
 /* Runs on the calling task arena's threads. */
 StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in);

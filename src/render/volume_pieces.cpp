@@ -60,7 +60,7 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
     const int width = in.target->width, height = in.target->height;
     const Vec4 L = in.light;
     const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
-    const std::vector<std::vector<raster::ClipVertex>> sv_clip = shadow_vertex_buffers(in);
+    const std::vector<ShadowVertexBuffer> sv_clip = shadow_vertex_buffers(in);
     /* Per chunk: its pieces, extents, the triangle each came from, and per
      * triangle whether it drew nothing (skipped by the open-edge count)
      * and whether the near plane cut it. */
