@@ -131,6 +131,7 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
         }
     }
     t.hz = hz;
+    t.divider = measure_divider_rate(5);
     t.rate = measure_memory_rate(t.threads, (std::size_t)64 << 20, 3);
 
     /* One volume cache and one set of frame buffers for the whole run, as
@@ -209,6 +210,10 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
             w.stencil_pixels += (double)lf.stencil_counters.pixels_tested / t.frames;
         }
         w.pixels = (double)last.width * last.height;
+        w.divider_lanes += (double)last.shading_divider_lanes / t.frames;
+        w.visible_pixels += (double)std::count_if(last.target.ids.begin(), last.target.ids.end(),
+                                                  [](int32_t id) { return id >= 0; }) /
+                            t.frames;
         w.lights = (double)last.lights.size();
         if (fo.mesa && t.mesa_note.empty()) {
             sv::render::MesaFrameComparison m =
@@ -306,6 +311,23 @@ void print_frame_table(FILE *out, const FrameTable &t) {
                  per("depth", w.depth_triangles), w.stencil_triangles, w.stencil_rows / 1e6,
                  w.stencil_pixels / 1e6, per("stencil", w.stencil_rows), w.pixels / 1e6, w.lights,
                  per("lighting", w.pixels * std::max(w.lights, 1.0)));
+    /* The lighting pass's exact double arithmetic: a square root and two
+     * divides per lane of a point or spot light the kernel computed, a
+     * divide per visible pixel; at the divider's rate, on each thread. */
+    const DividerRate &dv = t.divider;
+    const double divider_ms = (w.divider_lanes *
+                                   (dv.sqrt_ticks_per_lane + 2 * dv.div_ticks_per_lane) +
+                               w.visible_pixels * dv.div_ticks_per_lane) /
+                              t.hz * 1e3;
+    const double lighting_ms = per("lighting", 1) * 1e3 / t.hz;
+    std::fprintf(out,
+                 "lighting's divider: %.2f M lanes through a light's square root and 2 divides, "
+                 "%.2f M visible pixels' ray divide; at this core's rate (divide %.2f, square root "
+                 "%.2f ticks a lane in %d-lane vectors, best of %d) %.2f ms on one thread, %.2f "
+                 "on %d: the pass takes %.1fx that\n",
+                 w.divider_lanes / 1e6, w.visible_pixels / 1e6, dv.div_ticks_per_lane,
+                 dv.sqrt_ticks_per_lane, dv.lanes, dv.runs, divider_ms, divider_ms / t.threads,
+                 t.threads, divider_ms > 0 ? lighting_ms / (divider_ms / t.threads) : 0.0);
     std::fprintf(out,
                  "(frame: the sum of the rows; the first drawing's wall time with posing: "
                  "%.2f ms. Mesa's frame without a wait between passes, its passes with one; its "
@@ -363,8 +385,17 @@ void frame_table_json(JsonWriter &j, const FrameTable &t) {
     j.key("stencil_pixels_tested"), j.value(t.work.stencil_pixels);
     j.key("pixels"), j.value(t.work.pixels);
     j.key("lights"), j.value(t.work.lights);
+    j.key("visible_pixels"), j.value(t.work.visible_pixels);
+    j.key("divider_lanes"), j.value(t.work.divider_lanes);
     j.end_object();
     j.key("tsc_hz"), j.value(t.hz);
+    j.key("divider");
+    j.begin_object(true);
+    j.key("div_ticks_per_lane"), j.value(t.divider.div_ticks_per_lane);
+    j.key("sqrt_ticks_per_lane"), j.value(t.divider.sqrt_ticks_per_lane);
+    j.key("lanes"), j.value(t.divider.lanes);
+    j.key("runs"), j.value(t.divider.runs);
+    j.end_object();
     j.key("mesa");
     if (t.mesa.empty()) {
         j.null();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "frame_vs_mesa.h"
+#include "divider_rate.h"
 #include "memory_rate.h"
 #include "seed_bench.h"
 
@@ -45,7 +46,10 @@ struct FrameTable {
         double depth_triangles = 0, depth_rows = 0, depth_pixels = 0;
         double stencil_triangles = 0, stencil_rows = 0, stencil_pixels = 0;
         double pixels = 0, lights = 0;
+        double visible_pixels = 0; /* pixels showing a triangle (the camera ray's divide) */
+        double divider_lanes = 0;  /* lanes through a light's square root and divides */
     } work;
+    DividerRate divider;
     double hz = 0; /* TSC ticks a second */
     double first_drawing_wall_ms = 0;
     int same_runs = 0; /* frames whose drawings were the same bytes */

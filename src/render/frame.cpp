@@ -199,6 +199,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
                                             opt.ambient, kernels->isa, scratch.shade_triangles);
         f.rgb = std::move(shaded.rgb);
         f.ticks_shading = ticks() - k0;
+        f.shading_divider_lanes = shaded.divider_lanes;
     });
     f.ticks_total = ticks() - k_start;
     return f;

@@ -221,10 +221,11 @@ struct Frame {
     raster::PassCounters depth_counters;
     uint64_t ticks_depth = 0;
     double seconds_depth = 0;
-    uint64_t ticks_shading = 0; /* the lighting pass, all lights */
-    uint64_t ticks_jobs = 0;    /* wall ticks of the (light, surface) jobs */
-    uint64_t ticks_total = 0;   /* wall ticks of render_frame */
-    int threads = 1;            /* worker threads used */
+    uint64_t ticks_shading = 0;         /* the lighting pass, all lights */
+    uint64_t shading_divider_lanes = 0; /* its lanes through the light formula's divider */
+    uint64_t ticks_jobs = 0;            /* wall ticks of the (light, surface) jobs */
+    uint64_t ticks_total = 0;           /* wall ticks of render_frame */
+    int threads = 1;                    /* worker threads used */
     std::vector<LightFrame> lights;
     std::vector<uint8_t> rgb; /* shaded image, 3 bytes per pixel, row 0 = top */
     /* The camera ray through pixel centre (px, py):

@@ -140,6 +140,7 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
 
     /* Per band: the radiance accumulators between groups of lights. */
     std::vector<std::vector<double>> accum((std::size_t)band_count(height));
+    std::vector<uint64_t> divider_lanes((std::size_t)band_count(height), 0);
     const int groups = std::max(1, (num_lights + kLightGroup - 1) / kLightGroup);
     for (int g = 0; g < groups; g++) {
         const int first_light = g * kLightGroup;
@@ -170,6 +171,8 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
             row.last_group = g == groups - 1;
             row.accum_stride = padded;
             row.display = display;
+            uint64_t lanes = 0; /* a local: the kernel's rgb stores cannot alias it */
+            row.divider_lanes = &lanes;
             for (int py = band.row_begin; py < band.row_end; py++) {
                 const std::size_t first = (std::size_t)py * width;
                 row.ny = 1 - ((py + 0.5) / height) * 2;
@@ -187,8 +190,10 @@ ShadingResult shading_pass(const Scene &scene, const Frame &f,
                 row.rgb = &result.rgb[3 * first];
                 kernel(row);
             }
+            divider_lanes[(std::size_t)b] += lanes;
         });
     }
+    for (const uint64_t n : divider_lanes) result.divider_lanes += n;
     result.ticks = ticks() - k0;
     return result;
 }

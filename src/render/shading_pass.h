@@ -19,8 +19,9 @@
 namespace sv::render {
 
 struct ShadingResult {
-    std::vector<uint8_t> rgb; /* 3 bytes per pixel, row 0 = top */
-    uint64_t ticks = 0;       /* wall TSC ticks */
+    std::vector<uint8_t> rgb;   /* 3 bytes per pixel, row 0 = top */
+    uint64_t ticks = 0;         /* wall TSC ticks */
+    uint64_t divider_lanes = 0; /* ShadeRowInputs::divider_lanes, summed */
 };
 
 /* Shades frame F (after its depth and stencil passes: its ids, camera

@@ -82,6 +82,10 @@ struct ShadeRowInputs {
     const uint8_t *display = nullptr; /* to_display's table: kDisplaySteps * kDisplayMax + 1 */
     uint8_t sky[3] = {0, 0, 0};       /* the row's sky colour, displayed */
     uint8_t *rgb = nullptr;           /* the row's output, 3 bytes per pixel */
+    /* Added to: the lanes that went through a point or spot light's square
+     * root and divides (the C kernel's pixels; a SIMD kernel's whole
+     * steps): the divider's work, what bounds the pass. */
+    uint64_t *divider_lanes = nullptr;
 };
 
 /* Linear radiance to display: a table of 1/kDisplaySteps steps up to

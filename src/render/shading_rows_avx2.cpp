@@ -255,6 +255,7 @@ SV_TARGET_AVX2 void shade_row_avx2(const ShadeRowInputs &row) {
                 bool skip = false;
                 const __m256d en = _mm256_and_pd(ok, irradiance4(l, p, tri.normal, ok, skip));
                 if (skip) continue;
+                if (l.kind != 2 && row.divider_lanes) *row.divider_lanes += 4;
                 for (int c = 0; c < 3; c++) {
                     acc[c] = _mm256_add_pd(acc[c], _mm256_mul_pd(en, _mm256_set1_pd(l.color[c])));
                 }

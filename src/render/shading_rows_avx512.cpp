@@ -253,6 +253,7 @@ SV_TARGET_AVX512 void shade_row_avx512(const ShadeRowInputs &row) {
                 bool skip = false;
                 const __m512d en = _mm512_maskz_mov_pd(ok, irradiance8(l, p, tri.normal, ok, skip));
                 if (skip) continue;
+                if (l.kind != 2 && row.divider_lanes) *row.divider_lanes += 8;
                 for (int c = 0; c < 3; c++) {
                     acc[c] = _mm512_add_pd(acc[c], _mm512_mul_pd(en, set8(l.color[c])));
                 }

@@ -45,7 +45,7 @@ void shade_row_c(const ShadeRowInputs &row) {
         if (dot3(tri.normal, to_eye) > 0) {
             for (int li = 0; li < row.num_lights; li++) {
                 if (row.stencil[li][px] != 0 || !((tri.facing_bits >> li) & 1)) continue;
-                const double en = irradiance(row.lights[li], p, tri.normal);
+                const double en = irradiance(row.lights[li], p, tri.normal, row.divider_lanes);
                 for (int c = 0; c < 3; c++) acc[c] += en * row.lights[li].color[c];
             }
         }

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "shading_rows.h"
 
@@ -32,8 +33,11 @@ inline bool checker_odd(double x, double z) {
 }
 
 /* Radiance factor of light L at P with unit normal N (Lambert, the
- * KHR_lights_punctual range window, the spot cone), without the colour. */
-inline double irradiance(const ShadeLight &l, const double *p, const double *n) {
+ * KHR_lights_punctual range window, the spot cone), without the colour.
+ * DIVIDED, when given, is incremented when the square root and divides
+ * ran (a point or spot light, not outside the cone for certain). */
+inline double irradiance(const ShadeLight &l, const double *p, const double *n,
+                         uint64_t *divided = nullptr) {
     if (l.kind == 2) {
         return l.intensity * max0(-dot3(n, l.direction));
     }
@@ -45,6 +49,7 @@ inline double irradiance(const ShadeLight &l, const double *p, const double *n) 
         const double along = -dot3(d, l.direction);
         if (along <= 0 || along * along < l.dark_cos2 * dist2) return 0;
     }
+    if (divided) ++*divided;
     const double inv = 1.0 / std::sqrt(dist2);
     const double dir[3] = {d[0] * inv, d[1] * inv, d[2] * inv};
     double a = l.intensity * max0(dot3(n, dir)) / dist2;

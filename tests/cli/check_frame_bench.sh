@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `shadowvol bench --frame --quick` at a small size: exit 0, the pass table
-# with every pass, the work line (rows, pixels, ticks a unit), the two checks of the run (our drawings the same bytes,
+# with every pass, the work line (rows, pixels, ticks a unit), the lighting
+# pass's divider line, the two checks of the run (our drawings the same bytes,
 # Mesa's picture agreeing off edges, where OSMesa is built), the PNGs, the
 # JSON (shadowvol-frame-bench/1) and the usage errors (exit 2).
 # usage: check_frame_bench.sh PATH/TO/shadowvol
@@ -19,6 +20,8 @@ done
 grep -q "^check: 2 of 2 frames the same bytes" "$tmp/f.txt" || err "--frame: no same-bytes check"
 grep -Eq "^work a frame: depth [1-9][0-9]* triangles, .* stencil [0-9]+ volume triangles, .* rows, .* ticks a row.* lighting .* ticks a pixel and light" "$tmp/f.txt" ||
   err "--frame: no work line: $(grep '^work' "$tmp/f.txt")"
+grep -Eq "^lighting's divider: [0-9.]+ M lanes .* \(divide [0-9.]+, square root [0-9.]+ ticks a lane in (2|4|8)-lane vectors, best of 5\)" "$tmp/f.txt" ||
+  err "--frame: no divider line: $(grep "^lighting's" "$tmp/f.txt")"
 grep -Eq "^check: Mesa .* 0 other; stencils: 0 other$" "$tmp/f.txt" || err "--frame: no Mesa check with 0 other"
 [ -s "$tmp/frame_ours.png" ] && [ -s "$tmp/frame_mesa.png" ] || err "--frame: PNGs missing"
 if command -v python3 >/dev/null; then
@@ -46,6 +49,9 @@ assert w["depth_triangles"] > 0 and w["depth_rows"] > 0 and w["depth_pixels_test
 assert w["stencil_rows"] > 0 and w["stencil_pixels_tested"] > 0, w
 assert w["pixels"] == 192 * 108 and w["lights"] >= 1, w
 assert d["tsc_hz"] > 0
+assert w["visible_pixels"] > 0 and w["divider_lanes"] >= 0, w
+dv = d["divider"]
+assert dv["div_ticks_per_lane"] > 0 and dv["sqrt_ticks_per_lane"] > 0 and dv["lanes"] in (2, 4, 8), dv
 assert d["same_bytes_every_run"] is True and d["ok"] is True
 PY
 else

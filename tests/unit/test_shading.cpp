@@ -105,6 +105,29 @@ SV_TIERED_TEST(Shading, EveryRowKernelShadesAsTheC) {
     }
 }
 
+SV_TIERED_TEST(Shading, DividerLanesCountTheLightFormula) {
+    /* What bench --frame reads the pass's bound from: the lanes that went
+     * through a point or spot light's square root and divides. The C
+     * kernel counts its pixels, a SIMD kernel its whole steps (at least as
+     * many, at most 8 times); none under directional lights alone. */
+    const Scene scene = lit_scene();
+    Scene directional = scene;
+    directional.lights.clear();
+    for (const SceneLight &l : scene.lights) {
+        if (l.kind == LightKind::directional) directional.lights.push_back(l);
+    }
+    ASSERT_FALSE(directional.lights.empty());
+    ASSERT_LT(directional.lights.size(), scene.lights.size());
+    const uint64_t c = render(scene, raster::row_kernels_by_name("c"), 1).shading_divider_lanes;
+    EXPECT_GT(c, 0u);
+    for (const raster::RowKernels *k : runnable_kernels()) {
+        EXPECT_EQ(render(directional, k, 1).shading_divider_lanes, 0u) << k->name;
+        const uint64_t n = render(scene, k, 2).shading_divider_lanes;
+        EXPECT_GE(n, c) << k->name;
+        EXPECT_LE(n, 8 * c) << k->name;
+    }
+}
+
 SV_TIERED_TEST(Shading, LightsPastTheFirstSweepAddAsTheFirst) {
     /* Sixty-four lights of zero intensity, then the scene's five: the
      * first sweep adds +0 everywhere, the second the five lights, so the
