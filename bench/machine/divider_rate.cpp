@@ -41,10 +41,10 @@ constexpr int kChains = 8, kSteps = 4096;
             for (int k = 0; k < kSteps; k++) {                                                     \
                 for (int i = 0; i < kChains; i++) a[i] = OP;                                       \
             }                                                                                      \
-            BEST = std::min<uint64_t>(BEST, __rdtsc() - t0);                                       \
+            (BEST) = std::min<uint64_t>((BEST), __rdtsc() - t0);                                   \
         }                                                                                          \
-        KEEP = a[0];                                                                               \
-        for (int i = 1; i < kChains; i++) KEEP = ADD(KEEP, a[i]);                                  \
+        (KEEP) = a[0];                                                                             \
+        for (int i = 1; i < kChains; i++) (KEEP) = ADD((KEEP), a[i]);                              \
     } while (0)
 
 #define SV_TARGET_AVX512 __attribute__((target("avx512f")))
