@@ -180,20 +180,26 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
         /* What one piece needs in one fine row of the band, computed when
          * first asked for. */
         struct FineRow {
-            bool known = false, reached = false;
-            bool segments_known = false, open_whole = false, cap_whole = false;
+            bool reached = false, open_whole = false, cap_whole = false;
             int first = 0, last = 0;
             RowExtent extent{};
             SegmentColumns open, cap;
         };
+        /* The rows' data, and whether each was computed (bit 0) and its
+         * segments' columns (bit 1): the flags cleared per volume, the data
+         * (larger) written only where asked for. */
         std::vector<FineRow> fine_rows;
+        std::vector<uint8_t> fine_known;
+        constexpr uint8_t kRowKnown = 1, kSegmentsKnown = 2;
         for (std::size_t i = 0; i < bin.size();) {
             const int vol = vp.volume[(std::size_t)bin[i]];
             std::size_t j = i;
             while (j < bin.size() && vp.volume[(std::size_t)bin[j]] == vol) j++;
             const bool zfail = vp.zfail[(std::size_t)vol];
             /* Per piece of the volume and fine row: kept for stage 2. */
-            fine_rows.assign((j - i) * (std::size_t)kCoarse, FineRow{});
+            if (fine_rows.size() < (j - i) * (std::size_t)kCoarse)
+                fine_rows.resize((j - i) * (std::size_t)kCoarse);
+            fine_known.assign((j - i) * (std::size_t)kCoarse, 0);
             for (std::size_t k = i; k < j; k++) {
                 const int q = bin[k];
                 const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
@@ -202,10 +208,11 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                 const uint8_t open = vp.open[(std::size_t)q];
                 const uint8_t delta = vp.delta[(std::size_t)q];
                 FineRow *fine = &fine_rows[(k - i) * (std::size_t)kCoarse];
+                uint8_t *known = &fine_known[(k - i) * (std::size_t)kCoarse];
                 auto fine_row = [&](int r) -> const FineRow & {
                     FineRow &f = fine[r];
-                    if (f.known) return f;
-                    f.known = true;
+                    if (known[r] & kRowKnown) return f;
+                    known[r] |= kRowKnown;
                     const int ty = ty0 + r;
                     f.reached = piece_columns_in_row(edges[(std::size_t)q], grid, grid.y0(ty),
                                                      grid.y1(ty), f.first, f.last, &f.extent);
@@ -214,8 +221,11 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                 /* ... and the columns its segments may meet there. */
                 auto fine_segments = [&](int r) {
                     FineRow &f = fine[r];
-                    if (f.segments_known) return;
-                    f.segments_known = true;
+                    if (known[r] & kSegmentsKnown) return;
+                    known[r] |= kSegmentsKnown;
+                    f.open.n = 0;
+                    f.cap.n = 0;
+                    f.cap_whole = false;
                     const int ty = ty0 + r;
                     f.open_whole = (open & kOpenWhole) != 0;
                     if (open && !f.open_whole) {
@@ -349,9 +359,10 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                     /* The receiver's own triangle fails everywhere: nothing to
                      * walk in z-pass. */
                     if (receiver && !zfail) continue;
-                    FineRow &f = fine_rows[(k - i) * (std::size_t)kCoarse + (std::size_t)r];
-                    if (!f.known) {
-                        f.known = true;
+                    const std::size_t fr = (k - i) * (std::size_t)kCoarse + (std::size_t)r;
+                    FineRow &f = fine_rows[fr];
+                    if (!(fine_known[fr] & kRowKnown)) {
+                        fine_known[fr] |= kRowKnown;
                         f.reached = piece_columns_in_row(edges[(std::size_t)q], grid, Y0, Y1,
                                                          f.first, f.last, &f.extent);
                     }

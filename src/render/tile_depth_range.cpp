@@ -6,6 +6,7 @@
 #include "tile_depth_range.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "pass_bins.h"
 
@@ -23,19 +24,31 @@ TileGrid tile_depth_ranges(const float *depth, int width, int height, int side) 
     g.z_min.assign(n, 1.0f);
     g.z_max.assign(n, 0.0f);
     parallel(g.tiles_y, [&](int ty) {
+        /* Each column's range over the tile row first (element-wise, which
+         * the compiler vectorises), then each tile's over its columns:
+         * one reduction per tile, not per tile and row. Depth holds no
+         * NaN, so the order of the minima changes nothing. */
+        std::vector<float> col_lo(depth + (std::size_t)g.y0(ty) * (std::size_t)width,
+                                  depth + (std::size_t)g.y0(ty) * (std::size_t)width + width);
+        std::vector<float> col_hi(col_lo);
+        for (int y = g.y0(ty) + 1; y < g.y1(ty); y++) {
+            const float *row = depth + (std::size_t)y * (std::size_t)width;
+            float *lo = col_lo.data(), *hi = col_hi.data();
+            for (int x = 0; x < width; x++) {
+                lo[x] = row[x] < lo[x] ? row[x] : lo[x];
+                hi[x] = row[x] > hi[x] ? row[x] : hi[x];
+            }
+        }
         float *lo = g.z_min.data() + (std::size_t)ty * (std::size_t)g.tiles_x;
         float *hi = g.z_max.data() + (std::size_t)ty * (std::size_t)g.tiles_x;
-        for (int y = g.y0(ty); y < g.y1(ty); y++) {
-            const float *row = depth + (std::size_t)y * (std::size_t)width;
-            for (int tx = 0; tx < g.tiles_x; tx++) {
-                float a = lo[tx], b = hi[tx];
-                for (int x = g.x0(tx); x < g.x1(tx); x++) {
-                    a = std::min(a, row[x]);
-                    b = std::max(b, row[x]);
-                }
-                lo[tx] = a;
-                hi[tx] = b;
+        for (int tx = 0; tx < g.tiles_x; tx++) {
+            float a = lo[tx], b = hi[tx];
+            for (int x = g.x0(tx); x < g.x1(tx); x++) {
+                a = std::min(a, col_lo[(std::size_t)x]);
+                b = std::max(b, col_hi[(std::size_t)x]);
             }
+            lo[tx] = a;
+            hi[tx] = b;
         }
     });
     return g;

@@ -113,35 +113,59 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
         auto &mine = on_receiver[(std::size_t)vi];
         mine.assign((std::size_t)n, 0);
         const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-        if (p.num_vertices() >= (1 << 21)) return; /* the keys below hold 21 bits each */
-        auto key = [](int a, int b, int c) {
-            int v[3] = {a, b, c};
-            std::sort(v, v + 3);
-            return ((uint64_t)v[0] << 42) | ((uint64_t)v[1] << 21) | (uint64_t)v[2];
+        auto sorted3 = [](int a, int b, int c, int v[3]) {
+            v[0] = a, v[1] = b, v[2] = c;
+            if (v[0] > v[1]) std::swap(v[0], v[1]);
+            if (v[1] > v[2]) std::swap(v[1], v[2]);
+            if (v[0] > v[1]) std::swap(v[0], v[1]);
         };
-        std::vector<uint64_t> wanted;
-        for (int t = 0; t < n; t++) {
+        bool any = false;
+        for (int t = 0; t < n && !any; t++) {
             const int *i = &vol.indices[3 * (std::size_t)t];
-            if (((i[0] | i[1] | i[2]) & 1) == 0)
-                wanted.push_back(key(i[0] / 2, i[1] / 2, i[2] / 2));
+            any = ((i[0] | i[1] | i[2]) & 1) == 0;
         }
-        if (wanted.empty()) return;
-        std::sort(wanted.begin(), wanted.end());
-        std::vector<uint64_t> found;
-        for (int t = 0; t < p.num_triangles(); t++) {
+        if (!any) return;
+        /* The surface's triangles grouped by their lowest vertex (a
+         * counting sort), each as its other two, in order. */
+        const int nv = p.num_vertices(), nt = p.num_triangles();
+        std::vector<int> first((std::size_t)nv + 2, 0);
+        for (int t = 0; t < nt; t++) {
             const int *i = &p.indices[3 * (std::size_t)t];
-            const uint64_t k = key(i[0], i[1], i[2]);
-            if (std::binary_search(wanted.begin(), wanted.end(), k)) found.push_back(k);
+            first[(std::size_t)std::min({i[0], i[1], i[2]}) + 1]++;
         }
-        std::sort(found.begin(), found.end());
+        for (std::size_t v = 1; v < first.size(); v++) first[v] += first[v - 1];
+        std::vector<int> fill(first.begin(), first.end() - 1);
+        std::vector<std::pair<int, int>> others((std::size_t)first.back());
+        for (int t = 0; t < nt; t++) {
+            const int *i = &p.indices[3 * (std::size_t)t];
+            int v[3];
+            sorted3(i[0], i[1], i[2], v);
+            others[(std::size_t)fill[(std::size_t)v[0]]++] = {v[1], v[2]};
+        }
+        /* A vertex in many triangles (a fan's centre) has its group sorted
+         * and searched, so no mesh makes this quadratic. */
+        constexpr int kScan = 32;
+        for (std::size_t v = 0; v + 1 < first.size(); v++) {
+            if (first[v + 1] - first[v] > kScan) {
+                std::sort(others.begin() + first[v], others.begin() + first[v + 1]);
+            }
+        }
         std::vector<uint8_t> skip((std::size_t)n, 1);
         for (int t = 0; t < n; t++) {
             const int *i = &vol.indices[3 * (std::size_t)t];
             if (((i[0] | i[1] | i[2]) & 1) != 0) continue;
-            mine[(std::size_t)t] = std::binary_search(found.begin(), found.end(),
-                                                      key(i[0] / 2, i[1] / 2, i[2] / 2));
-            skip[(std::size_t)t] = !mine[(std::size_t)t] ||
-                                   degenerate[(std::size_t)vi][(std::size_t)t];
+            int v[3];
+            sorted3(i[0] / 2, i[1] / 2, i[2] / 2, v);
+            bool found = false;
+            if (v[0] >= 0 && v[2] < nv) {
+                const auto begin = others.begin() + first[(std::size_t)v[0]],
+                           end = others.begin() + first[(std::size_t)v[0] + 1];
+                const std::pair<int, int> want{v[1], v[2]};
+                found = end - begin > kScan ? std::binary_search(begin, end, want)
+                                            : std::find(begin, end, want) != end;
+            }
+            mine[(std::size_t)t] = found;
+            skip[(std::size_t)t] = !found || degenerate[(std::size_t)vi][(std::size_t)t];
         }
         cap_open[(std::size_t)vi] = triangles_on_open_edges(vol.indices.data(), n, skip, false);
     });
