@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # Issue 29's table: `shadowvol bench --frame` once per thread count, each
 # in a process of its own (llvmpipe reads LP_NUM_THREADS once per
-# process), the demo scene at --size, and one line per (threads, pass):
+# process), a preset (default the demo scene) at --size, our stencil pass
+# by --stencil's method (default bf), and one line per (threads, pass):
 # ours, its floor, Mesa's, from each run's JSON.
 #
 #   tools/frame_table.sh [BUILD_DIR] [--size WxH] [--threads "1 2"] [--frames N] [--runs N]
-#                        [--out DIR]
+#                        [--preset P] [--stencil bf|db|hier] [--out DIR]
 #
 # BUILD_DIR default build; --out keeps each run's JSON and text there.
 # Needs python3 (tools/packages.txt, job test).
 set -euo pipefail
-build=build size=1280x720 threads="1 2" frames=8 runs=3 out=""
+build=build size=1280x720 threads="1 2" frames=8 runs=3 out="" preset=demo stencil=bf
 while [ $# -gt 0 ]; do
   case "$1" in
     --size) size="$2"; shift 2 ;;
@@ -18,6 +19,8 @@ while [ $# -gt 0 ]; do
     --frames) frames="$2"; shift 2 ;;
     --runs) runs="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
+    --preset) preset="$2"; shift 2 ;;
+    --stencil) stencil="$2"; shift 2 ;;
     -*) echo "tools/frame_table.sh: unknown option $1" >&2; exit 2 ;;
     *) build="$1"; shift ;;
   esac
@@ -27,7 +30,8 @@ sv="$build/shadowvol"
 dir="${out:-$(mktemp -d)}"
 mkdir -p "$dir"
 for t in $threads; do
-  "$sv" bench --frame --size "$size" --threads "$t" --frames "$frames" --runs "$runs" \
+  "$sv" bench --frame --preset "$preset" --size "$size" --threads "$t" --stencil "$stencil" \
+    --frames "$frames" --runs "$runs" \
     --json "$dir/frame_$t.json" >"$dir/frame_$t.txt" 2>&1 || {
     echo "tools/frame_table.sh: bench --frame --threads $t failed:" >&2
     tail -5 "$dir/frame_$t.txt" >&2

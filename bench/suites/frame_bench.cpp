@@ -145,6 +145,10 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
     RenderOptions o;
     o.width = fo.width, o.height = fo.height;
     o.threads = t.threads;
+    t.stencil = fo.stencil;
+    if (!sv::render::stencil_method_by_name(fo.stencil, o.stencil)) {
+        throw std::invalid_argument("--stencil " + fo.stencil);
+    }
     o.cache = &cache;
     o.scratch = &scratch;
     std::vector<PassTimes> ours((std::size_t)t.frames);
@@ -273,9 +277,9 @@ void print_frame_table(FILE *out, const FrameTable &t) {
     std::fprintf(out,
                  "the whole frame: %s, %d frames 1/8 s apart after a warm-up frame, %dx%d, %d "
                  "thread(s) on both sides, each frame drawn %d time(s) (the minimum kept); the "
-                 "camera orbits %.1f deg and light %d %.2f deg a frame\n",
+                 "camera orbits %.1f deg and light %d %.2f deg a frame; our stencil pass: %s\n",
                  t.scene.c_str(), t.frames, t.width, t.height, t.threads, t.runs, kStepDegrees,
-                 t.moving_light, kStepDegrees / 2);
+                 t.moving_light, kStepDegrees / 2, t.stencil.c_str());
     std::fprintf(out, "memory: %.1f GB/s read, %.1f GB/s write (%d thread(s), best of %d)\n",
                  t.rate.read_bytes_per_second / 1e9, t.rate.write_bytes_per_second / 1e9,
                  t.rate.threads, t.rate.runs);
@@ -359,6 +363,7 @@ void frame_table_json(JsonWriter &j, const FrameTable &t) {
     j.key("width"), j.value(t.width);
     j.key("height"), j.value(t.height);
     j.key("threads"), j.value(t.threads);
+    j.key("stencil"), j.value(t.stencil);
     j.key("frames"), j.value(t.frames);
     j.key("runs_per_frame"), j.value(t.runs);
     j.key("first_drawing_wall_ms"), j.value(t.first_drawing_wall_ms);

@@ -23,9 +23,10 @@ struct FrameBenchOptions {
     int width = 1280, height = 720;
     int threads = 0; /* 0: every core */
     int frames = 8;
-    int runs = 3;        /* drawings per frame on each side, the minimum kept */
-    bool mesa = true;    /* Mesa's same frame beside ours */
-    std::string out_dir; /* "" none; else the last frame's PNGs, ours and Mesa's */
+    int runs = 3;               /* drawings per frame on each side, the minimum kept */
+    bool mesa = true;           /* Mesa's same frame beside ours */
+    std::string out_dir;        /* "" none; else the last frame's PNGs, ours and Mesa's */
+    std::string stencil = "bf"; /* our stencil pass's method (stencil_method.h) */
 };
 
 /* The table of a run: a row per pass (ms; floor and Mesa's ms where they
@@ -34,6 +35,7 @@ struct FrameTable {
     std::string preset, scene; /* the name given, and what the scene holds */
     int width = 0, height = 0, threads = 0, frames = 0, runs = 0;
     int moving_light = -1;
+    std::string stencil; /* our stencil method */
     MemoryRate rate;
     struct Row {
         const char *name;

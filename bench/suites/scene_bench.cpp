@@ -178,6 +178,7 @@ int run_preset_passes(const SeedCommand &cmd) {
                           -1);
         const PassTable t = pass_table(cmd, name, width, height);
         print_pass_table(out, t);
+        print_bandwidth_table(out, t);
         /* The whole frame, pass by pass, beside its floor and Mesa's same
          * frame (issue 29; frame_bench.h), on every core. */
         FrameBenchOptions fo;

@@ -39,6 +39,67 @@ PassTiming pass_timing(const Frame &f) {
     return t;
 }
 
+/* Seed 004's Table 1 accounting (section 6 and 5; Aila and
+ * Akenine-Moeller 2004), as a model counted from the frame, not a change
+ * of the bytes the pass writes:
+ *  - stencil in the shadow pass: 8-bit stencil, read and written where a
+ *    pixel is updated per pixel (hier: in its boundary tiles; a tile
+ *    updated wholesale changes its S_min/S_max on chip, no external
+ *    bytes);
+ *  - Z in the shadow pass: 32-bit depth read where a pixel is tested per
+ *    pixel, halved by the seed's assumed lossless Z compression (its
+ *    z_min/z_max on chip);
+ *  - stencil in the lighting pass: one byte per pixel that shows a
+ *    surface, per light; hier only in tiles whose S_min != S_max (the
+ *    boundary tiles of the combined shadow, section 4.1.2), elsewhere the
+ *    on-chip S_min decides;
+ *  - PSV buffer: each 64-byte line of it a volume touches read into the
+ *    on-chip cache and written back once (StencilPassResult::psv_lines;
+ *    reuse across volumes not counted, so at most what a 2 KB cache
+ *    costs);
+ *  - delay stream: each drawn volume triangle written and read back as
+ *    one new 12-byte position (the seed's history compression keeps
+ *    positions only and drops repeated vertices: about one new vertex a
+ *    triangle in a mesh).
+ * Not modelled: the FS buffer's skipping of tiles already in full shadow
+ * (hier here walks them, to keep brute force's bytes: its figures are
+ * upper bounds of the seed's), and brute force's z_min/z_max culling (our
+ * bf tests every covered pixel). */
+struct Bandwidth {
+    double stencil_shadow = 0, z_shadow = 0, stencil_lighting = 0, psv = 0, delay = 0;
+};
+Bandwidth bandwidth_model(const Frame &f, bool hier, int tile) {
+    Bandwidth b;
+    const int w = f.width, h = f.height;
+    for (const auto &lf : f.lights) {
+        b.stencil_shadow += 2.0 * (double)lf.stencil_counters.pixels_written;
+        b.z_shadow += 0.5 * 4.0 * (double)lf.stencil_counters.pixels_tested;
+        if (hier) {
+            b.psv += 2.0 * 64.0 * (double)lf.stencil_psv_lines;
+            const int64_t triangles = lf.drawn_indices / 3;
+            b.delay += 2.0 * 12.0 * (double)triangles;
+        }
+        if (lf.stencil.size() != (std::size_t)w * (std::size_t)h) continue;
+        const int side = hier ? tile : 1;
+        for (int y0 = 0; y0 < h; y0 += side) {
+            for (int x0 = 0; x0 < w; x0 += side) {
+                uint8_t lo = 255, hi = 0;
+                uint64_t shown = 0;
+                for (int y = y0; y < std::min(h, y0 + side); y++) {
+                    for (int x = x0; x < std::min(w, x0 + side); x++) {
+                        const std::size_t i = (std::size_t)y * (std::size_t)w + (std::size_t)x;
+                        lo = std::min(lo, lf.stencil[i]);
+                        hi = std::max(hi, lf.stencil[i]);
+                        shown += f.target.ids[i] >= 0;
+                    }
+                }
+                if (!hier || lo != hi) b.stencil_lighting += (double)shown;
+            }
+        }
+    }
+    return b;
+}
+
 std::vector<std::vector<uint8_t>> stencils(const Frame &f) {
     std::vector<std::vector<uint8_t>> s;
     for (const auto &lf : f.lights) s.push_back(lf.stencil);
@@ -121,6 +182,12 @@ PassTable run_pass_table(ScenePreset &preset, const PassTableOptions &o) {
                     }
                     r.pixels_per_frame += px;
                     r.volume_triangles += tris;
+                    const Bandwidth bw = bandwidth_model(f, r.method == "hier", r.tile);
+                    r.bw_stencil_shadow += bw.stencil_shadow;
+                    r.bw_z_shadow += bw.z_shadow;
+                    r.bw_stencil_lighting += bw.stencil_lighting;
+                    r.bw_psv += bw.psv;
+                    r.bw_delay += bw.delay;
                 }
             }
             r.ms_per_frame += best;
@@ -138,6 +205,10 @@ PassTable run_pass_table(ScenePreset &preset, const PassTableOptions &o) {
         r.ms_per_frame /= std::max(1, o.frames);
         r.pixels_per_frame /= (uint64_t)std::max(1, o.frames);
         r.volume_triangles /= (uint64_t)std::max(1, o.frames);
+        for (double *v : {&r.bw_stencil_shadow, &r.bw_z_shadow, &r.bw_stencil_lighting, &r.bw_psv,
+                          &r.bw_delay}) {
+            *v /= std::max(1, o.frames);
+        }
     }
     return t;
 }
@@ -170,6 +241,26 @@ void print_pass_table(FILE *out, const PassTable &t) {
                       "tile side)\n");
 }
 
+void print_bandwidth_table(FILE *out, const PassTable &t) {
+    std::fprintf(out, "\nbandwidth per frame, MB (seed 004's Table 1 accounting, a model counted "
+                      "from the pass: docs/RENDERING.md)\n");
+    std::fprintf(out, "%-6s %4s %10s %10s %10s %8s %8s %10s %8s\n", "method", "tile", "stencil",
+                 "Z", "lighting", "PSV", "delay", "total", "bf/this");
+    const PassRow *bf = nullptr;
+    for (const PassRow &r : t.rows) {
+        if (r.method == "bf" && r.threads == 1 && !bf) bf = &r;
+    }
+    for (const PassRow &r : t.rows) {
+        if (r.threads != 1) continue;
+        const std::string tile = r.tile ? std::to_string(r.tile) : "-";
+        const double ratio = bf && r.bw_total() > 0 ? bf->bw_total() / r.bw_total() : 0;
+        std::fprintf(out, "%-6s %4s %10.3f %10.3f %10.3f %8.3f %8.3f %10.3f %8.2f\n",
+                     r.method.c_str(), tile.c_str(), r.bw_stencil_shadow * 1e-6,
+                     r.bw_z_shadow * 1e-6, r.bw_stencil_lighting * 1e-6, r.bw_psv * 1e-6,
+                     r.bw_delay * 1e-6, r.bw_total() * 1e-6, ratio);
+    }
+}
+
 void pass_table_json(JsonWriter &j, const PassTable &t) {
     j.begin_object();
     j.key("scene"), j.value(t.scene);
@@ -187,6 +278,12 @@ void pass_table_json(JsonWriter &j, const PassTable &t) {
         j.key("ms_per_frame"), j.value(r.ms_per_frame);
         j.key("pixels_tested_per_frame"), j.value((unsigned long long)r.pixels_per_frame);
         j.key("volume_triangles_per_frame"), j.value((unsigned long long)r.volume_triangles);
+        j.key("bw_stencil_shadow"), j.value(r.bw_stencil_shadow);
+        j.key("bw_z_shadow"), j.value(r.bw_z_shadow);
+        j.key("bw_stencil_lighting"), j.value(r.bw_stencil_lighting);
+        j.key("bw_psv"), j.value(r.bw_psv);
+        j.key("bw_delay"), j.value(r.bw_delay);
+        j.key("bw_total"), j.value(r.bw_total());
         j.key("frames"), j.value(r.frames);
         j.key("runs"), j.value(r.runs);
         j.key("frames_equal_to_bf"), j.value(r.frames_equal);

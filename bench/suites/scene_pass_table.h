@@ -40,6 +40,15 @@ struct PassRow {
     uint64_t volume_triangles = 0; /* per frame: drawn volume triangles, all lights */
     int frames_equal = 0;          /* frames whose every light's stencil equals bf's */
     int frames = 0, runs = 0;
+    /* Seed 004's Table 1 accounting, bytes per frame, all lights
+     * (bandwidth_model in scene_pass_table.cpp): stencil and Z in the
+     * shadow pass, stencil in the lighting pass, the PSV buffer through
+     * its cache, the delay stream. */
+    double bw_stencil_shadow = 0, bw_z_shadow = 0, bw_stencil_lighting = 0, bw_psv = 0,
+           bw_delay = 0;
+    double bw_total() const {
+        return bw_stencil_shadow + bw_z_shadow + bw_stencil_lighting + bw_psv + bw_delay;
+    }
 };
 
 struct PassTable {
@@ -51,6 +60,9 @@ struct PassTable {
 
 PassTable run_pass_table(ScenePreset &preset, const PassTableOptions &o);
 void print_pass_table(FILE *out, const PassTable &t);
+/* The bandwidth rows (1-thread rows: the model does not depend on the
+ * thread count). */
+void print_bandwidth_table(FILE *out, const PassTable &t);
 /* The table as the JSON value of key "passes" (an object). */
 void pass_table_json(JsonWriter &j, const PassTable &t);
 

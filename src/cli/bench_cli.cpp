@@ -15,6 +15,7 @@
 #include "bench_run.h"
 #include "shadowvol_gltf.h"
 #include "cycle_table.h"
+#include "figure1.h"
 #include "frame_bench.h"
 #include "json_report.h"
 #include "machine_limits.h"
@@ -28,6 +29,7 @@
 #include "scene_bench.h"
 #include "scene_presets.h"
 #include "shadowvol_casters.h"
+#include "stencil_method.h"
 #include "routines.h"
 #include "compare.h"
 #include "scaling_cli.h"
@@ -201,6 +203,7 @@ struct CliOptions {
     bool frame = false;             /* --frame: the whole frame, pass by pass (frame_bench.cpp) */
     FrameBenchOptions frameOptions; /* --threads, --frames, --no-mesa, --out (with --frame) */
     bool frameOptionGiven = false;
+    bool figure1 = false;     /* --figure1: seed 004's Figure 1 (figure1.cpp), with --out */
     std::string plot;         /* --plot FILE (with --scaling) */
     long maxTriangles = 0;    /* --max-triangles N (with --scaling) */
     bool regimeGiven = false; /* options the scaling run has no use for */
@@ -328,8 +331,18 @@ CliOptions parse(int argc, char **argv) {
             c.casters = true;
         } else if (opt == "--frame" && !hasValue) {
             c.frame = true;
+        } else if (opt == "--figure1" && !hasValue) {
+            c.figure1 = true;
         } else if (opt == "--threads") {
             c.frameOptions.threads = (int)parse_int(opt, need(), 1, 1024);
+            c.frameOptionGiven = true;
+        } else if (opt == "--stencil") {
+            c.frameOptions.stencil = need();
+            sv::render::StencilMethod m;
+            if (!sv::render::stencil_method_by_name(c.frameOptions.stencil, m)) {
+                bad("--stencil needs " + sv::render::stencil_method_names() + ", not '" +
+                    c.frameOptions.stencil + "'");
+            }
             c.frameOptionGiven = true;
         } else if (opt == "--frames") {
             c.frameOptions.frames = (int)parse_int(opt, need(), 1, 1000);
@@ -371,7 +384,7 @@ CliOptions parse(int argc, char **argv) {
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
                                 opt == "--silhouette" || opt == "--backface" || opt == "--planes" ||
                                 opt == "--scene" || opt == "--casters" || opt == "--frame" ||
-                                opt == "--no-mesa")) {
+                                opt == "--figure1" || opt == "--no-mesa")) {
             bad(opt + " takes no value");
         } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -379,12 +392,21 @@ CliOptions parse(int argc, char **argv) {
             bad("unexpected argument '" + arg + "'");
         }
     }
+    if (c.figure1) {
+        if (c.frame || c.silhouette || c.backface || c.planes || c.scene || c.casters ||
+            c.scaling || c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven ||
+            c.frameOptions.out_dir.empty()) {
+            bad("--figure1 takes --out DIR, --preset and --size only (and needs --out)");
+        }
+        return c;
+    }
     if (c.frame) {
         if (c.silhouette || c.backface || c.planes || c.scene || c.casters || c.scaling ||
             c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
             !c.table.routines.empty() || !c.variants.empty() || c.table.batch ||
             !c.casterRule.empty() || c.maxTriangles) {
-            bad("--frame takes --preset, --size, --threads, --frames, --runs, --no-mesa, --out, "
+            bad("--frame takes --preset, --size, --threads, --stencil, --frames, --runs, "
+                "--no-mesa, --out, "
                 "--quick, --json, --timer and --isa only");
         }
         if (!c.scenePreset.empty()) c.frameOptions.preset = c.scenePreset;
@@ -397,7 +419,9 @@ CliOptions parse(int argc, char **argv) {
         if (c.runs) c.frameOptions.runs = c.runs;
         return c;
     }
-    if (c.frameOptionGiven) bad("--threads, --frames, --no-mesa and --out are options of --frame");
+    if (c.frameOptionGiven) {
+        bad("--threads, --stencil, --frames, --no-mesa and --out are options of --frame");
+    }
     if (c.silhouette || c.backface || c.planes || c.scene || c.casters) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
          * backface_bench.cpp, planes_bench.cpp, casters_bench.cpp). */
@@ -689,7 +713,8 @@ void bench_usage(FILE *out) {
         "light only, shorter rows. JSON schema shadowvol-casters-bench/1.\n"
         "\n"
         "The whole frame: shadowvol bench --frame [--preset simple|knights|demo|FILE]\n"
-        "                 [--size WxH] [--threads N] [--frames N] [--runs N] [--no-mesa]\n"
+        "                 [--size WxH] [--threads N] [--stencil bf|db|hier] [--frames N]\n"
+        "                 [--runs N] [--no-mesa]\n"
         "                 [--out DIR] [--quick] [--json FILE]\n"
         "A scene (default the demo scene at 1280x720, 8 frames, every core) with the\n"
         "camera orbiting and a light moving every frame: each pass (posing, volumes,\n"
@@ -701,6 +726,14 @@ void bench_usage(FILE *out) {
         "(docs/FRAME.md). --out DIR: the last frame, ours and Mesa's, as PNG. --quick:\n"
         "2 frames, 1 run.\n"
         "JSON schema shadowvol-frame-bench/1.\n"
+        "\n"
+        "Seed 004's Figure 1: shadowvol bench --figure1 --out DIR [--preset P] [--size WxH]\n"
+        "A preset's first frame and first light (default knights at 640x400) drawn\n"
+        "plainly four times: the correct shadows, the low-resolution shadows (each 8x8\n"
+        "tile's sample over the tile), the boundary tiles in green, and the image put\n"
+        "together from both (boundary tiles darker), as DIR/P_correct.png,\n"
+        "P_lowres.png, P_boundary.png, P_composed.png. Exit 1 if the composed image\n"
+        "differs from the correct one or hier's stencil from bf's (docs/RENDERING.md).\n"
         "\n"
         "Units are TSC ticks (a fixed reference clock on modern CPUs, not core cycles);\n"
         "the header prints the TSC rate. Options take their value as --opt V or --opt=V.\n"
@@ -744,6 +777,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.frame) {
             return run_frame_bench(seed_command(c), c.frameOptions);
+        }
+        if (c.figure1) {
+            return run_figure1(seed_command(c), c.frameOptions.out_dir, 8);
         }
         models = resolve_models(c.models, kBundledModel, SV_SHARED_MODELS_DIR);
     } catch (const UsageError &e) {

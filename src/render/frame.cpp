@@ -184,6 +184,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             sin.faults = opt.stencil_faults;
             StencilPassResult st = stencil_pass(opt.stencil, sin);
             lf.stencil = std::move(st.stencil);
+            lf.stencil_boundary_tiles = std::move(st.boundary_tile_mask);
+            lf.stencil_psv_lines = st.psv_lines;
             lf.stencil_counters = st.counters;
             lf.ticks_stencil = st.ticks;
             lf.seconds_stencil = st.seconds;

@@ -208,6 +208,9 @@ struct LightFrame {
     double seconds_stencil = 0;
     raster::PassCounters stencil_counters;
     std::vector<uint8_t> stencil; /* the stencil after this light's pass */
+    /* --stencil hier: its boundary tiles (StencilPassResult). */
+    std::vector<uint8_t> stencil_boundary_tiles;
+    uint64_t stencil_psv_lines = 0;
 };
 
 struct Frame {

@@ -113,7 +113,11 @@ constexpr int kCoarse = 4;
 struct RowTotals {
     raster::RowCounts walked;
     uint64_t pairs = 0, boundary_pairs = 0, boundary_tiles = 0, wholesale_pixels = 0;
+    uint64_t psv_lines = 0;
 };
+
+/* Tiles per cache line of the seed's PSV buffer (StencilPassResult). */
+constexpr int kPsvLineTiles = 128;
 
 } // namespace
 
@@ -156,6 +160,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
      * out of their way. */
     const bool use_coarse = !in.faults.tile_box_test_too_tight && !in.faults.sample_outside_tile;
     std::vector<RowTotals> totals((std::size_t)coarse.tiles_y);
+    result.boundary_tile_mask.assign((std::size_t)grid.tiles_x * (std::size_t)grid.tiles_y, 0);
     parallel(coarse.tiles_y, [&](int cy) {
         const std::vector<int> &bin = bands[(std::size_t)cy];
         RowTotals &tot = totals[(std::size_t)cy];
@@ -169,6 +174,8 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
         const std::size_t n = nx * (std::size_t)band_rows;
         std::vector<uint8_t> state(n, 0), count(n, 0), wholesale(n, 0), walked(n, 0);
         std::vector<std::size_t> touched;
+        const std::size_t psv_per_row = (nx + kPsvLineTiles - 1) / kPsvLineTiles;
+        std::vector<uint8_t> psv_seen(psv_per_row * (std::size_t)band_rows, 0);
         bool row_boundary[kCoarse] = {};
         auto touch = [&](std::size_t t) {
             if (state[t] == 0) {
@@ -332,6 +339,12 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                 }
             }
             for (std::size_t t : touched) {
+                const std::size_t line = (t / nx) * psv_per_row + (t % nx) / kPsvLineTiles;
+                tot.psv_lines += psv_seen[line] == 0;
+                psv_seen[line] = 1;
+            }
+            std::fill(psv_seen.begin(), psv_seen.end(), 0);
+            for (std::size_t t : touched) {
                 tot.pairs++;
                 if (state[t] == 2) {
                     tot.boundary_pairs++;
@@ -405,6 +418,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
             for (int tx = 0; tx < grid.tiles_x; tx++) {
                 const std::size_t t = (std::size_t)r * nx + (std::size_t)tx;
                 tot.boundary_tiles += walked[t];
+                result.boundary_tile_mask[(std::size_t)ty * nx + (std::size_t)tx] = walked[t];
                 const uint8_t add = wholesale[t];
                 if (add == 0) continue;
                 const int X0 = grid.x0(tx), X1 = grid.x1(tx);
@@ -424,6 +438,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
         result.tile_volume_pairs += t.pairs;
         result.boundary_pairs += t.boundary_pairs;
         result.boundary_tiles += t.boundary_tiles;
+        result.psv_lines += t.psv_lines;
     }
     result.tiles = (uint64_t)grid.tiles_x * (uint64_t)grid.tiles_y;
     result.ticks = ticks() - k0;

@@ -42,6 +42,16 @@ struct StencilPassResult {
      * pixel (the volume's surface crosses the tile's box); tiles with at
      * least one such volume. */
     uint64_t tile_volume_pairs = 0, boundary_pairs = 0, boundary_tiles = 0, tiles = 0;
+    /* Hierarchical: per tile (row-major, tiles of side `tile`), 1 where
+     * some volume walked it per pixel (seed 004's boundary tiles, its
+     * Figure 1); empty for the other methods. */
+    std::vector<uint8_t> boundary_tile_mask;
+    /* Hierarchical, for seed 004's bandwidth model (Table 1): the PSV
+     * buffer's cache lines each volume touched, summed over volumes. A
+     * line holds 128 tiles of one tile row (the seed's 4 bits per tile:
+     * 2 bits of boundary and first, and the 8-bit count of a 2x2 group of
+     * tiles sharing their sample point, section 5) in 64 bytes. */
+    uint64_t psv_lines = 0;
 };
 
 /* What every method sets up the same way. The volumes' triangles in

@@ -3,7 +3,8 @@
 # of passes for each preset (simple, knights, demo, a file) has a stencil
 # row per method (bf, db, hier) at 1 thread and every core, each checked
 # in the same run (every light's stencil equal to bf's), the same rows in
-# the JSON with their frame and run counts; bad input ends with its
+# the JSON with their frame and run counts, and the bandwidth rows; `bench
+# --figure1` writes seed 004's Figure 1; bad input ends with its
 # documented exit status and a message.
 # usage: check_scene_bench.sh PATH/TO/shadowvol DEMO_SCENE
 set -u
@@ -40,6 +41,27 @@ hier=$(awk '$1 == "stencil" && $2 == "hier" && $4 == 1 {print $7; exit}' "$tmp/o
 for t in 4 8 16 32; do
   grep -qE "^stencil +hier +$t +1 .* yes$" "$tmp/out" || err "knights: no checked row for hier's tile $t"
 done
+
+# The bandwidth rows (seed 004's Table 1 accounting): printed and in the JSON.
+grep -q "^bandwidth per frame, MB" "$tmp/out" || err "knights: no bandwidth table"
+"$sv" bench --scene --preset simple --size 160x128 --quick --json "$tmp/b.json" >/dev/null 2>&1
+[ "$(grep -c '"bw_total": ' "$tmp/b.json")" -ge 3 ] || err "simple: no bw_total in the JSON rows"
+
+# Seed 004's Figure 1: four PNGs, the composed shadow equal to the correct
+# one and hier's stencil to bf's (the tool's own checks), usage errors.
+mkdir -p "$tmp/fig"
+"$sv" bench --figure1 --preset simple --size 160x100 --out "$tmp/fig" >"$tmp/out" 2>&1 \
+  || err "--figure1 exited $?: $(cat "$tmp/out")"
+for k in correct lowres boundary composed; do
+  [ -s "$tmp/fig/simple_$k.png" ] || err "--figure1: no simple_$k.png"
+done
+grep -q "composed = correct: yes (0 pixels differ); hier's stencil = bf's: yes" "$tmp/out" \
+  || err "--figure1: $(cat "$tmp/out")"
+"$sv" bench --figure1 --preset simple >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] || err "--figure1 without --out did not exit 2"
+"$sv" bench --frame --stencil nope >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] || err "bench --frame --stencil nope did not exit 2"
+grep -q "stencil" "$tmp/err" || err "bench --frame --stencil nope: no message"
 
 # Bad input.
 "$sv" bench --scene --preset "$tmp/none.glb" --quick >"$tmp/out" 2>"$tmp/err"
