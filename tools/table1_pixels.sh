@@ -54,7 +54,7 @@ for size in 1280x1024 2048x1536; do
     h32=$(field "$json" hier 32 pixels_tested_per_frame)
     tris=$(field "$json" bf - volume_triangles_per_frame)
     equal=$(grep -c '"frames_equal_to_bf": 2}' "$json")
-    rows=$(grep -c '"pass": "stencil"' "$json")
+    rows=$(grep -c '"pass": "stencil", "method"' "$json")
     echo "| $preset | $size | $tris | $bf | $db | $h8 | $h32 | $(ratio "$bf" "$h8") | $(ratio "$db" "$h8") | $(ratio "$bf" "$h32") | $(ratio "$bf" "$db") | $equal of $rows |" \
       >>"$out/pixels.md.tmp"
     bf_total=$(field "$json" bf - bw_total)
