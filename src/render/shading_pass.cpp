@@ -55,7 +55,9 @@ ShadeLight shade_light(const SceneLight &light) {
  * (a pow and an exp per channel and pixel were most of the lighting pass). */
 const std::vector<uint8_t> &display_table() {
     static const std::vector<uint8_t> table = [] {
-        std::vector<uint8_t> t((std::size_t)kDisplaySteps * kDisplayMax + 1);
+        /* 3 bytes more than the entries, read (never used) by the AVX-512
+         * row kernel's 4-byte gathers. */
+        std::vector<uint8_t> t((std::size_t)kDisplaySteps * kDisplayMax + 1 + 3, 0);
         for (int i = 0; i <= kDisplaySteps * kDisplayMax; i++) {
             const double v = 1.0 - std::exp(-1.2 * i / kDisplaySteps);
             t[(std::size_t)i] = (uint8_t)std::lround(255.0 * std::pow(v, 1.0 / 2.2));

@@ -79,9 +79,10 @@ struct ShadeRowInputs {
      * group has none). */
     double *accum = nullptr;
     std::size_t accum_stride = 0;
-    const uint8_t *display = nullptr; /* to_display's table: kDisplaySteps * kDisplayMax + 1 */
-    uint8_t sky[3] = {0, 0, 0};       /* the row's sky colour, displayed */
-    uint8_t *rgb = nullptr;           /* the row's output, 3 bytes per pixel */
+    const uint8_t *display =
+        nullptr; /* to_display's table: kDisplaySteps * kDisplayMax + 1, and 3 readable bytes */
+    uint8_t sky[3] = {0, 0, 0}; /* the row's sky colour, displayed */
+    uint8_t *rgb = nullptr;     /* the row's output, 3 bytes per pixel */
     /* Added to: the lanes that went through a point or spot light's square
      * root and divides (the C kernel's pixels; a SIMD kernel's whole
      * steps): the divider's work, what bounds the pass. */

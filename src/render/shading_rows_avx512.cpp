@@ -263,30 +263,54 @@ SV_TARGET_AVX512 void shade_row_avx512(const ShadeRowInputs &row) {
             for (int c = 0; c < 3; c++) _mm512_mask_storeu_pd(saved(c), in_row, acc[c]);
             continue;
         }
-        alignas(64) int32_t surface[16];
-        _mm512_store_si512(reinterpret_cast<__m512i *>(surface), tri.surface_ground);
-        alignas(32) int32_t index[3][8];
+        /* Albedo: one surface in every lane (most steps) is a broadcast,
+         * else a gather at 3 * surface + c. */
+        const __m256i surface = _mm512_cvtepi64_epi32(tri.surface_ground);
+        const int first_surface = _mm_cvtsi128_si32(_mm256_castsi256_si128(surface));
+        const bool one_surface = _mm256_cmpeq_epi32_mask(surface,
+                                                         _mm256_set1_epi32(first_surface)) == 0xff;
+        const __m256i albedo_at = _mm256_mullo_epi32(surface, _mm256_set1_epi32(3));
+        __m128i bytes[3]; /* the display bytes of the 8 lanes, per channel (low 8 bytes) */
         for (int c = 0; c < 3; c++) {
             const __m512d albedo =
-                _mm512_set_pd(row.albedo[3 * surface[14] + c], row.albedo[3 * surface[12] + c],
-                              row.albedo[3 * surface[10] + c], row.albedo[3 * surface[8] + c],
-                              row.albedo[3 * surface[6] + c], row.albedo[3 * surface[4] + c],
-                              row.albedo[3 * surface[2] + c], row.albedo[3 * surface[0] + c]);
+                one_surface ? set8(row.albedo[3 * first_surface + c])
+                            : _mm512_i32gather_pd(_mm256_add_epi32(albedo_at, _mm256_set1_epi32(c)),
+                                                  row.albedo, 8);
             const __m512d v = _mm512_min_pd(_mm512_max_pd(_mm512_mul_pd(acc[c], albedo), zero),
                                             set8((double)kDisplayMax));
-            _mm256_store_si256(reinterpret_cast<__m256i *>(index[c]),
-                               _mm512_cvttpd_epi32(
-                                   _mm512_add_pd(_mm512_mul_pd(v, set8((double)kDisplaySteps)),
-                                                 set8(0.5))));
+            const __m256i index = _mm512_cvttpd_epi32(
+                _mm512_add_pd(_mm512_mul_pd(v, set8((double)kDisplaySteps)), set8(0.5)));
+            /* Four bytes read at each index (the table has 3 readable bytes
+             * after its last entry), the first kept. */
+            const __m256i word = _mm256_i32gather_epi32(reinterpret_cast<const int *>(row.display),
+                                                        index, 1);
+            bytes[c] = _mm_mask_blend_epi8((__mmask16)(uint8_t)~visible, _mm256_cvtepi32_epi8(word),
+                                           _mm_set1_epi8((char)row.sky[c]));
         }
-        for (int k = 0; k < lanes; k++) {
-            uint8_t *out = row.rgb + 3 * (px + k);
-            if (id[k] < 0) {
-                std::memcpy(out, row.sky, 3);
-                continue;
-            }
-            out[0] = row.display[index[0][k]], out[1] = row.display[index[1][k]],
-            out[2] = row.display[index[2][k]];
+        /* Planar R, G, B bytes to 8 pixels of 3 interleaved bytes: byte k of
+         * the output is channel k % 3 of pixel k / 3 (two pshufb from R|G,
+         * one from B). */
+        const __m128i rg = _mm_unpacklo_epi64(bytes[0], bytes[1]);
+        const __m128i b = bytes[2];
+        const __m128i from_rg_lo = _mm_setr_epi8(0, 8, -1, 1, 9, -1, 2, 10, -1, 3, 11, -1, 4, 12,
+                                                 -1, 5);
+        const __m128i from_b_lo = _mm_setr_epi8(-1, -1, 0, -1, -1, 1, -1, -1, 2, -1, -1, 3, -1, -1,
+                                                4, -1);
+        const __m128i from_rg_hi = _mm_setr_epi8(13, -1, 6, 14, -1, 7, 15, -1, -1, -1, -1, -1, -1,
+                                                 -1, -1, -1);
+        const __m128i from_b_hi = _mm_setr_epi8(-1, 5, -1, -1, 6, -1, -1, 7, -1, -1, -1, -1, -1, -1,
+                                                -1, -1);
+        const __m128i lo = _mm_or_si128(_mm_shuffle_epi8(rg, from_rg_lo),
+                                        _mm_shuffle_epi8(b, from_b_lo));
+        const __m128i hi = _mm_or_si128(_mm_shuffle_epi8(rg, from_rg_hi),
+                                        _mm_shuffle_epi8(b, from_b_hi));
+        /* 3 bytes per lane in the row, nothing past it. */
+        const unsigned out_bytes = 3u * (unsigned)lanes;
+        uint8_t *out = row.rgb + 3 * px;
+        _mm_mask_storeu_epi8(out, (__mmask16)(out_bytes >= 16 ? 0xffffu : (1u << out_bytes) - 1),
+                             lo);
+        if (out_bytes > 16) {
+            _mm_mask_storeu_epi8(out + 16, (__mmask16)((1u << (out_bytes - 16)) - 1), hi);
         }
     }
 }
