@@ -82,6 +82,7 @@ struct Animation {
 struct AnimatedSurface {
     std::string name; /* as GltfSurface::name */
     int mesh_index = -1, node_index = -1, skin = -1;
+    bool declared_ground = false; /* as GltfSurface::declared_ground */
     /* Topology fixed for every frame: prepare_surface() run once on the
      * MESH-SPACE positions (so welding follows the loader's rule: vertices
      * whose mesh-space positions are bitwise equal weld), with the

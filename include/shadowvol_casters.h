@@ -65,6 +65,21 @@ ShellMap find_shells(const PreparedSurface &s);
 /* Does shell SHELL get the general rule under RULE? */
 bool shell_uses_general_rule(const Shell &shell, CasterRule rule);
 
+/* The ground hint (docs/CASTERS.md, "The ground hint"). A surface declared
+ * GROUND is the top of a solid whose other side is never seen (the
+ * `--ground` quad; a glTF mesh or node with extras "shadowvol_ground":
+ * true, as the demo scene's terrain): the paper's volume of its dark
+ * triangles, dangling edges and all, is then that solid's exact shadow
+ * wherever nothing that can be lit lies below it, so under auto every
+ * shell of it keeps the paper's rule. Nothing here checks the
+ * declaration: the ray truth judges it (a wrong one shows as FAILED).
+ * closed and general are kept as they are. */
+CasterRule surface_caster_rule(CasterRule rule, bool declared_ground);
+/* Shell SHELL's rule under RULE on a surface declared GROUND (or not), and
+ * why, in words: what `shadowvol inspect` prints. */
+bool shell_uses_general_rule(const Shell &shell, CasterRule rule, bool declared_ground);
+std::string shell_rule_reason(const Shell &shell, bool declared_ground);
+
 /* Shell SHELL of S alone: its triangles in their order, prepared again
  * (S's vertices, numbered the same). What `shadowvol verify` proves the
  * general rule on, one shell at a time. */

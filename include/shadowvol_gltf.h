@@ -62,6 +62,10 @@ std::string printable_text(const std::string &s, std::size_t max_bytes = kGltfMa
 
 /* One mesh instance (a node with a mesh, or a mesh loaded on its own):
  * all its triangle primitives merged into one surface. */
+/* The extras key (on a glTF mesh or node) that declares a surface the top
+ * of a solid never seen from below: GltfSurface::declared_ground. */
+constexpr const char *kGroundExtrasKey = "shadowvol_ground";
+
 struct GltfSurface {
     std::string name; /* "<mesh name or mesh#i> @ <node name or node#j>";
                               just the mesh part when loaded at identity */
@@ -81,6 +85,9 @@ struct GltfSurface {
                               was saved in it; a character saved mid-
                               animation loads in that pose. The skinned
                               node's own transform is ignored (glTF) */
+    /* Its mesh or node says "shadowvol_ground": true in its extras: the
+     * top of a solid never seen from below (shadowvol_casters.h). */
+    bool declared_ground = false;
     /* World-space positions, x y z per vertex, computed in double and
      * rounded to float once. Vertices whose mesh-space positions are
      * bitwise equal (-0.0 == +0.0) get bitwise equal world positions, so

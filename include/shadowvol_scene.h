@@ -50,6 +50,10 @@ struct Placement {
 struct SceneSurface {
     std::string name; /* "FILE: <glTF surface name>", or "ground" */
     bool ground = false;
+    /* The top of a solid never seen from below (the ground quad; a glTF
+     * surface with extras "shadowvol_ground": true): under --caster-rule
+     * auto it keeps the paper's rule (shadowvol_casters.h). */
+    bool declared_ground = false;
     PreparedSurface prepared; /* positions in world space */
     std::array<float, 3> albedo{0.8f, 0.8f, 0.8f};
     /* World-space box of the welded vertices. */

@@ -56,7 +56,7 @@ print(tr["off_boundary_mismatches"], tr["mismatches"], lf["drawn_indices"],
 EOF
 }
 
-printf '%-22s %-5s | %-40s | %-40s\n' "" "" "--caster-rule closed (the paper's)" "auto (open shells two-sided)"
+printf '%-22s %-5s | %-40s | %-40s\n' "" "" "--caster-rule closed (the paper's)" "auto (open shells the general rule)"
 printf '%-22s %-5s | %9s %9s %10s %8s | %9s %9s %10s %8s\n' model light \
   "wrong" "indices" "st.pixels" "tk/tri" "wrong" "indices" "st.pixels" "tk/tri"
 for m in "${models[@]}"; do

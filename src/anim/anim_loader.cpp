@@ -534,6 +534,7 @@ void AnimLoader::load_surfaces() {
         s.mesh_index = mesh;
         s.node_index = node;
         s.skin = skin;
+        s.declared_ground = r_.declared_ground(mesh, node);
 
         auto prepare = [&](const std::vector<uint32_t> &indices) {
             try {

@@ -271,11 +271,13 @@ int inspect_main(int argc, char **argv) {
                      sm.shells.size() == 1 ? "" : "s", (long long)sm.closed_shells());
         for (std::size_t k = 0; k < sm.shells.size() && k < kShellsShown; k++) {
             const sv::Shell &sh = sm.shells[k];
+            const bool ground = m.surfaces[i].source.declared_ground;
             std::fprintf(out, "  shell %zu: %lld triangles, %s rule: %s\n", k,
                          (long long)sh.triangles,
-                         sv::shell_uses_general_rule(sh, sv::CasterRule::automatic) ? "general"
-                                                                                    : "paper's",
-                         sh.reason().c_str());
+                         sv::shell_uses_general_rule(sh, sv::CasterRule::automatic, ground)
+                             ? "general"
+                             : "paper's",
+                         sv::shell_rule_reason(sh, ground).c_str());
         }
         if (sm.shells.size() > kShellsShown)
             std::fprintf(out, "  ... %zu more shells (all in --json)\n",
@@ -300,13 +302,16 @@ int inspect_main(int argc, char **argv) {
             const sv::ShellMap &sm = shell_maps[i];
             for (std::size_t k = 0; k < sm.shells.size(); k++) {
                 const sv::Shell &sh = sm.shells[k];
-                std::fprintf(json.f,
-                             "%s{\"triangles\": %lld, \"closed\": %s, \"rule\": \"%s\", "
-                             "\"reason\": %s}",
-                             k ? ", " : "", (long long)sh.triangles, sh.closed() ? "true" : "false",
-                             sv::shell_uses_general_rule(sh, sv::CasterRule::automatic) ? "general"
-                                                                                        : "closed",
-                             json_string(sh.reason()).c_str());
+                std::fprintf(
+                    json.f,
+                    "%s{\"triangles\": %lld, \"closed\": %s, \"rule\": \"%s\", "
+                    "\"reason\": %s}",
+                    k ? ", " : "", (long long)sh.triangles, sh.closed() ? "true" : "false",
+                    sv::shell_uses_general_rule(sh, sv::CasterRule::automatic,
+                                                s.source.declared_ground)
+                        ? "general"
+                        : "closed",
+                    json_string(sv::shell_rule_reason(sh, s.source.declared_ground)).c_str());
             }
             std::fprintf(json.f, "]}");
         }
@@ -530,7 +535,9 @@ int verify_main(int argc, char **argv) {
          * light": the general rule's count. */
         const sv::ShellMap shells = sv::find_shells(s.prepared);
         for (std::size_t k = 0; k < shells.shells.size() && failure.empty(); k++) {
-            if (!sv::shell_uses_general_rule(shells.shells[k], sv::CasterRule::automatic)) continue;
+            if (!sv::shell_uses_general_rule(shells.shells[k], sv::CasterRule::automatic,
+                                             s.source.declared_ground))
+                continue; /* proven above: the paper's volume of the surface */
             const sv::PreparedSurface one = sv::shell_surface(s.prepared, shells, (int)k);
             const auto caster = sv::two_sided_caster(one, sv::find_shells(one),
                                                      sv::CasterRule::general);

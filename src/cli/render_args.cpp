@@ -72,6 +72,15 @@ bool parse_caster_rule_option(ArgReader &a, sv::CasterRule &rule) {
     return true;
 }
 
+bool parse_ground_hints_option(ArgReader &a, bool &use) {
+    if (!a.is("--ground-hints")) return false;
+    const std::string h = a.value();
+    if (h != "use" && h != "ignore")
+        usage_error("--ground-hints needs use or ignore, not '" + quoted(h) + "'");
+    use = h == "use";
+    return true;
+}
+
 bool parse_general_build_option(ArgReader &a, sv::GeneralBuild &build) {
     if (!a.is("--general-build")) return false;
     const std::string b = a.value();
@@ -105,9 +114,10 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
                                               r.has_camera) ||
                    parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
                    parse_caster_rule_option(a, r.caster_rule) ||
+                   parse_ground_hints_option(a, r.ground_hints) ||
                    parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode)) {
             /* the options scene shares: --add, --ground, --light, --camera; --stencil;
-             * --caster-rule; --general-build; --mode */
+             * --caster-rule; --ground-hints; --general-build; --mode */
         } else if (a.is("--size")) {
             parse_frame_size(a.value(), r.width, r.height);
         } else if (a.is("--out")) {

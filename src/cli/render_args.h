@@ -28,6 +28,7 @@ struct RenderArgs {
     sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
     int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
+    bool ground_hints = true;
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     std::string out_dir = "shadowvol-render";
     std::string json_path;
@@ -61,6 +62,10 @@ bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil, 
 /* --caster-rule auto|closed|general (shadowvol_casters.h), shared by
  * render, scene and bench --scene. As parse_render_pass_option. */
 bool parse_caster_rule_option(ArgReader &a, sv::CasterRule &rule);
+/* --ground-hints use|ignore: whether a surface declared ground keeps the
+ * paper's rule under auto (RenderOptions::ground_hints), shared by render
+ * and scene. As parse_render_pass_option. */
+bool parse_ground_hints_option(ArgReader &a, bool &use);
 /* --general-build two-sided|direct (shadowvol_casters.h): how the general
  * rule's volumes are built, shared by render and scene. As
  * parse_render_pass_option. */

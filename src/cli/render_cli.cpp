@@ -87,7 +87,7 @@ void render_usage(FILE *out) {
         out,
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
         "                        [--stencil bf|db|hier] [--stencil-tile N]\n"
-        "                        [--caster-rule auto|closed|general]\n"
+        "                        [--caster-rule auto|closed|general] [--ground-hints use|ignore]\n"
         "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
         "\n"
         "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
@@ -123,6 +123,9 @@ void render_usage(FILE *out) {
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
+        "  --ground-hints H  use (default: under auto, a surface declared ground, the\n"
+        "                    --ground quad or a glTF extras \"shadowvol_ground\", keeps\n"
+        "                    the paper's rule) or ignore (its shells decide)\n"
         "  --general-build B how the general rule's volumes are built: direct (default:\n"
         "                    the general kernels) or two-sided (the paper's kernels on\n"
         "                    the shells and their reverses); the same stencil\n"
@@ -239,6 +242,7 @@ int render_main(int argc, char **argv) {
     opt.stencil = args.stencil;
     opt.stencil_tile = args.stencil_tile;
     opt.caster_rule = args.caster_rule;
+    opt.ground_hints = args.ground_hints;
     opt.general_build = args.general_build;
     opt.kernels = kernels;
     opt.variant = variant;
@@ -426,6 +430,7 @@ int render_main(int argc, char **argv) {
         j.key("height"), j.value(frame.height);
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
+        j.key("ground_hints"), j.value(args.ground_hints);
         j.key("general_build"), j.value(sv::general_build_name(args.general_build));
         j.key("stencil"), j.value(frame.stencil_method);
         j.key("row_kernels"), j.value(frame.kernels);
@@ -438,6 +443,7 @@ int render_main(int argc, char **argv) {
             j.key("name"), j.value(s.name);
             j.key("triangles"), j.value(s.prepared.num_triangles());
             j.key("ground"), j.value(s.ground);
+            j.key("declared_ground"), j.value(s.declared_ground);
             j.end_object();
         }
         j.end_array();

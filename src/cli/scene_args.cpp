@@ -32,9 +32,10 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
                                               r.seq.camera, r.seq.has_camera) ||
                    parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
                    parse_caster_rule_option(a, r.caster_rule) ||
+                   parse_ground_hints_option(a, r.ground_hints) ||
                    parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode)) {
             /* the options render shares: --add, --ground, --light, --camera; --stencil;
-             * --caster-rule; --general-build; --mode */
+             * --caster-rule; --ground-hints; --general-build; --mode */
         } else if (a.is("--animation")) {
             r.seq.animation = a.value();
             if (r.seq.animation.empty()) usage_error("--animation needs a name or an index");

@@ -28,6 +28,7 @@ struct SceneArgs {
     int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
+    bool ground_hints = true;
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     bool check = true; /* render the full frame beside and compare */
     bool truth = true;

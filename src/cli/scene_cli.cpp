@@ -186,7 +186,7 @@ void scene_usage(FILE *out) {
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
         "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
         "                       [--stencil-tile N] [--caster-rule auto|closed|general]\n"
-        "                       [--out DIR] [--json FILE]\n"
+        "                       [--ground-hints use|ignore] [--out DIR] [--json FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
         "KHR_lights_punctual lights and its camera, frame by frame. Each frame builds only\n"
@@ -224,6 +224,9 @@ void scene_usage(FILE *out) {
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
+        "  --ground-hints H  use (default: under auto, a surface declared ground, the\n"
+        "                    --ground quad or a glTF extras \"shadowvol_ground\", keeps\n"
+        "                    the paper's rule) or ignore (its shells decide)\n"
         "  --general-build B direct (default) or two-sided: how the general rule's\n"
         "                    volumes are built; the same stencil\n"
         "  --full            render with no shortcut at all (what the check compares with)\n"
@@ -335,6 +338,7 @@ int scene_main(int argc, char **argv) {
     fast.stencil_tile = args.stencil_tile;
     fast.mode = args.mode;
     fast.caster_rule = args.caster_rule;
+    fast.ground_hints = args.ground_hints;
     fast.general_build = args.general_build;
     sv::render::VolumeCache cache;
     fast.cache = &cache;
@@ -556,6 +560,7 @@ int scene_main(int argc, char **argv) {
         j.key("stencil"), j.value(sv::render::stencil_method_name(args.stencil));
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
+        j.key("ground_hints"), j.value(args.ground_hints);
         j.key("general_build"), j.value(sv::general_build_name(args.general_build));
         j.key("tsc_hz"), j.value(hz);
         j.key("surfaces"), j.value((long long)scene.surfaces.size());

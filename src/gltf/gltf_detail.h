@@ -176,6 +176,9 @@ private:
 
     /* Surfaces (gltf_surfaces.cpp). */
     bool build_surface(const Instance &instance, GltfSurface &surface);
+    /* extras "shadowvol_ground" on MESH or NODE (-1: none) is true; a
+     * value that is not a boolean is refused. */
+    bool declared_ground(int mesh, int node) const;
     void append_primitive(int mesh, int primitive, bool skinned, MeshGeometry &g);
     void append_skin_attributes(int mesh, int primitive, std::size_t vertices, MeshGeometry &g);
     std::vector<Mat4> joint_matrices(int skin) const;

@@ -103,6 +103,8 @@ public:
      * pre-order of the scene; node -1 = at identity (a file without
      * nodes). check_nodes() first. */
     std::vector<std::pair<int, int>> instances() const;
+    /* GltfSurface::declared_ground of MESH placed by NODE (-1: none). */
+    bool declared_ground(int mesh, int node) const;
 
     /* Every component of accessor INDEX (count * components values) after
      * checking every byte range it reads; WHO names the user in messages.

@@ -62,6 +62,9 @@ void Reader::check_nodes() { impl_->loader->compute_world_matrices(); }
 const std::vector<int> &Reader::parent() const { return impl_->loader->parent_; }
 const std::vector<Mat4> &Reader::world() const { return impl_->loader->world_; }
 Mat4 Reader::local_matrix(int node) const { return impl_->loader->local_matrix(node); }
+bool Reader::declared_ground(int mesh, int node) const {
+    return impl_->loader->declared_ground(mesh, node);
+}
 std::vector<int> Reader::scene_roots() const {
     return impl_->model.nodes.empty() ? std::vector<int>{} : impl_->loader->scene_roots();
 }

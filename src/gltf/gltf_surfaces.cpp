@@ -409,6 +409,19 @@ void Loader::place_skinned(int mesh, int skin, const MeshGeometry &g, GltfSurfac
     }
 }
 
+bool Loader::declared_ground(int mesh, int node) const {
+    auto says = [this](const tinygltf::Value &extras, const std::string &label) {
+        if (!extras.IsObject() || !extras.Has(kGroundExtrasKey)) return false;
+        const tinygltf::Value &v = extras.Get(kGroundExtrasKey);
+        if (!v.IsBool())
+            fail(label + ": extras \"" + kGroundExtrasKey + "\" must be true or false");
+        return v.Get<bool>();
+    };
+    const bool by_mesh = says(gltf_.meshes[mesh].extras, mesh_label(mesh));
+    const bool by_node = node >= 0 && says(gltf_.nodes[node].extras, node_label(node));
+    return by_mesh || by_node;
+}
+
 /* Builds one instance's surface; false when it has no triangle (only
  * points or lines, or strips too short). */
 bool Loader::build_surface(const Instance &instance, GltfSurface &surface) {
@@ -434,6 +447,7 @@ bool Loader::build_surface(const Instance &instance, GltfSurface &surface) {
     surface.node_index = instance.node;
     surface.primitives = g.primitives;
     surface.skinned = skin >= 0;
+    surface.declared_ground = declared_ground(instance.mesh, instance.node);
     if (g.indices.empty()) {
         return false;
     }

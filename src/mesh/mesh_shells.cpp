@@ -163,6 +163,20 @@ bool shell_uses_general_rule(const Shell &shell, CasterRule rule) {
     return true;
 }
 
+CasterRule surface_caster_rule(CasterRule rule, bool declared_ground) {
+    return rule == CasterRule::automatic && declared_ground ? CasterRule::closed : rule;
+}
+
+bool shell_uses_general_rule(const Shell &shell, CasterRule rule, bool declared_ground) {
+    return shell_uses_general_rule(shell, surface_caster_rule(rule, declared_ground));
+}
+
+std::string shell_rule_reason(const Shell &shell, bool declared_ground) {
+    if (declared_ground && !shell.closed())
+        return "declared ground (the top of a solid never seen from below): " + shell.reason();
+    return shell.reason();
+}
+
 PreparedSurface shell_surface(const PreparedSurface &s, const ShellMap &shells, int shell) {
     std::vector<uint32_t> idx;
     for (int t = 0; t < s.num_triangles(); t++) {

@@ -289,14 +289,16 @@ void bind_position(int j, double out[3]) {
 
 // --------------------------------------------------------------- the JSON --
 
-std::string mesh_json(const std::string &name, int pos, int idx, int joints = -1,
-                      int weights = -1) {
+// EXTRAS: the mesh's "extras" object, or empty for none.
+std::string mesh_json(const std::string &name, int pos, int idx, int joints = -1, int weights = -1,
+                      const std::string &extras = "") {
     std::string attrs = "\"POSITION\":" + std::to_string(pos);
     if (joints >= 0)
         attrs += ",\"JOINTS_0\":" + std::to_string(joints) +
                  ",\"WEIGHTS_0\":" + std::to_string(weights);
     return "{\"name\":\"" + name + "\",\"primitives\":[{\"attributes\":{" + attrs +
-           "},\"indices\":" + std::to_string(idx) + ",\"mode\":4}]}";
+           "},\"indices\":" + std::to_string(idx) + ",\"mode\":4}]" +
+           (extras.empty() ? "" : ",\"extras\":" + extras) + "}";
 }
 
 std::string translation_json(const double t[3]) { return "\"translation\":" + vec(t, 3); }
@@ -323,15 +325,20 @@ std::vector<std::uint8_t> write_demo_scene_glb() {
     };
 
     // Static geometry.
-    auto add_mesh = [&](const std::string &name, const TriMesh &m) {
+    auto add_mesh = [&](const std::string &name, const TriMesh &m, const std::string &extras = "") {
         const int pos = b.floats(m.positions, 3, "VEC3", true, 34962);
         const int idx = b.indices(m.indices, m.num_vertices());
-        meshes.push_back(mesh_json(name, pos, idx));
+        meshes.push_back(mesh_json(name, pos, idx, -1, -1, extras));
         return static_cast<int>(meshes.size() - 1);
     };
     const int ground = add_mesh("ground", box(-12, 11, -0.2, 0, -12, 11));
     const DemoSceneInfo info = demo_scene_info();
-    const int terr = add_mesh("terrain", terrain(info.terrain_quads, 0.2, 11, -23));
+    // The terrain is open (a height field, no underside) but the top of a
+    // solid nothing stands in: declared ground, it keeps the paper's
+    // shadow-volume rule under --caster-rule auto (docs/CASTERS.md, "The
+    // ground hint"; the key is sv::kGroundExtrasKey).
+    const int terr = add_mesh("terrain", terrain(info.terrain_quads, 0.2, 11, -23),
+                              "{\"shadowvol_ground\":true}");
     const int pillar = add_mesh("pillar", box(-0.3, 0.3, 0, 3, -0.3, 0.3));
     const int wall = add_mesh("wall", box(-4, 4, 0, 2.5, -0.15, 0.15));
     roots.push_back(add_node("{\"name\":\"ground\",\"mesh\":" + std::to_string(ground) + "}"));

@@ -163,6 +163,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         vin.mode = opt.mode;
         vin.caster_rule = opt.caster_rule;
         vin.general_build = opt.general_build;
+        vin.ground_hints = opt.ground_hints;
         /* The general kernels of the paper's variant's instruction set. */
         vin.general_variant = sv_general_variant_for_isa(variant->isa);
         vin.shortcuts = opt.shortcuts;

@@ -163,6 +163,10 @@ struct RenderOptions {
      * (direct: 0.56-0.74x two-sided's ticks on the open character and the
      * demo terrain); it is not timed during a render. */
     GeneralBuild general_build = GeneralBuild::direct;
+    /* Under auto, a surface declared ground keeps the paper's rule
+     * (SceneSurface::declared_ground); false: the declarations are
+     * ignored, to measure them or check one against the truth. */
+    bool ground_hints = true;
     Shortcuts shortcuts;
     ShortcutFaults faults;
     /* Worker threads (oneTBB): 0 = every core; 1 = none. The pictures and

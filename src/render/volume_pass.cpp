@@ -30,6 +30,12 @@ template <class T> bool same_bits(const T &a, const T &b) {
     return std::memcmp(&a, &b, sizeof a) == 0; // NOLINT(bugprone-suspicious-memory-comparison)
 }
 
+/* The rule surface S's volumes follow: a declared ground keeps the
+ * paper's rule under auto, unless the hints are ignored. */
+CasterRule surface_rule(const VolumePassInputs &in, const SceneSurface &s) {
+    return surface_caster_rule(in.caster_rule, in.ground_hints && s.declared_ground);
+}
+
 } // namespace
 
 /* What a (light, surface) pair keeps from frame to frame. */
@@ -117,7 +123,9 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
     parallel(num_surfaces, [&](int si) {
         const SceneSurface &s = scene.surfaces[(std::size_t)si];
         VolumeCache::CasterEntry &c = cache.casters()[(std::size_t)si];
-        const bool same_rule = c.valid && c.rule == in.caster_rule && c.build == in.general_build;
+        /* A declared ground keeps the paper's rule under auto. */
+        const CasterRule rule = surface_rule(in, s);
+        const bool same_rule = c.valid && c.rule == rule && c.build == in.general_build;
         if (same_rule && c.revision == s.revision) return;
         /* The same triangles moved (a posed skin): the shells and their
          * rules stay as decided on the first pose (find_shells sorts; a
@@ -130,7 +138,7 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
                                                               s.prepared.indices.begin()));
         c.valid = true;
         c.revision = s.revision;
-        c.rule = in.caster_rule;
+        c.rule = rule;
         c.build = in.general_build;
         if (same_topology) {
             if (c.caster) refresh_two_sided_caster(s.prepared, *c.caster);
@@ -138,12 +146,12 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
         }
         c.caster = nullptr;
         c.general = nullptr;
-        if (in.caster_rule != CasterRule::closed) {
+        if (rule != CasterRule::closed) {
             const ShellMap shells = find_shells(s.prepared);
             if (in.general_build == GeneralBuild::two_sided)
-                c.caster = two_sided_caster(s.prepared, shells, in.caster_rule);
+                c.caster = two_sided_caster(s.prepared, shells, rule);
             else if (auto t = std::make_shared<GeneralEdgeTable>(
-                         general_edge_table(s.prepared, shells, in.caster_rule));
+                         general_edge_table(s.prepared, shells, rule));
                      t->general_triangles > 0)
                 c.general = std::move(t); /* else the paper's routines, as they are */
         }
@@ -188,7 +196,8 @@ uint64_t volume_pass(const VolumePassInputs &in, VolumeCache &cache,
                                fault.drop_dark_cap_always;
         const unsigned config = (sc.cull_straddling ? 1u : 0u) | (dark_drop ? 2u : 0u) |
                                 (fault.cull_inside_planes ? 4u : 0u) | (sc.cull_always ? 8u : 0u) |
-                                ((unsigned)in.caster_rule << 4) | ((unsigned)in.general_build << 6);
+                                ((unsigned)surface_rule(in, s) << 4) |
+                                ((unsigned)in.general_build << 6);
         const bool same_light = e.valid && same_bits(e.light, L) && e.has_planes == has_planes &&
                                 (!has_planes || same_bits(e.planes, planes));
         const bool reuse = sc.reuse_static && e.valid && same_light && e.variant == variant &&

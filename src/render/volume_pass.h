@@ -26,6 +26,7 @@ struct VolumePassInputs {
     ModeChoice mode = ModeChoice::automatic;
     CasterRule caster_rule = CasterRule::automatic;
     GeneralBuild general_build = GeneralBuild::direct;
+    bool ground_hints = true; /* RenderOptions::ground_hints */
     Shortcuts shortcuts;
     ShortcutFaults faults;
     const sv_variant *variant = nullptr;                 /* the volume routines */

@@ -222,6 +222,7 @@ void add_model(Scene &scene, const std::string &path, const Placement &pl) {
         }
         SceneSurface surf;
         surf.name = path.substr(path.find_last_of('/') + 1) + ": " + g.name;
+        surf.declared_ground = g.declared_ground;
         surf.prepared = prepare_surface(pos.data(), g.num_vertices(), g.indices.data(),
                                         g.indices.size());
         surf.albedo = kPalette[scene.surfaces.size() % (sizeof kPalette / sizeof kPalette[0])];
@@ -245,6 +246,10 @@ void add_ground(Scene &scene) {
     SceneSurface g;
     g.name = "ground";
     g.ground = true;
+    /* The top of the solid below it: everything else stands on or above
+     * its plane (y is the scene's lowest point), so the paper's rule is
+     * exact for it (docs/CASTERS.md, "The ground hint"). */
+    g.declared_ground = true;
     g.albedo = {0.72f, 0.72f, 0.70f};
     g.prepared = prepare_surface(pos, 4, idx, 6);
     update_bounds(g);

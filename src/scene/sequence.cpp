@@ -92,6 +92,7 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
             const AnimatedSurface &as = m->asset.surfaces[si];
             SceneSurface s;
             s.name = m->path + ": " + as.name;
+            s.declared_ground = as.declared_ground;
             s.prepared = as.prepared;
             pose_surface(m->asset, as, m->pose, m->root, s.prepared.positions.data(), skinning_);
             planes_->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),

@@ -86,6 +86,8 @@ done
 expect 2 --stencil-tile
 expect 2 --caster-rule sideways
 grep -q -- '--caster-rule needs auto, closed or general' "$tmp/err" || err "--caster-rule sideways: the message does not list the rules: $(cat "$tmp/err")"
+expect 2 --ground-hints sideways
+grep -q -- '--ground-hints needs use or ignore' "$tmp/err" || err "--ground-hints sideways: the message does not list the choices: $(cat "$tmp/err")"
 expect 2 --general-build sideways
 grep -q -- '--general-build needs two-sided or direct' "$tmp/err" || err "--general-build sideways: the message does not list the builds: $(cat "$tmp/err")"
 expect 2 --light point:nan,1,1
@@ -114,6 +116,7 @@ grep -q -- '--light spot:' "$tmp/out" || err "render --help does not describe --
 grep -q -- '--stencil S' "$tmp/out" || err "render --help does not describe --stencil"
 grep -q -- '--caster-rule R' "$tmp/out" || err "render --help does not describe --caster-rule"
 grep -q -- '--general-build B' "$tmp/out" || err "render --help does not describe --general-build"
+grep -q -- '--ground-hints H' "$tmp/out" || err "render --help does not describe --ground-hints"
 
 [ $fail -eq 0 ] && echo "PASSED: render CLI"
 exit $fail

@@ -62,6 +62,11 @@ grep -q '"schema": "shadowvol-scene/1"' "$tmp/demo.json" || err "JSON without it
 grep -q '"passed": true' "$tmp/demo.json" || err "JSON does not say passed"
 grep -q '"stencil": "bf"' "$tmp/demo.json" || err "JSON does not name the stencil method (bf by default)"
 grep -q '"caster_rule": "auto"' "$tmp/demo.json" || err "JSON does not name the caster rule (auto by default)"
+grep -q '"ground_hints": true' "$tmp/demo.json" || err "JSON does not say the ground hints are used (the default)"
+# The terrain is declared ground in the file: inspect says it keeps the paper's rule, and why.
+"$sv" inspect "$demo" >"$tmp/inspect" 2>"$tmp/err" || err "inspect (the demo scene): $(cat "$tmp/err")"
+grep -A1 '^terrain' "$tmp/inspect" | grep -q "paper's rule: declared ground" \
+  || err "inspect does not say the demo terrain keeps the paper's rule as declared ground: $(grep -A1 '^terrain' "$tmp/inspect")"
 for f in frame_000 frame_003 contact; do
   [ "$(head -c 8 "$tmp/demo/$f.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] \
     || err "demo/$f.png is not a PNG"

@@ -30,6 +30,19 @@ inline sv::SceneSurface surface_of(const Soup &s) {
     return g;
 }
 
+/* SCENE seen from EYE towards TARGET under one point light at LIGHT, its
+ * only light; validated. */
+inline void view_under_point_light(sv::Scene &scene, sv::Vec3d eye, sv::Vec3d target,
+                                   sv::Vec3d light) {
+    scene.camera.eye = eye;
+    scene.camera.target = target;
+    sv::SceneLight l;
+    l.kind = sv::LightKind::point;
+    l.position = light;
+    scene.lights = {l};
+    sv::validate_scene(scene);
+}
+
 /* S and the ground, framed for a WIDTH x HEIGHT picture. */
 inline sv::Scene scene_of(const Soup &s, int width, int height) {
     sv::Scene scene;
@@ -41,6 +54,7 @@ inline sv::Scene scene_of(const Soup &s, int width, int height) {
                 ground.vertex(-4, 0, -4));
     scene.surfaces.push_back(surface_of(ground));
     scene.surfaces.back().ground = true;
+    scene.surfaces.back().declared_ground = true; /* as add_ground's: the cases stand on it */
     scene.camera = sv::frame_camera(scene, (double)width / height);
     scene.lights = {sv::auto_light(scene, sv::LightKind::point),
                     sv::auto_light(scene, sv::LightKind::spot),

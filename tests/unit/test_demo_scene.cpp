@@ -147,6 +147,10 @@ TEST(DemoScene, LoadsTerrainAndClosedSkinnedCharacter) {
     EXPECT_NEAR(lo[1], 0.0, 0.02);
     EXPECT_NEAR(hi[1], 1.865, 0.02);
     EXPECT_NEAR(0.5 * (lo[2] + hi[2]), -2.0, 0.1);
+    // The terrain, open, is declared ground in its mesh's extras
+    // (docs/CASTERS.md, "The ground hint"); nothing else is.
+    for (const auto &s : m.surfaces)
+        EXPECT_EQ(s.declared_ground, s.name == "terrain @ terrain") << s.name;
     for (const auto &s : m.surfaces) {
         if (s.name.rfind("pillar", 0) == 0 || s.name.rfind("wall", 0) == 0 ||
             s.name.rfind("ground", 0) == 0) {

@@ -442,13 +442,7 @@ uint8_t stencil_under_layers(int n, bool closed, CasterRule rule) {
         }
     }
     Scene scene = svtest::scene_of(layers, 64, 64);
-    scene.camera.eye = {0, 0.5, 6};
-    scene.camera.target = {0, 0, 0};
-    SceneLight l;
-    l.kind = LightKind::point;
-    l.position = {0.3, 6, 0.2};
-    scene.lights = {l};
-    validate_scene(scene);
+    svtest::view_under_point_light(scene, {0, 0.5, 6}, {0, 0, 0}, {0.3, 6, 0.2});
     const Frame f = render(scene, ModeChoice::zpass, rule, GeneralBuild::direct, 64, 64);
     /* The picture's centre: the ground near the origin, under every layer
      * (the light is off the layers' diagonals there). */

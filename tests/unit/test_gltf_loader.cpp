@@ -465,6 +465,34 @@ TEST_F(Gltf, ClosedBoxHasPositiveVolume) {
     EXPECT_DOUBLE_EQ(signed_volume(m.surfaces[0].positions, m.surfaces[0].indices), 8.0);
 }
 
+TEST_F(Gltf, GroundIsDeclaredByExtrasOnTheMeshOrTheNode) {
+    // The box once, with MESH_EXTRAS and NODE_EXTRAS ("" for none).
+    auto write = [&](const std::string &mesh_extras, const std::string &node_extras,
+                     const std::string &name) {
+        Doc d;
+        const int pos = d.positions(kCubePositions);
+        const int idx = d.indices(kCubeIndices, kU16);
+        d.meshes.push_back("{\"primitives\":[" + prim(pos, idx) + "]" + mesh_extras + "}");
+        d.node("\"mesh\":0" + node_extras);
+        return write_gltf(d, file(name));
+    };
+    auto declared = [](const fs::path &p) {
+        return sv::load_gltf(p.string()).surfaces.at(0).declared_ground;
+    };
+    const std::string yes = ",\"extras\":{\"shadowvol_ground\":true}";
+    const std::string no = ",\"extras\":{\"shadowvol_ground\":false,\"other\":1}";
+    EXPECT_FALSE(declared(write("", "", "none.gltf")));
+    EXPECT_FALSE(declared(write(no, no, "false.gltf")));
+    EXPECT_TRUE(declared(write(yes, "", "mesh.gltf")));
+    EXPECT_TRUE(declared(write("", yes, "node.gltf")));
+    EXPECT_TRUE(declared(write(no, yes, "either.gltf")));
+    // Anything but a boolean is refused, by name.
+    expect_error(write(",\"extras\":{\"shadowvol_ground\":1}", "", "number.gltf"),
+                 {"mesh 0", "shadowvol_ground", "true or false"});
+    expect_error(write("", ",\"extras\":{\"shadowvol_ground\":\"yes\"}", "string.gltf"),
+                 {"node 0", "shadowvol_ground", "true or false"});
+}
+
 TEST_F(Gltf, MirroringNodeFlipsTheWindingBack) {
     // TRS scale and the same mirror as a matrix: both det < 0.
     for (const std::string node : {"\"mesh\":0,\"scale\":[-1,1,1]",

@@ -62,6 +62,12 @@ TEST(Sequence, DemoSceneHasItsLightsCameraAndWalk) {
     EXPECT_GT(s.camera.near_distance, 0);
     EXPECT_GE(find(s, "terrain @ terrain"), 0);
     EXPECT_GT(s.triangles(), 100000);
+    /* The terrain is declared ground in its file (docs/CASTERS.md, "The
+     * ground hint"), through the animated loader too; nothing else is. */
+    for (const SceneSurface &surface : s.surfaces)
+        EXPECT_EQ(surface.declared_ground,
+                  surface.name.find("terrain @ terrain") != std::string::npos)
+            << surface.name;
 }
 
 TEST(Sequence, OnlyTheCharacterMovesAndTimesClamp) {
