@@ -43,6 +43,7 @@
 #define SHADOWVOL_VERIFY_H
 
 #include "shadowvol.h"
+#include "shadowvol_casters.h"
 #include "shadowvol_mesh.h"
 
 #include <cstdint>
@@ -148,8 +149,28 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
                          const std::vector<const sv_variant *> &variants,
                          const VerifyOptions &options, uint64_t seed);
 
+/* The general rule's volume (issue 27, docs/CASTERS.md) as the direct
+ * kernels build it from TABLE, S's general edge table (general_edge_table
+ * under any rule): the general bytes from the same reference facing and
+ * cull bits (sv_general_facing_from_calculated, sv_general_cull_c_ref),
+ * the silhouette quads with their multiplicities and the caps of every
+ * variant in VARIANTS, each list checked closed (every directed edge as
+ * often as its reverse: the multiplicities balance), then in space: the
+ * winding number at each point must equal the signed count of the
+ * casting triangles its segment to the light crosses, where a triangle
+ * of byte 0 counts +1 with the light behind it and one of byte 2 (its
+ * reverse casts) +1 with the light in front. Where every triangle takes
+ * the general rule that is the number of triangles crossed, so there each
+ * point is also checked in shadow exactly when its segment crosses the
+ * mesh, closed or not (counted in crossing_checked). */
+LightResult verify_general_light(const PreparedSurface &s, const GeneralEdgeTable &table,
+                                 const VerifyLight &l,
+                                 const std::vector<const sv_general_variant *> &variants,
+                                 const VerifyOptions &options, uint64_t seed);
+
 /* The variants this CPU can run. */
 std::vector<const sv_variant *> supported_variants();
+std::vector<const sv_general_variant *> supported_general_variants();
 
 /* ---- The pieces, for tests ---------------------------------------------- */
 

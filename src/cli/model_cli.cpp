@@ -434,6 +434,15 @@ int verify_main(int argc, char **argv) {
     if (status >= 0) return status;
     const std::string &model = args.model;
     if (variants.empty()) variants = sv::supported_variants();
+    /* The general rule's kernels of the same instruction sets (as the
+     * volume pass pairs them). */
+    std::vector<const sv_general_variant *> general_variants;
+    for (const sv_variant *v : variants) {
+        const sv_general_variant *g = sv_general_variant_for_isa(v->isa);
+        if (std::find(general_variants.begin(), general_variants.end(), g) ==
+            general_variants.end())
+            general_variants.push_back(g);
+    }
 
     LoadedModel m;
     if (!load_model("verify", model, args.mesh, args.max_triangles, &m)) return kExitBadModel;
@@ -528,25 +537,26 @@ int verify_main(int argc, char **argv) {
                      (long long)v.counts.inside_mesh, (long long)v.counts.skipped, v.seconds);
         verdicts.push_back(v);
         /* The general rule (issue 27, docs/CASTERS.md), shell by shell:
-         * each shell that auto gives it, made two-sided, through the same
-         * proof. Of a triangle and its reverse exactly one casts, with the
-         * light behind it (+1), so the proof's identity reads "winding
-         * number = the shell's triangles crossed by the segment to the
-         * light": the general rule's count. */
+         * each shell that auto gives it, alone, its volume built by the
+         * direct kernels from its general edge table, proved closed with
+         * its multiplicities and right in space: the winding number is the
+         * number of the shell's triangles the segment to the light
+         * crosses, the general rule's count. */
         const sv::ShellMap shells = sv::find_shells(s.prepared);
         for (std::size_t k = 0; k < shells.shells.size() && failure.empty(); k++) {
             if (!sv::shell_uses_general_rule(shells.shells[k], sv::CasterRule::automatic,
                                              s.source.declared_ground))
                 continue; /* proven above: the paper's volume of the surface */
             const sv::PreparedSurface one = sv::shell_surface(s.prepared, shells, (int)k);
-            const auto caster = sv::two_sided_caster(one, sv::find_shells(one),
-                                                     sv::CasterRule::general);
+            const sv::GeneralEdgeTable table = sv::general_edge_table(one, sv::find_shells(one),
+                                                                      sv::CasterRule::general);
             SurfaceVerdict g;
             const auto g0 = std::chrono::steady_clock::now();
-            for (std::size_t li = 0; li < ls.size() && caster; li++) {
+            for (std::size_t li = 0; li < ls.size(); li++) {
                 const sv::LightResult r =
-                    sv::verify_light(*caster, ls[li], variants, options,
-                                     surface_seed ^ (k + 7) * 0x9E3779B97F4A7C15ull ^ (li + 1));
+                    sv::verify_general_light(one, table, ls[li], general_variants, options,
+                                             surface_seed ^ (k + 7) * 0x9E3779B97F4A7C15ull ^
+                                                 (li + 1));
                 g.lights++;
                 g.volumes += r.variants_checked;
                 g.distinct_volumes += r.distinct_volumes;
@@ -610,8 +620,8 @@ int verify_main(int argc, char **argv) {
                  (long long)t.counts.skipped, (long long)t.counts.ray_retries,
                  (long long)t.counts.inverted_prisms);
     std::fprintf(out,
-                 "general rule (two-sided, docs/CASTERS.md): %d open or non-manifold shell%s "
-                 "proved on their own, %lld volumes (in the counts above).\n",
+                 "general rule (the direct kernels, docs/CASTERS.md): %d open or non-manifold "
+                 "shell%s proved on their own, %lld volumes (in the counts above).\n",
                  general_shells, general_shells == 1 ? "" : "s", (long long)general.volumes);
     if (!failure.empty()) {
         std::fprintf(out, "FAILED: surface %s: %s\n",

@@ -132,7 +132,11 @@ struct FacingInput {
     AlignedVector<uint8_t> facing;  /* numTriangles + 1 bytes, last 1 */
     std::vector<uint8_t> cull_bits; /* per welded vertex */
     bool use_cull_bits = false;
-    std::vector<uint8_t> casts; /* per triangle: 1 when it casts */
+    /* Per triangle, how its prism counts: +1 it casts with the light
+     * behind it (the paper's casting triangle; the general rule's byte
+     * 0), -1 its reverse casts (the general rule's byte 2: the light in
+     * front), 0 it casts nothing (lit under the paper's rule, or culled). */
+    std::vector<int8_t> casts;
 };
 
 FacingInput facing_input(const PreparedSurface &s, const VerifyLight &l) {
@@ -230,7 +234,7 @@ bool expected_at(const MeshTriangles &m, const FacingInput &in, const Point3 &p,
         const bool light_behind = dot(r, m.n[t]) < 0;
         if (light_behind != (in.facing[t] == 0)) e.facing_disagrees = true;
         if (!in.casts[t]) return true;
-        if (light_behind) {
+        if (light_behind == (in.casts[t] > 0)) {
             e.winding += 1;
         } else {
             e.winding -= 1;
@@ -514,64 +518,60 @@ Point3 sample_point(const PreparedSurface &s, const SurfaceFrame &f, const Verif
 
 } // namespace
 
-LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
-                         const std::vector<const sv_variant *> &variants,
-                         const VerifyOptions &options, uint64_t seed) {
-    LightResult res;
-    const int nt = s.num_triangles(), nv = s.num_vertices();
+namespace {
+
+/* The index lists of the variants, each checked closed (within its
+ * capacity, nothing written past it), the equal ones merged. */
+struct BuiltVolumes {
+    std::vector<AlignedVector<int>> lists;
+    std::vector<std::string> names; /* the variants that built each list */
+};
+
+/* Adds LIST, built by variant NAME (N indices returned into CAPACITY ints
+ * plus one sentinel -7), to V; false with RES's failure when it is out of
+ * bounds or not closed. */
+bool add_volume(BuiltVolumes &v, AlignedVector<int> list, int n, std::size_t capacity,
+                const char *name, int num_vertices, const VerifyLight &l, LightResult &res) {
+    res.variants_checked++;
+    if (n < 0 || (size_t)n > capacity || list[capacity] != -7) {
+        res.ok = false;
+        res.failure = std::string("variant ") + name + ", " + l.describe() + ": returned " +
+                      std::to_string(n) + " indices for a capacity of " + std::to_string(capacity) +
+                      " (or wrote past it)";
+        return false;
+    }
+    list.resize((size_t)n);
+    const ClosureResult c = check_closure(list.data(), n, num_vertices);
+    if (!c.closed) {
+        res.ok = false;
+        res.failure = std::string("variant ") + name + ", " + l.describe() +
+                      ": not closed: " + c.problem;
+        return false;
+    }
+    for (size_t k = 0; k < v.lists.size(); k++) {
+        if (v.lists[k] == list) {
+            v.names[k] += std::string(", ") + name;
+            return true;
+        }
+    }
+    v.lists.push_back(std::move(list));
+    v.names.emplace_back(name);
+    return true;
+}
+
+/* The in-space half of the proof: at random points, every distinct list's
+ * winding number against the signed count of IN's casting triangles the
+ * segment to the light crosses. CLOSED_MESH: the paper's rule on a closed
+ * mesh, also "in shadow iff the segment crosses" outside the solid;
+ * GENERAL: the general rule, where that holds at every point (every
+ * crossing counts +1). */
+void check_in_space(const PreparedSurface &s, const VerifyLight &l, const FacingInput &in,
+                    const BuiltVolumes &built, bool closed_mesh, bool general,
+                    const VerifyOptions &options, uint64_t seed, LightResult &res) {
+    const int nt = s.num_triangles();
     const SurfaceFrame f = frame_of(s);
-    const FacingInput in = facing_input(s, l);
-    const size_t capacity = sv_shadow_volume_capacity(s.num_indices(), s.num_sil_edges());
-    const PrepareReport &rep = s.report;
-    const bool closed_mesh = rep.boundary_edges == 0 && rep.non_manifold_edges == 0 &&
-                             rep.same_direction_edges == 0 && nt > 0;
-
-    for (int t = 0; t < nt; t++) {
-        res.casting_triangles += in.casts[t];
-        res.culled_triangles += (in.facing[t] == 0 && !in.casts[t]);
-    }
-
-    /* Build every variant's volume; check each closed; keep distinct lists. */
-    std::vector<AlignedVector<int>> distinct;
-    std::vector<std::string> distinct_names;
-    for (const sv_variant *var : variants) {
-        AlignedVector<uint8_t> facing = in.facing; /* the routines modify it */
-        AlignedVector<int> out(capacity + 1, -7);  /* one sentinel past the end */
-        const int n =
-            nt == 0 ? 0
-                    : sv_create_shadow_volume(var, out.data(), s.indices.data(), s.num_indices(),
-                                              s.sil_edges.data(), s.num_sil_edges(), facing.data(),
-                                              in.use_cull_bits ? in.cull_bits.data() : nullptr);
-        res.variants_checked++;
-        if (n < 0 || (size_t)n > capacity || out[capacity] != -7) {
-            res.ok = false;
-            res.failure = std::string("variant ") + var->name + ", " + l.describe() +
-                          ": returned " + std::to_string(n) + " indices for a capacity of " +
-                          std::to_string(capacity) + " (or wrote past it)";
-            return res;
-        }
-        out.resize((size_t)n);
-        const ClosureResult c = check_closure(out.data(), n, nv);
-        if (!c.closed) {
-            res.ok = false;
-            res.failure = std::string("variant ") + var->name + ", " + l.describe() +
-                          ": not closed: " + c.problem;
-            return res;
-        }
-        bool seen = false;
-        for (size_t k = 0; k < distinct.size() && !seen; k++) {
-            if (distinct[k] == out) {
-                seen = true;
-                distinct_names[k] += std::string(", ") + var->name;
-            }
-        }
-        if (!seen) {
-            distinct.push_back(std::move(out));
-            distinct_names.emplace_back(var->name);
-        }
-    }
-    res.distinct_volumes = (int)distinct.size();
-    if (distinct.empty()) return res;
+    res.distinct_volumes = (int)built.lists.size();
+    if (built.lists.empty()) return;
     if (!(f.radius >= kVerifyMinRadius && f.radius <= kVerifyMaxRadius)) {
         char buf[200];
         std::snprintf(buf, sizeof buf,
@@ -580,15 +580,14 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
                       f.radius, kVerifyMinRadius, kVerifyMaxRadius);
         res.undecided = true;
         res.undecided_reason = buf;
-        return res;
+        return;
     }
 
-    /* In space. */
     const MeshTriangles mesh = mesh_triangles(s);
     const double extrusion = options.extrusion_radii * f.radius;
     const std::vector<Point3> verts = volume_vertices(s, l, extrusion);
     std::vector<WindingVolume> volumes;
-    for (const auto &d : distinct) {
+    for (const auto &d : built.lists) {
         volumes.emplace_back(verts, d.data(), (int)d.size());
         res.volume_triangles += (int64_t)volumes.back().triangles();
     }
@@ -632,13 +631,13 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
                 std::snprintf(buf, sizeof buf,
                               ": point %s has winding number %d in the shadow volume, "
                               "expected %d (casting triangles crossed by its %s, "
-                              "%lld of them with the light in front)",
+                              "%lld of them with the light on the wrong side)",
                               format_point(p).c_str(), w, e.winding,
                               l.light.w != 0.0f ? "segment to the light" : "ray towards the light",
                               (long long)e.inverted);
                 res.ok = false;
-                res.failure = "variant(s) " + distinct_names[k] + ", " + l.describe() + buf;
-                return res;
+                res.failure = "variant(s) " + built.names[k] + ", " + l.describe() + buf;
+                return;
             }
             got_first = w;
         }
@@ -651,16 +650,16 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
         (got_first != 0 ? c.in_shadow : c.lit)++;
         if (inside == Inside::yes) {
             c.inside_mesh++;
-        } else if (closed_mesh && !l.culled && !e.facing_disagrees) {
+        } else if ((closed_mesh || general) && !l.culled && !e.facing_disagrees) {
             c.crossing_checked++;
             if ((got_first != 0) != e.crosses_mesh) {
                 res.ok = false;
-                res.failure = "variant(s) " + distinct_names[0] + ", " + l.describe() + ": point " +
-                              format_point(p) + " outside the closed mesh is " +
-                              (got_first != 0 ? "in shadow" : "lit") + " but its " +
+                res.failure = "variant(s) " + built.names[0] + ", " + l.describe() + ": point " +
+                              format_point(p) + (general ? "" : " outside the closed mesh") +
+                              " is " + (got_first != 0 ? "in shadow" : "lit") + " but its " +
                               (l.light.w != 0.0f ? "segment to" : "ray towards") + " the light " +
                               (e.crosses_mesh ? "crosses" : "does not cross") + " the mesh";
-                return res;
+                return;
             }
         }
     }
@@ -678,7 +677,94 @@ LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
                                "; degenerate, collinear or coincident triangles, or "
                                "features far below the surface's size)";
     }
+}
+
+} // namespace
+
+LightResult verify_light(const PreparedSurface &s, const VerifyLight &l,
+                         const std::vector<const sv_variant *> &variants,
+                         const VerifyOptions &options, uint64_t seed) {
+    LightResult res;
+    const int nt = s.num_triangles(), nv = s.num_vertices();
+    const FacingInput in = facing_input(s, l);
+    const size_t capacity = sv_shadow_volume_capacity(s.num_indices(), s.num_sil_edges());
+    const PrepareReport &rep = s.report;
+    const bool closed_mesh = rep.boundary_edges == 0 && rep.non_manifold_edges == 0 &&
+                             rep.same_direction_edges == 0 && nt > 0;
+
+    for (int t = 0; t < nt; t++) {
+        res.casting_triangles += in.casts[t];
+        res.culled_triangles += (in.facing[t] == 0 && !in.casts[t]);
+    }
+
+    /* Build every variant's volume; check each closed; keep distinct lists. */
+    BuiltVolumes built;
+    for (const sv_variant *var : variants) {
+        AlignedVector<uint8_t> facing = in.facing; /* the routines modify it */
+        AlignedVector<int> out(capacity + 1, -7);  /* one sentinel past the end */
+        const int n =
+            nt == 0 ? 0
+                    : sv_create_shadow_volume(var, out.data(), s.indices.data(), s.num_indices(),
+                                              s.sil_edges.data(), s.num_sil_edges(), facing.data(),
+                                              in.use_cull_bits ? in.cull_bits.data() : nullptr);
+        if (!add_volume(built, std::move(out), n, capacity, var->name, nv, l, res)) return res;
+    }
+    check_in_space(s, l, in, built, closed_mesh, false, options, seed, res);
     return res;
+}
+
+LightResult verify_general_light(const PreparedSurface &s, const GeneralEdgeTable &table,
+                                 const VerifyLight &l,
+                                 const std::vector<const sv_general_variant *> &variants,
+                                 const VerifyOptions &options, uint64_t seed) {
+    LightResult res;
+    const int nt = s.num_triangles(), nv = s.num_vertices();
+    FacingInput in = facing_input(s, l);
+    /* The general bytes (shadowvol.h), from the same reference facing and
+     * cull bits: 0 casts V_t, 2 its reverse casts, 1 nothing. */
+    AlignedVector<uint8_t> general((size_t)nt + 1, SV_GENERAL_NONE);
+    const int unculled = sv_general_facing_from_calculated(general.data(), in.facing.data(),
+                                                           table.lit_byte.data(), nt);
+    res.casting_triangles = in.use_cull_bits
+                                ? sv_general_cull_c_ref(general.data(), nt, s.indices.data(),
+                                                        in.cull_bits.data())
+                                : unculled;
+    res.culled_triangles = unculled - res.casting_triangles;
+    for (int t = 0; t < nt; t++) {
+        const uint8_t b = general[(size_t)t];
+        in.casts[(size_t)t] = (int8_t)(b == SV_GENERAL_DARK ? 1 : b == SV_GENERAL_LIT ? -1 : 0);
+    }
+    const sv_general_edges edges = table.view();
+    const size_t sil_capacity = table.sil_capacity();
+    const size_t capacity = sil_capacity + 2 * (size_t)s.num_indices();
+    BuiltVolumes built;
+    for (const sv_general_variant *var : variants) {
+        /* The silhouette quads, then the caps after them: the volume the
+         * stencil pass draws in z-fail, which must close. */
+        AlignedVector<int> out(capacity + 1, -7);
+        const int sil = var->create_general_sil_triangles(out.data(), general.data(), &edges);
+        int n = sil;
+        if (sil >= 0 && (size_t)sil <= sil_capacity)
+            n += var->create_general_cap_triangles(out.data() + sil, general.data(),
+                                                   s.indices.data(), s.num_indices());
+        if (!add_volume(built, std::move(out), n, capacity, var->name, nv, l, res)) return res;
+    }
+    /* "In shadow iff the segment crosses" holds where every triangle
+     * takes the general rule (a closed shell under the paper's rule holds
+     * it only outside its solid). */
+    const bool all_general = std::all_of(table.lit_byte.begin(), table.lit_byte.end(),
+                                         [](uint8_t b) { return b == SV_GENERAL_LIT; });
+    check_in_space(s, l, in, built, false, all_general, options, seed, res);
+    return res;
+}
+
+std::vector<const sv_general_variant *> supported_general_variants() {
+    std::vector<const sv_general_variant *> out;
+    int count = 0;
+    const sv_general_variant *all = sv_general_variants(&count);
+    for (int i = 0; i < count; i++)
+        if ((all[i].isa & ~sv_cpu_isa()) == 0) out.push_back(&all[i]);
+    return out;
 }
 
 } // namespace sv

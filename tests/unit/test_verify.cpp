@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "model_gen.h"
+#include "open_cases.h"
+#include "shadowvol_casters.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_verify.h"
 
@@ -172,14 +174,30 @@ TEST(VerifyLight, CubeShadowsExactlyBehindIt) {
     EXPECT_GT(r.counts.in_shadow, 100);
 }
 
+// A broken variant, what breaks it, and a word its failure must hold.
+template <class Variant> struct BrokenCase {
+    const char *what;
+    Variant v;
+    const char *expect;
+};
+
+// RUN(variant) gives each case's first failure: it must name the variant
+// and hold the expected word.
+template <class Variant, class Run>
+void expect_each_caught(const std::vector<BrokenCase<Variant>> &cases, Run run) {
+    for (const BrokenCase<Variant> &c : cases) {
+        SCOPED_TRACE(c.what);
+        const std::string failure = run(c.v);
+        EXPECT_NE(failure.find(c.expect), std::string::npos) << "failure: '" << failure << "'";
+        EXPECT_NE(failure.find(c.v.name), std::string::npos) << failure;
+        std::printf("  caught %s: %s\n", c.what, failure.c_str());
+    }
+}
+
 TEST(VerifyLight, CatchesEveryBrokenVolume) {
     const sv::PreparedSurface s = character();
     g_num_triangles = s.num_triangles();
-    struct Case {
-        const char *what;
-        sv_variant v;
-        const char *expect; // a word of the failure message
-    };
+    using Case = BrokenCase<sv_variant>;
     std::vector<Case> cases;
     {
         sv_variant v = broken("drops_a_quad");
@@ -204,30 +222,139 @@ TEST(VerifyLight, CatchesEveryBrokenVolume) {
         v.create_cap_triangles = cap_inverted;
         cases.push_back({"the volume of the lit triangles", v, "winding number"});
     }
-    for (const Case &c : cases) {
-        SCOPED_TRACE(c.what);
-        const std::string failure = run_all(s, {&c.v}, 4, 300);
-        EXPECT_NE(failure.find(c.expect), std::string::npos) << "failure: '" << failure << "'";
-        EXPECT_NE(failure.find(c.v.name), std::string::npos) << failure;
-        std::printf("  caught %s: %s\n", c.what, failure.c_str());
-    }
+    expect_each_caught(cases, [&](const sv_variant &v) { return run_all(s, {&v}, 4, 300); });
 }
 
-// Open and non-manifold meshes: the identity holds for any mesh (the
-// "iff the segment crosses" check is for closed meshes only).
-TEST(VerifyLight, OpenAndNonManifoldMeshes) {
-    // An open box (cube without its top) plus a fin: three triangles on one
-    // edge, and one triangle sharing an edge in the same direction.
+// An open box (cube without its top) plus a fin: three triangles on one
+// edge, and one triangle sharing an edge in the same direction.
+sv::PreparedSurface open_box_with_fin() {
     sv::PreparedSurface c = cube();
     std::vector<float> p(c.positions);
     std::vector<uint32_t> idx(c.indices.begin(), c.indices.end() - 6);
     const uint32_t n = (uint32_t)p.size() / 3;
     for (float f : {0.f, 3.f, 0.f, 0.f, 2.5f, 2.5f}) p.push_back(f);
     idx.insert(idx.end(), {2, 3, n, 3, 2, n + 1, 0, 2, n});
-    const sv::PreparedSurface s = prepare(p, idx);
+    return prepare(p, idx);
+}
+
+// Open and non-manifold meshes: the identity holds for any mesh (the
+// "iff the segment crosses" check is for closed meshes only).
+TEST(VerifyLight, OpenAndNonManifoldMeshes) {
+    const sv::PreparedSurface s = open_box_with_fin();
     ASSERT_GT(s.report.boundary_edges, 0);
     ASSERT_GT(s.report.non_manifold_edges + s.report.same_direction_edges, 0);
     EXPECT_EQ(run_all(s, sv::supported_variants(), 16, 400), "");
+}
+
+// ---- The general rule's direct kernels (issue 27) ----------------------------
+
+// Broken general kernels, each from the reference: a quad dropped; every
+// triangle reversed; the paper's rule (a lit triangle's reverse casts
+// nothing: byte 2 read as 1).
+int gsil_drop_last_quad(int *out, const uint8_t *facing, const sv_general_edges *e) {
+    const int n = sv_create_general_sil_triangles_c_ref(out, facing, e);
+    return n >= 6 ? n - 6 : n;
+}
+void reverse_triangles(int *out, int n) {
+    for (int i = 0; i + 2 < n; i += 3) std::swap(out[i], out[i + 1]);
+}
+int gsil_reversed(int *out, const uint8_t *facing, const sv_general_edges *e) {
+    const int n = sv_create_general_sil_triangles_c_ref(out, facing, e);
+    reverse_triangles(out, n);
+    return n;
+}
+int gcap_reversed(int *out, const uint8_t *facing, const int *idx, int n) {
+    const int m = sv_create_general_cap_triangles_c_ref(out, facing, idx, n);
+    reverse_triangles(out, m);
+    return m;
+}
+int g_general_triangles = 0; // of the surface under test (the sil kernel is not told)
+std::vector<uint8_t> papers_bytes(const uint8_t *facing, int nt) {
+    std::vector<uint8_t> f(facing, facing + nt + 1);
+    for (uint8_t &b : f) b = b == SV_GENERAL_LIT ? (uint8_t)SV_GENERAL_NONE : b;
+    return f;
+}
+int gsil_papers(int *out, const uint8_t *facing, const sv_general_edges *e) {
+    return sv_create_general_sil_triangles_c_ref(out,
+                                                 papers_bytes(facing, g_general_triangles).data(),
+                                                 e);
+}
+int gcap_papers(int *out, const uint8_t *facing, const int *idx, int n) {
+    return sv_create_general_cap_triangles_c_ref(out, papers_bytes(facing, n / 3).data(), idx, n);
+}
+
+// Every light on S, its general edge table under RULE; the first failure
+// ("" when all pass).
+std::string run_general(const sv::PreparedSurface &s, sv::CasterRule rule,
+                        const std::vector<const sv_general_variant *> &vars, int lights, int points,
+                        sv::InSpaceCounts *total = nullptr) {
+    const sv::GeneralEdgeTable table = sv::general_edge_table(s, sv::find_shells(s), rule);
+    sv::VerifyOptions o;
+    o.points_per_light = points;
+    int i = 0;
+    for (const sv::VerifyLight &l : lights_for(s, lights)) {
+        const sv::LightResult r = sv::verify_general_light(s, table, l, vars, o,
+                                                           test_seed() + (uint64_t)i++);
+        if (!r.ok) return r.failure;
+        if (total) total->add(r.counts);
+    }
+    return "";
+}
+
+TEST(VerifyGeneralLight, EveryGeneralKernelPassesOnOpenMeshes) {
+    // Every generated open case of issue 27 and the box with its fin, under
+    // the general rule: closed with the multiplicities, right in space, and
+    // in shadow exactly where the segment to the light crosses the mesh.
+    std::vector<std::pair<std::string, sv::PreparedSurface>> meshes;
+    for (const svgen::Soup &c : svgen::open_cases())
+        meshes.emplace_back(c.name, prepare(c.pos, c.idx));
+    meshes.emplace_back("open box with a fin", open_box_with_fin());
+    sv::InSpaceCounts total;
+    for (const auto &m : meshes) {
+        SCOPED_TRACE(m.first);
+        EXPECT_EQ(run_general(m.second, sv::CasterRule::general, sv::supported_general_variants(),
+                              8, 200, &total),
+                  "");
+    }
+    EXPECT_GT(total.in_shadow, 300);
+    EXPECT_GT(total.lit, 300);
+    EXPECT_GT(total.crossing_checked, 300);
+    // Under auto the closed shells keep the paper's class in the same
+    // table: the character (one closed shell) and the fin's mesh.
+    EXPECT_EQ(run_general(character(), sv::CasterRule::automatic, sv::supported_general_variants(),
+                          4, 200),
+              "");
+}
+
+TEST(VerifyGeneralLight, CatchesEveryBrokenGeneralKernel) {
+    const sv::PreparedSurface s = open_box_with_fin();
+    g_general_triangles = s.num_triangles();
+    using Case = BrokenCase<sv_general_variant>;
+    const sv_general_variant ref = *sv_general_variant_by_name("c_ref");
+    std::vector<Case> cases;
+    {
+        sv_general_variant v = ref;
+        v.name = "drops_a_quad";
+        v.create_general_sil_triangles = gsil_drop_last_quad;
+        cases.push_back({"a missing silhouette quad", v, "not closed"});
+    }
+    {
+        sv_general_variant v = ref;
+        v.name = "reversed";
+        v.create_general_sil_triangles = gsil_reversed;
+        v.create_general_cap_triangles = gcap_reversed;
+        cases.push_back({"every triangle reversed", v, "winding number"});
+    }
+    {
+        sv_general_variant v = ref;
+        v.name = "papers_rule";
+        v.create_general_sil_triangles = gsil_papers;
+        v.create_general_cap_triangles = gcap_papers;
+        cases.push_back({"the paper's rule on an open mesh", v, "winding number"});
+    }
+    expect_each_caught(cases, [&](const sv_general_variant &v) {
+        return run_general(s, sv::CasterRule::general, {&v}, 8, 300);
+    });
 }
 
 } // namespace
