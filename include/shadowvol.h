@@ -439,10 +439,9 @@ int sv_create_general_cap_triangles_c_ref(int *shadowIndices, const uint8_t *fac
 /* AVX2 and AVX-512 (src/core/x86/general_simd.c): the reference's list, in
  * its order (they may write up to the bound past the count, as branch-free
  * variants do). The paper's class goes to the paper's kernel of the same
- * ISA. The AVX-512 one reads the facing bytes of the pairs as the aligned
- * 4-byte words that hold them: up to 3 bytes before facing[0] and past the
- * last byte, within its word (a word never crosses a page, so no read can
- * fault). */
+ * ISA. Like the reference they read no facing byte outside the array
+ * (AVX-512 gathers each pair's byte as the last of the 4 bytes ending at
+ * it). */
 int sv_create_general_sil_triangles_avx2(int *shadowIndices, const uint8_t *facing,
                                          const sv_general_edges *edges);
 int sv_create_general_cap_triangles_avx2(int *shadowIndices, const uint8_t *facing,

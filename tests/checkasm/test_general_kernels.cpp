@@ -6,7 +6,7 @@
 // 4-byte boundary; random bytes (0, 1, 2), all four classes of edges
 // (the paper's with dangling ones, pairs, open edges, shared edges of 2
 // to 5 triangles running either way); the caps likewise; inputs against
-// unmapped pages (the gathers read aligned words only).
+// unmapped pages (the gathers read only bytes of the array).
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include "test_support.h"
@@ -186,7 +186,8 @@ TEST_P(GeneralKernels, CapsAtEveryTailLength) {
 
 TEST_P(GeneralKernels, FacingAgainstUnmappedPagesReadsNothingOutsideItsWords) {
     /* Facing bytes ending at an unmapped page and starting right after
-     * one: the aligned words the gathers read stay inside. */
+     * one: the words the gathers read (each ending at its byte) stay
+     * inside. */
     SCOPED_TRACE(seed_trace());
     Rng rng = rng_for("GeneralKernels.Pages");
     const long page = sysconf(_SC_PAGESIZE);

@@ -29,10 +29,11 @@
  * drawn together (C1 = C2 unless a triangle is culled): one list entry
  * for the two.
  *
- * AVX-512 gathers the facing bytes as the aligned 32-bit words that hold them
- * (vpgatherdd, then a shift): a word never crosses a page, so the read
- * cannot fault, but it may read up to 3 bytes before facing[0] and after
- * facing[numTriangles] within their words (documented in shadowvol.h).
+ * AVX-512 gathers each facing byte as the top byte of the unaligned 32-bit
+ * word that ends at it, facing[p - 3 .. p] (vpgatherdd, scale 1, then a
+ * shift): every byte read lies between facing[0] and the triangle's own
+ * byte, so nothing past the array is read. A lane with p < 3 (the first
+ * three triangles: one block in thousands) reads its byte alone, scalar.
  *
  * Caps (AVX-512): 16 triangles at a time, their 48 indices doubled, each
  * output register of 16 ints made by two vpermt2d (the triangle as it is
@@ -208,15 +209,25 @@ SV_TARGET_AVX2 int sv_create_general_cap_triangles_avx2(int *shadowIndices, cons
 
 #define SV_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,bmi,popcnt")))
 
+/* facing[p] of the live lanes of P (0 in the others), read as the top byte
+ * of facing[p - 3 .. p]: no byte outside facing[0 .. p] is read. */
 SV_TARGET_AVX512 static inline __m512i facing_bytes16(const uint8_t *facing, __m512i p,
                                                       __mmask16 live) {
-    const uintptr_t misalign = (uintptr_t)facing & 3u;
-    const int *base = (const int *)(const void *)(facing - misalign);
-    const __m512i q = _mm512_add_epi32(p, _mm512_set1_epi32((int)misalign));
-    const __m512i words = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), live,
-                                                      _mm512_srli_epi32(q, 2), base, 4);
-    const __m512i shift = _mm512_slli_epi32(_mm512_and_si512(q, _mm512_set1_epi32(3)), 3);
-    return _mm512_and_si512(_mm512_srlv_epi32(words, shift), _mm512_set1_epi32(0xFF));
+    const __mmask16 first3 = _mm512_mask_cmplt_epi32_mask(live, p, _mm512_set1_epi32(3));
+    const __m512i words = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(),
+                                                      (__mmask16)(live & ~first3),
+                                                      _mm512_sub_epi32(p, _mm512_set1_epi32(3)),
+                                                      facing, 1);
+    __m512i bytes = _mm512_srli_epi32(words, 24);
+    if (first3) { /* rare: their words would start before facing[0] */
+        int lanes[16];
+        _mm512_storeu_si512(lanes, p);
+        for (unsigned m = first3; m; m &= m - 1u) {
+            const int k = __builtin_ctz(m);
+            bytes = _mm512_mask_set1_epi32(bytes, (__mmask16)(1u << k), facing[lanes[k]]);
+        }
+    }
+    return bytes;
 }
 
 /* emit_pair's ints by table, per code: which of (v1, v2) each of 16
