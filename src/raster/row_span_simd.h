@@ -68,6 +68,39 @@ SV_TARGET_ROW_SPAN inline void next_span(SpanBounds &s, int &lo, int &hi) {
     s.bound = _mm256_add_pd(s.bound, s.slope);
 }
 
+/* The rows of a triangle inside a band, each with its span: the loop of
+ * every SIMD walk. begin_rows() sets it up (false: no rows), span_of_row()
+ * gives this row's span (false: walk_rows skips the row: its span is empty
+ * or it lies outside a horizontal edge, an edge with no step in x, which
+ * bounds no span), next_row() steps to the next row. E_ROW holds the row's
+ * edge functions at pixel 0. */
+struct RowLoop {
+    int y = 0, y_last = -1;
+    int64_t e_row[3] = {0, 0, 0};
+    SpanBounds sb;
+    bool flat = false;
+};
+
+SV_TARGET_ROW_SPAN inline bool begin_rows(const SetupTriangle &tri, const RowBand &band,
+                                          RowLoop &l) {
+    band_rows_of(tri, band, l.y, l.y_last);
+    if (l.y > l.y_last) return false;
+    for (int e = 0; e < 3; e++) l.e_row[e] = tri.e_origin[e] + tri.step_y[e] * l.y;
+    l.sb = span_bounds(tri, l.e_row);
+    l.flat = tri.step_x[0] == 0 || tri.step_x[1] == 0 || tri.step_x[2] == 0;
+    return true;
+}
+
+SV_TARGET_ROW_SPAN inline bool span_of_row(const SetupTriangle &tri, RowLoop &l, int &lo, int &hi) {
+    next_span(l.sb, lo, hi);
+    return lo <= hi && !(l.flat && outside_flat_edge(tri, l.e_row));
+}
+
+SV_TARGET_ROW_SPAN inline void next_row(const SetupTriangle &tri, RowLoop &l) {
+    for (int e = 0; e < 3; e++) l.e_row[e] += tri.step_y[e];
+    l.y++;
+}
+
 } // namespace sv::raster::detail
 
 #endif

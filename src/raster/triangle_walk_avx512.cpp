@@ -147,23 +147,17 @@ SV_TARGET_AVX512 inline void block16(const PixelConstants &c, const int64_t ex[3
 template <Pass kPass>
 SV_TARGET_AVX512 void walk(const SetupTriangle &tri, const RowBand &band, const WalkBuffers &b,
                            int value, RowCounts &n) {
-    int y_first = 0, y_last = 0;
-    detail::band_rows_of(tri, band, y_first, y_last);
-    if (y_first > y_last) return;
-    int64_t e_row[3];
-    for (int e = 0; e < 3; e++) e_row[e] = tri.e_origin[e] + tri.step_y[e] * y_first;
-    detail::SpanBounds sb = detail::span_bounds(tri, e_row);
+    detail::RowLoop l;
+    if (!detail::begin_rows(tri, band, l)) return;
     const PixelConstants c = pixel_constants(tri, value);
     /* Local counts: a stencil byte store may alias n, a local cannot. */
     uint64_t tested = 0, written = 0, rows = 0;
-    /* A horizontal edge (no step in x) bounds no span: a row outside it
-     * is skipped, as walk_rows skips it (rare: tested only then). */
-    const bool flat = tri.step_x[0] == 0 || tri.step_x[1] == 0 || tri.step_x[2] == 0;
-    for (int y = y_first; y <= y_last; y++) {
+    for (; l.y <= l.y_last; detail::next_row(tri, l)) {
         int lo = 0, hi = 0;
-        detail::next_span(sb, lo, hi);
-        if (lo <= hi && !(flat && detail::outside_flat_edge(tri, e_row))) {
+        if (detail::span_of_row(tri, l, lo, hi)) {
             rows++;
+            const int y = l.y;
+            const int64_t *e_row = l.e_row;
             const std::size_t row = (std::size_t)y * (std::size_t)b.width;
             detail::prefetch_ahead(b.depth, b.stencil, b.width, b.height, y, lo);
             const __m512d zrow = _mm512_set1_pd(detail::row_depth(tri, y));
@@ -181,7 +175,6 @@ SV_TARGET_AVX512 void walk(const SetupTriangle &tri, const RowBand &band, const 
                 if (left <= 16) break;
             }
         }
-        for (int e = 0; e < 3; e++) e_row[e] += tri.step_y[e];
     }
     n.tested += tested;
     n.written += written;
