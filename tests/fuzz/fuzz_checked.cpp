@@ -55,6 +55,37 @@ template <class T> struct Exact {
     Exact &operator=(const Exact &) = delete;
 };
 
+/* A cap routine's counts: NT triangles' indices over NV vertices, now and
+ * then off by a few (not a multiple of 3, or negative). */
+struct CapCounts {
+    int nv, ni;
+    size_t nidx; /* ni, or 0 when negative */
+};
+CapCounts cap_counts(FuzzedDataProvider &d) {
+    const int nt = d.ConsumeIntegralInRange<int>(0, 300),
+              nv = d.ConsumeIntegralInRange<int>(0, 300);
+    int ni = 3 * nt;
+    if (d.ConsumeIntegral<uint8_t>() < 8) ni += d.ConsumeIntegralInRange<int>(-4, 2);
+    return {nv, ni, ni > 0 ? (size_t)ni : 0};
+}
+
+/* N indices, mostly in [0, NV), now and then one out of range. */
+void fill_indices(FuzzedDataProvider &d, int *idx, size_t n, int nv) {
+    for (size_t i = 0; i < n; i++) {
+        idx[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0
+                     ? d.ConsumeIntegralInRange<int>(0, nv - 1)
+                     : d.ConsumeIntegralInRange<int>(-1, nv + 1);
+    }
+}
+
+/* A cap routine's output room: its bound 2 * NIDX, now and then short. */
+size_t cap_capacity(FuzzedDataProvider &d, size_t nidx) {
+    size_t capacity = 2 * nidx;
+    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity)
+        capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    return capacity;
+}
+
 unsigned misalignment(FuzzedDataProvider &d, size_t element) {
     return (unsigned)(d.ConsumeIntegralInRange<unsigned>(0, 3) * element) % 16u;
 }
@@ -235,22 +266,14 @@ void fuzz_cap(FuzzedDataProvider &d, const sv_variant *v) {
             finding("create_cap_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
         return;
     }
-    const int nt = d.ConsumeIntegralInRange<int>(0, 300),
-              nv = d.ConsumeIntegralInRange<int>(0, 300);
-    int ni = 3 * nt;
-    if (d.ConsumeIntegral<uint8_t>() < 8) ni += d.ConsumeIntegralInRange<int>(-4, 2);
-    const size_t nidx = ni > 0 ? (size_t)ni : 0;
+    const CapCounts k = cap_counts(d);
+    const int nv = k.nv, ni = k.ni;
+    const size_t nidx = k.nidx;
     Exact<uint8_t> f((size_t)(nidx / 3), 0);
     for (size_t i = 0; i < nidx / 3; i++) f.p[i] = facing_byte(d);
     Exact<int> idx(nidx, misalignment(d, 4));
-    for (size_t i = 0; i < nidx; i++) {
-        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0
-                       ? d.ConsumeIntegralInRange<int>(0, nv - 1)
-                       : d.ConsumeIntegralInRange<int>(-1, nv + 1);
-    }
-    size_t capacity = 2 * nidx;
-    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity)
-        capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    fill_indices(d, idx.p, nidx, nv);
+    const size_t capacity = cap_capacity(d, nidx);
     Exact<int> out(capacity, misalignment(d, 4));
     const int got = sv_create_cap_triangles_checked(v, out.p, capacity, f.p, idx.p, ni, nv);
     hold_contract("create_cap_triangles", v, got,
@@ -472,22 +495,14 @@ void fuzz_general_cap(FuzzedDataProvider &d, const sv_general_variant *v) {
             finding("create_general_cap_triangles", v->name, "huge count", r, SV_E_OVERFLOW);
         return;
     }
-    const int nt = d.ConsumeIntegralInRange<int>(0, 300),
-              nv = d.ConsumeIntegralInRange<int>(0, 300);
-    int ni = 3 * nt;
-    if (d.ConsumeIntegral<uint8_t>() < 8) ni += d.ConsumeIntegralInRange<int>(-4, 2);
-    const size_t nidx = ni > 0 ? (size_t)ni : 0;
+    const CapCounts k = cap_counts(d);
+    const int nv = k.nv, ni = k.ni;
+    const size_t nidx = k.nidx;
     Exact<uint8_t> f(nidx / 3, misalignment(d, 1));
     for (size_t i = 0; i < nidx / 3; i++) f.p[i] = general_byte(d);
     Exact<int> idx(nidx, misalignment(d, 4));
-    for (size_t i = 0; i < nidx; i++) {
-        idx.p[i] = d.ConsumeIntegral<uint8_t>() < 250 && nv > 0
-                       ? d.ConsumeIntegralInRange<int>(0, nv - 1)
-                       : d.ConsumeIntegralInRange<int>(-1, nv + 1);
-    }
-    size_t capacity = 2 * nidx;
-    if (d.ConsumeIntegral<uint8_t>() < 8 && capacity)
-        capacity -= d.ConsumeIntegralInRange<size_t>(1, capacity);
+    fill_indices(d, idx.p, nidx, nv);
+    const size_t capacity = cap_capacity(d, nidx);
     Exact<int> out(capacity, misalignment(d, 4));
     for (size_t i = 0; i < capacity; i++) out.p[i] = -7;
     const int got = sv_create_general_cap_triangles_checked(v, out.p, capacity, f.p, idx.p, ni, nv);
