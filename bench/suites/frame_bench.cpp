@@ -298,12 +298,16 @@ void print_frame_table(FILE *out, const FrameTable &t) {
             std::fprintf(out, "%10s %8s\n", "-", "-");
         }
     }
-    /* Ticks per unit of work, from a pass's ms (-1: no such row). */
-    auto per = [&](const char *pass, double units) {
+    /* A pass's ms (-1: no such row), and its ticks per unit of work. */
+    auto pass_ms = [&](const char *pass) {
         for (const FrameTable::Row &r : t.rows) {
-            if (std::string(r.name) == pass && units > 0) return r.ours * 1e-3 * t.hz / units;
+            if (std::string(r.name) == pass) return r.ours;
         }
         return -1.0;
+    };
+    auto per = [&](const char *pass, double units) {
+        const double ms = pass_ms(pass);
+        return ms >= 0 && units > 0 ? ms * 1e-3 * t.hz / units : -1.0;
     };
     const FrameTable::Work &w = t.work;
     std::fprintf(out,
@@ -323,7 +327,7 @@ void print_frame_table(FILE *out, const FrameTable &t) {
                                    (dv.sqrt_ticks_per_lane + 2 * dv.div_ticks_per_lane) +
                                w.visible_pixels * dv.div_ticks_per_lane) /
                               t.hz * 1e3;
-    const double lighting_ms = per("lighting", 1) * 1e3 / t.hz;
+    const double lighting_ms = pass_ms("lighting");
     std::fprintf(out,
                  "lighting's divider: %.2f M lanes through a light's square root and 2 divides, "
                  "%.2f M visible pixels' ray divide; at this core's rate (divide %.2f, square root "

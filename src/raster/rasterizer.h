@@ -209,7 +209,8 @@ public:
     /* The rows of T inside BAND: depth pass into T's depth and ids. */
     void walk_depth(const SetupTriangle &tri, Target &t, RowBand band, RowCounts &r) const;
     /* The rows of TRI inside BAND: stencil pass against DEPTH into
-     * STENCIL (both WIDTH pixels per row, with kFrameSlack after them). */
+     * STENCIL (both WIDTH pixels per row; DEPTH with kFrameSlack after it:
+     * row_kernels.h's WalkBuffers). */
     void walk_stencil(const SetupTriangle &tri, const float *depth, uint8_t *stencil, int width,
                       int height, RowBand band, StencilMode mode, RowCounts &r) const;
     /* walk_stencil with the depth-bounds test BOUNDS first (the C rows:
