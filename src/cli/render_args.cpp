@@ -138,6 +138,13 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
             usage_error("unknown option '" + quoted(a.arg()) + "'");
         }
     }
+    for (const sv::ModelPlacement &m : r.models) {
+        if (!m.animation.empty()) {
+            usage_error("--add " + quoted(m.path) + ":" + quoted(m.animation) +
+                        ": render draws the files at rest; an animation is shadowvol scene's (a "
+                        "file name with a ':' is written with a ':' after it)");
+        }
+    }
     return r;
 }
 

@@ -97,7 +97,9 @@ void render_usage(FILE *out) {
         "With no scene options: the bundled character on a ground plane.\n"
         "\n"
         "scene:\n"
-        "  --add FILE[@x,y,z[,yaw_degrees[,scale]]]   a glTF model, placed (repeatable)\n"
+        "  --add FILE[@x,y,z[,yaw_degrees[,scale]]]   a glTF model, placed (repeatable);\n"
+        "                                a file name that holds a ':' is written with a ':'\n"
+        "                                after it (FILE:ANIMATION is shadowvol scene's)\n"
         "  --ground                      a ground plane under the models\n"
         "  --light point:x,y,z[,range]   a point light (repeatable, any kind)\n"
         "  --light spot:x,y,z,dx,dy,dz,inner_deg,outer_deg\n"
@@ -182,7 +184,7 @@ int render_main(int argc, char **argv) {
     }
     const bool bundled = args.models.empty();
     if (bundled) {
-        args.models.push_back({std::string(SV_MODELS_DIR) + "/character_1344.glb", {}});
+        args.models.push_back({std::string(SV_MODELS_DIR) + "/character_1344.glb", {}, {}});
         args.ground = true;
     }
 

@@ -23,6 +23,7 @@ double parse_number(const std::string &text, const std::string &what) {
 
 SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
     SceneArgs r;
+    std::string file_animation; /* FILE:ANIMATION, the same as --animation */
     ArgReader a(argc, argv);
     while (a.next()) {
         if (a.is_flag("--help") || a.is_flag("-h")) {
@@ -77,11 +78,19 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
             const sv::ModelPlacement m = sv::parse_model_placement(a.arg());
             r.seq.file = m.path;
             r.seq.placement = m.placement;
+            file_animation = m.animation;
         } else {
             usage_error("one scene file only (add more with --add): '" + quoted(a.arg()) + "'");
         }
     }
     if (r.has_time && r.frames) usage_error("--frames and --time exclude each other");
+    if (!file_animation.empty()) {
+        if (!r.seq.animation.empty()) {
+            usage_error(quoted(r.seq.file) + ": its animation is given twice (FILE:" +
+                        quoted(file_animation) + " and --animation)");
+        }
+        r.seq.animation = file_animation;
+    }
     return r;
 }
 

@@ -182,7 +182,8 @@ sv::render::Image contact_sheet(const std::vector<sv::render::Image> &tiles) {
 void scene_usage(FILE *out) {
     std::fprintf(
         out,
-        "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]]] [--add FILE[@...]] [--animation A]\n"
+        "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]][:A]] [--add FILE[@...][:A]]\n"
+        "                       [--animation A]\n"
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
         "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
         "                       [--stencil-tile N] [--caster-rule auto|closed|general]\n"
@@ -200,8 +201,13 @@ void scene_usage(FILE *out) {
         "DIR/contact.png. With no FILE: the project's demo scene (%s).\n"
         "\n"
         "scene:\n"
-        "  --add FILE[@x,y,z[,yaw_degrees[,scale]]]  another glTF file (its first animation)\n"
-        "  --animation A     the scene file's animation, by name or index (default: its first)\n"
+        "  --add FILE[@x,y,z[,yaw_degrees[,scale]]][:A]  another glTF file, playing its\n"
+        "                    animation A (a name or an index; default: its first)\n"
+        "  --animation A     the scene file's animation, by name or index (default: its\n"
+        "                    first); FILE:A says the same\n"
+        "                    A is the text after the last ':'; a file name that holds a ':'\n"
+        "                    is written with a ':' after it (a:b.glb: plays its first),\n"
+        "                    one that holds a '@' with a placement (a@b.glb@0,0,0)\n"
         "  --ground          a ground plane under everything\n"
         "  --light L         a light besides the file's (the syntax of shadowvol render);\n"
         "                    a file without lights gets point, spot and directional auto lights\n"
@@ -277,6 +283,13 @@ int scene_main(int argc, char **argv) {
         seq = std::make_unique<sv::SceneSequence>(args.seq);
     } catch (const sv::GltfError &e) {
         std::fprintf(stderr, "shadowvol scene: %s\n", e.what());
+        if (!args.seq.animation.empty() && !args.seq.adds.empty()) {
+            /* What a new user tried (issue 30): --animation for the file just added. */
+            std::fprintf(stderr,
+                         "note: --animation is the scene file's (%s); an added file's is "
+                         "--add FILE:ANIMATION\n",
+                         args.seq.file.c_str());
+        }
         return kExitBadModel;
     } catch (const sv::PrepareError &e) {
         std::fprintf(stderr, "shadowvol scene: %s: %s\n", args.seq.file.c_str(), e.what());

@@ -35,16 +35,19 @@ std::vector<double> parse_numbers(const std::string &text, const std::string &wh
 
 ModelPlacement parse_model_placement(const std::string &text) {
     ModelPlacement m;
-    const std::size_t at = text.rfind('@');
-    m.path = text.substr(0, at);
+    const std::size_t colon = text.rfind(':');
+    const std::string placed = text.substr(0, colon);
+    if (colon != std::string::npos) m.animation = text.substr(colon + 1);
+    const std::size_t at = placed.rfind('@');
+    m.path = placed.substr(0, at);
     if (m.path.empty())
         throw SceneError("--add needs a file name, not '" + printable_text(text) + "'");
     if (at == std::string::npos) return m;
-    const std::vector<double> v = parse_numbers(text.substr(at + 1),
+    const std::vector<double> v = parse_numbers(placed.substr(at + 1),
                                                 "--add " + printable_text(text));
     if (v.size() < 3 || v.size() > 5) {
         throw SceneError("--add " + printable_text(text) +
-                         ": expected FILE@x,y,z[,yaw_degrees[,scale]]");
+                         ": expected FILE@x,y,z[,yaw_degrees[,scale]][:ANIMATION]");
     }
     m.placement.translation = {v[0], v[1], v[2]};
     if (v.size() > 3) m.placement.yaw_degrees = v[3];

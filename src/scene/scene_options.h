@@ -1,7 +1,7 @@
 /*
  * The scene's command-line placement syntax (issue 12), parsed once for
  * every subcommand that builds a scene:
- *   FILE[@x,y,z[,yaw_degrees[,scale]]]
+ *   FILE[@x,y,z[,yaw_degrees[,scale]]][:ANIMATION]
  *   point:x,y,z[,range]
  *   spot:x,y,z,dx,dy,dz,inner_degrees,outer_degrees
  *   dir:x,y,z                    (the direction the light travels)
@@ -25,8 +25,15 @@ namespace sv {
 struct ModelPlacement {
     std::string path;
     Placement placement;
+    /* NAME or INDEX of the file's animation (issue 30); empty: its first. */
+    std::string animation;
 };
 
+/* ANIMATION is the text after the last ':' (so it holds no ':'; such a
+ * name is given by its index), the placement the text after the last '@'
+ * before it. A file name that holds a ':' is written with a ':' after it
+ * (an empty ANIMATION: the file's first), one that holds a '@' with a
+ * placement after it (dir@x/a.glb@0,0,0). */
 ModelPlacement parse_model_placement(const std::string &text);
 /* Intensity is left at 0 (meaning: choose), see default_intensity. */
 SceneLight parse_light(const std::string &text);

@@ -52,7 +52,7 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
     : skinning_(o.skinning ? o.skinning : best_skinning_kernel()),
       planes_(o.planes ? o.planes : sv_best_planes_variant()), aspect_(o.aspect) {
     std::vector<ModelPlacement> files;
-    files.push_back({o.file, o.placement});
+    files.push_back({o.file, o.placement, o.animation});
     files.insert(files.end(), o.adds.begin(), o.adds.end());
     for (std::size_t fi = 0; fi < files.size(); fi++) {
         auto m = std::make_shared<Model>();
@@ -60,13 +60,12 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
         m->asset = load_animated_gltf(files[fi].path);
         check_placement(files[fi].path, files[fi].placement);
         m->root = placement_matrix(files[fi].placement);
-        if (!m->asset.animations.empty()) {
-            m->animation = fi == 0 && !o.animation.empty() ? find_animation(m->asset, o.animation)
-                                                           : 0;
-        } else if (fi == 0 && !o.animation.empty()) {
-            throw GltfError(m->path + ": --animation " + o.animation +
-                            ": the file has no animations");
-        }
+        /* Its own (the main file: --animation), else its first. */
+        const std::string &wanted = files[fi].animation;
+        if (!wanted.empty())
+            m->animation = find_animation(m->asset, wanted); /* names the file, lists them */
+        else if (!m->asset.animations.empty())
+            m->animation = 0;
         m->node_moves.assign(m->asset.nodes.size(), 0);
         if (m->animation >= 0) {
             for (const AnimChannel &c : m->asset.animations[(std::size_t)m->animation].channels) {

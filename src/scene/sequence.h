@@ -34,7 +34,8 @@ struct SequenceOptions {
     /* NAME or INDEX of the main file's animation; empty: its first one (a
      * file without animations is a still scene). */
     std::string animation;
-    /* More files, placed; each plays its first animation, if any. */
+    /* More files, placed; each plays its own animation (ModelPlacement's),
+     * else its first, if any. */
     std::vector<ModelPlacement> adds;
     bool ground = false;
     /* Lights added to the file's (KIND:auto placed around the surfaces at

@@ -102,6 +102,8 @@ expect 2 --camera eye=0,1,2,target=0,1,2
 expect 2 --camera eye=0,1,2,target=0,0,0,fov=0
 expect 2 --add "$models/character_1344.glb@1,2"
 expect 2 --add "$models/character_1344.glb@0,0,0,0,-1"
+expect 2 --add "$models/character_1344.glb:walk"  # an animation is scene's (issue 30)
+grep -q "render draws the files at rest" "$tmp/err" || err "render --add FILE:walk: the refusal does not say why: $(cat "$tmp/err")"
 expect 2 --kernels mmx
 expect 2 --variant nope
 expect 2 --frobnicate

@@ -140,6 +140,30 @@ expect 3 --add "$tmp/missing.glb"
 printf 'not a gltf' >"$tmp/junk.glb"
 expect 3 "$tmp/junk.glb"
 
+# One animation per added file (issue 30): FILE[@...]:ANIMATION, by name or
+# index; a refusal names the file it is about; a file name with a ':' is
+# written with a ':' after it.
+"$sv" scene --size 64x48 --frames 1 --no-truth --no-check --out "$tmp/add" \
+    --add "$demo@30,0,0:0" >"$tmp/out" 2>"$tmp/err" || err "scene --add DEMO@30,0,0:0 exited $?: $(cat "$tmp/err")"
+[ "$(grep -c "animation 0 'walk'" "$tmp/out")" -eq 2 ] \
+  || err "scene --add DEMO:0: the added file does not play its walk: $(head -4 "$tmp/out")"
+expect 0 --add "$demo:walk"
+expect 3 --add "$demo:run"
+grep -q "^shadowvol scene: $demo: no animation 'run'; the animations are: 0 'walk'" "$tmp/err" \
+  || err "--add DEMO:run: the refusal does not name the added file with its list: $(cat "$tmp/err")"
+# What a new user tried: --animation with only --add files is the scene file's; the note says so.
+expect 3 --add "$demo" --animation 3
+grep -q -- "note: --animation is the scene file's .*--add FILE:ANIMATION" "$tmp/err" \
+  || err "--add DEMO --animation 3: no note on --add FILE:ANIMATION: $(cat "$tmp/err")"
+expect 0 "$demo:walk"
+expect 2 "$demo:walk" --animation 0
+grep -q "given twice" "$tmp/err" || err "FILE:A with --animation: the refusal does not say why: $(cat "$tmp/err")"
+cp "$demo" "$tmp/a:b.glb"
+expect 0 --add "$tmp/a:b.glb@0,0,0:"
+expect 0 --add "$tmp/a:b.glb:walk"
+expect 3 --add "$tmp/a:b.glb"
+grep -q "$tmp/a" "$tmp/err" || err "--add a:b.glb: the refusal does not name the file it tried: $(cat "$tmp/err")"
+
 # A hostile argument (100 KB, with control characters and bytes that are
 # not UTF-8) is quoted bounded and printable in the refusal (issue 17): at
 # most 300 input bytes per quote (sv::kGltfMaxQuotedBytes), a few quotes.

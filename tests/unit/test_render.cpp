@@ -414,6 +414,22 @@ TEST(Scene, BadInputIsRefusedClearly) {
     EXPECT_EQ(m.path, "dir@x/a.glb");
     EXPECT_EQ(m.placement.yaw_degrees, 90);
     EXPECT_EQ(m.placement.scale, 2);
+    EXPECT_EQ(m.animation, "") << "no ':': the file's first animation";
+    /* An animation per file (issue 30): after the last ':', a '@' in it is its own. */
+    const ModelPlacement run = parse_model_placement("a.glb@1,2,3:Run@2");
+    EXPECT_EQ(run.path, "a.glb");
+    EXPECT_EQ(run.placement.translation.z, 3);
+    EXPECT_EQ(run.animation, "Run@2");
+    EXPECT_EQ(parse_model_placement("a.glb:3").animation, "3");
+    EXPECT_EQ(parse_model_placement("a.glb:3").path, "a.glb");
+    /* A file name with a ':' is written with a ':' after it. */
+    const ModelPlacement colon = parse_model_placement("c:/x:y.glb@0,1,0:");
+    EXPECT_EQ(colon.path, "c:/x:y.glb");
+    EXPECT_EQ(colon.placement.translation.y, 1);
+    EXPECT_EQ(colon.animation, "");
+    EXPECT_EQ(parse_model_placement("c:/x.glb").path, "c") << "the ':' rule, as documented";
+    EXPECT_THROW(parse_model_placement(":walk"), SceneError);
+    EXPECT_THROW(parse_model_placement("a.glb@1,2:walk"), SceneError);
     const SceneLight l = parse_light("dir:0,-2,0");
     EXPECT_DOUBLE_EQ(l.direction.y, -1.0);
     EXPECT_TRUE(parse_light("spot:auto").placed_automatically);

@@ -143,4 +143,25 @@ TEST(Sequence, UnknownAnimationIsRefusedWithTheList) {
     EXPECT_NO_THROW(SceneSequence{o});
 }
 
+/* Each added file plays its own animation (issue 30), and a refusal names
+ * the file it is about, not the scene file. */
+TEST(Sequence, AnAddedFilePlaysItsOwnAnimation) {
+    SequenceOptions o = demo();
+    o.adds.push_back(parse_model_placement(std::string(SV_DEMO_SCENE) + "@30,0,0:walk"));
+    SceneSequence named(o);
+    EXPECT_NE(named.describe().at(1).find("animation 0 'walk'"), std::string::npos)
+        << named.describe().at(1);
+    o.adds.back() = parse_model_placement(std::string(SV_DEMO_SCENE) + "@30,0,0:run");
+    o.file = SV_MODELS_DIR "/character_1344.glb"; /* no animations: the error is the add's */
+    try {
+        SceneSequence seq(o);
+        FAIL() << "an added file's unknown animation was accepted";
+    } catch (const GltfError &e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind(SV_DEMO_SCENE, 0), 0u) << "the message names the added file: " << m;
+        EXPECT_NE(m.find("no animation 'run'"), std::string::npos) << m;
+        EXPECT_NE(m.find("'walk'"), std::string::npos) << "it lists the file's: " << m;
+    }
+}
+
 } // namespace
