@@ -4,7 +4,10 @@
  * Like for like: every method renders the same frames at the same thread
  * count, each (frame, method, threads) RUNS times after one warm-up frame,
  * and the minimum of the pass's wall time is kept; a row's figure is the
- * mean of those minima over the frames. The check of the same run: each
+ * mean of those minima over the frames. Each row keeps one FrameScratch
+ * through its frames, as a sequence does (src/cli/scene_cli.cpp): what a
+ * method keeps from frame to frame (hier and db: the receivers' triangles
+ * grouped, keyed by their index lists) is kept here too. The check of the same run: each
  * light's stencil of every frame equals brute force's at that thread count
  * byte for byte (and brute force's on every core equals its own on one).
  *
@@ -14,6 +17,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 
 #include "frame.h"
 #include "json_writer.h"
@@ -157,21 +161,30 @@ PassTable run_pass_table(ScenePreset &preset, const PassTableOptions &o) {
         if (r.tile) ro.stencil_tile = r.tile;
         return ro;
     };
+    std::vector<std::unique_ptr<sv::render::FrameScratch>> scratch;
+    for (std::size_t i = 0; i < t.rows.size(); i++)
+        scratch.push_back(std::make_unique<sv::render::FrameScratch>());
+    auto render = [&](const sv::Scene &scene, std::size_t row) {
+        RenderOptions ro = options(t.rows[row]);
+        ro.scratch = scratch[row].get();
+        return sv::render::render_frame(scene, ro);
+    };
     /* Warm-up: one frame of each configuration, not timed. */
     {
         const sv::Scene &scene = preset.at(0);
-        for (const PassRow &r : t.rows) (void)sv::render::render_frame(scene, options(r));
+        for (std::size_t i = 0; i < t.rows.size(); i++) (void)render(scene, i);
     }
     for (int k = 0; k < o.frames; k++) {
         const sv::Scene &scene = preset.at(k);
         t.lights = (int)scene.lights.size();
         std::vector<std::vector<uint8_t>> bf_one_thread, bf;
         int bf_threads = 0;
-        for (PassRow &r : t.rows) {
+        for (std::size_t row = 0; row < t.rows.size(); row++) {
+            PassRow &r = t.rows[row];
             double best = std::numeric_limits<double>::infinity();
             std::vector<std::vector<uint8_t>> mine;
             for (int run = 0; run < o.runs; run++) {
-                const Frame f = sv::render::render_frame(scene, options(r));
+                const Frame f = render(scene, row);
                 best = std::min(best, pass_timing(f).stencil_ms);
                 if (run == 0) {
                     mine = stencils(f);

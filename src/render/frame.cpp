@@ -24,6 +24,7 @@
 #include "pass_bins.h"
 #include "shading_pass.h"
 #include "stencil_pass.h"
+#include "tile_depth_range.h"
 #include "volume_pass.h"
 
 namespace sv::render {
@@ -143,6 +144,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
     VolumeCache &cache = (opt.cache && opt.shortcuts.reuse_static) ? *opt.cache : local_cache;
     FrameScratch local_scratch;
     FrameScratch::Buffers &scratch = opt.scratch ? opt.scratch->buffers() : local_scratch.buffers();
+    scratch.surface_triangles.begin_frame();
 
     arena.execute([&] {
         parallel(band_count(f.height), [&](int b) {
@@ -172,6 +174,21 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         vin.facing = facing_v;
         f.ticks_jobs = volume_pass(vin, cache, f.lights);
 
+        /* hier's tile depth ranges: the same depth for every light. Their
+         * time counts in the first light's stencil pass. */
+        detail::TileGrid tile_grid;
+        uint64_t grid_ticks = 0;
+        double grid_seconds = 0;
+        const bool share_grid = opt.stencil == StencilMethod::hierarchical && !f.lights.empty() &&
+                                valid_stencil_tile(opt.stencil_tile); /* else the pass says why */
+        if (share_grid) {
+            const double g0 = now_seconds();
+            const uint64_t gk0 = ticks();
+            tile_grid = detail::tile_depth_ranges(f.target.depth.data(), f.width, f.height,
+                                                  opt.stencil_tile);
+            grid_ticks = ticks() - gk0;
+            grid_seconds = now_seconds() - g0;
+        }
         for (LightFrame &lf : f.lights) {
             StencilPassInputs sin;
             sin.scene = &scene;
@@ -183,7 +200,13 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             sin.target = &f.target;
             sin.tile = opt.stencil_tile;
             sin.faults = opt.stencil_faults;
+            if (share_grid) sin.tile_grid = &tile_grid;
+            sin.surface_triangles = &scratch.surface_triangles;
             StencilPassResult st = stencil_pass(opt.stencil, sin);
+            st.ticks += grid_ticks;
+            st.seconds += grid_seconds;
+            grid_ticks = 0;
+            grid_seconds = 0;
             lf.stencil = std::move(st.stencil);
             lf.stencil_boundary_tiles = std::move(st.boundary_tile_mask);
             lf.stencil_psv_lines = st.psv_lines;

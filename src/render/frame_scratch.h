@@ -13,6 +13,7 @@
 #include "frame.h"
 #include "pass_bins.h"
 #include "shading_rows.h"
+#include "surface_triangles.h"
 
 namespace sv::render {
 
@@ -20,6 +21,7 @@ struct FrameScratch::Buffers {
     detail::BinnedTriangles depth_bins;                 /* depth_pass: set-up records, bins */
     WindowVertices depth_window;                        /* depth_pass: the vertices snapped */
     std::vector<detail::ShadeTriangle> shade_triangles; /* shading_pass */
+    detail::SurfaceTrianglesCache surface_triangles;    /* stencil_pass: db, hier */
 };
 
 } // namespace sv::render

@@ -26,19 +26,41 @@ std::vector<uint8_t> triangles_on_open_edges(const int *indices, int num_triangl
     for (std::size_t k = 0; k < 3 * (std::size_t)num_triangles; k++) {
         max_index = std::max(max_index, indices[k]);
     }
-    /* The vertex an index names (a directional light's extruded vertices
-     * are one point, the extra vertex SHARED). */
-    const uint32_t shared = (uint32_t)max_index + 1;
-    auto vertex = [&](int index) {
-        return (extruded_shared && (index & 1)) ? shared : (uint32_t)index;
+    /* The vertices the triangles use, numbered densely in order of first
+     * use: a volume uses few of its surface's vertices (the demo terrain's
+     * 106k shadow vertices against a volume of a few thousand), so the
+     * counting sort below runs over those, not over every index up to the
+     * largest. The numbering is kept per thread, sized to the largest
+     * index seen, and only the entries used are reset. A directional
+     * light's extruded vertices are one point: one number for all. */
+    thread_local std::vector<uint32_t> dense_of;
+    constexpr uint32_t kUnnumbered = UINT32_MAX;
+    if (dense_of.size() < (std::size_t)max_index + 2) {
+        dense_of.assign((std::size_t)max_index + 2, kUnnumbered);
+    }
+    const std::size_t shared_slot = (std::size_t)max_index + 1;
+    std::vector<uint32_t> dense((std::size_t)3 * (std::size_t)num_triangles);
+    std::vector<uint32_t> numbered; /* the entries of DENSE_OF to reset */
+    for (std::size_t k = 0; k < dense.size(); k++) {
+        const std::size_t slot = (extruded_shared && (indices[k] & 1)) ? shared_slot
+                                                                       : (std::size_t)indices[k];
+        if (dense_of[slot] == kUnnumbered) {
+            dense_of[slot] = (uint32_t)numbered.size();
+            numbered.push_back((uint32_t)slot);
+        }
+        dense[k] = dense_of[slot];
+    }
+    for (uint32_t slot : numbered) dense_of[slot] = kUnnumbered;
+    const uint32_t vertices = (uint32_t)numbered.size();
+    auto vertex_of = [&](int t, int corner) {
+        return dense[3 * (std::size_t)t + (std::size_t)corner];
     };
     /* Per lower vertex: its uses' upper vertices and signs. */
-    std::vector<uint32_t> first((std::size_t)shared + 2, 0);
+    std::vector<uint32_t> first((std::size_t)vertices + 1, 0);
     for (int t = 0; t < num_triangles; t++) {
         if (skip[(std::size_t)t]) continue;
-        const int *i = indices + 3 * (std::size_t)t;
         for (int e = 0; e < 3; e++) {
-            const uint32_t a = vertex(i[e]), b = vertex(i[(e + 1) % 3]);
+            const uint32_t a = vertex_of(t, e), b = vertex_of(t, (e + 1) % 3);
             if (a != b) first[(std::size_t)std::min(a, b) + 1]++;
         }
     }
@@ -48,9 +70,8 @@ std::vector<uint8_t> triangles_on_open_edges(const int *indices, int num_triangl
     std::vector<int8_t> sign(first.back());
     for (int t = 0; t < num_triangles; t++) {
         if (skip[(std::size_t)t]) continue;
-        const int *i = indices + 3 * (std::size_t)t;
         for (int e = 0; e < 3; e++) {
-            const uint32_t a = vertex(i[e]), b = vertex(i[(e + 1) % 3]);
+            const uint32_t a = vertex_of(t, e), b = vertex_of(t, (e + 1) % 3);
             if (a == b) continue;
             const uint32_t at = fill[std::min(a, b)]++;
             upper[at] = std::max(a, b);
@@ -87,9 +108,8 @@ std::vector<uint8_t> triangles_on_open_edges(const int *indices, int num_triangl
         return sum != 0;
     };
     for (int t = 0; t < num_triangles; t++) {
-        const int *i = indices + 3 * (std::size_t)t;
         for (int e = 0; e < 3; e++) {
-            const uint32_t a = vertex(i[e]), b = vertex(i[(e + 1) % 3]);
+            const uint32_t a = vertex_of(t, e), b = vertex_of(t, (e + 1) % 3);
             if (a != b && open(std::min(a, b), std::max(a, b))) {
                 on_open[(std::size_t)t] |= (uint8_t)(1u << e);
             }

@@ -132,7 +132,14 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
     const double t0 = now_seconds();
     const uint64_t k0 = ticks();
     result.stencil.assign((std::size_t)width * height, 0);
-    const TileGrid grid = tile_depth_ranges(in.target->depth.data(), width, height, in.tile);
+    TileGrid own_grid;
+    if (!in.tile_grid)
+        own_grid = tile_depth_ranges(in.target->depth.data(), width, height, in.tile);
+    const TileGrid &grid = in.tile_grid ? *in.tile_grid : own_grid;
+    if (grid.side != in.tile || grid.width != width || grid.height != height) {
+        throw std::invalid_argument("stencil_pass_hierarchical: the tile grid given is not the "
+                                    "frame's at the pass's tile side");
+    }
     const TileGrid coarse = coarser_grid(grid, kCoarse);
     const VolumePieces vp = set_up_volume_pieces(in);
     result.counters = vp.counters;

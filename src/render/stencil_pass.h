@@ -21,6 +21,11 @@
 
 namespace sv::render {
 
+namespace detail {
+class SurfaceTrianglesCache; /* surface_triangles.h */
+struct TileGrid;             /* tile_depth_range.h */
+} // namespace detail
+
 struct StencilPassInputs {
     const Scene *scene = nullptr;
     const ClipVertices *receivers = nullptr; /* the depth pass's clip vertices */
@@ -30,7 +35,13 @@ struct StencilPassInputs {
     const raster::Rasterizer *rast = nullptr;
     const raster::Target *target = nullptr; /* its depth, after the depth pass */
     int tile = kDefaultStencilTile;         /* hierarchical: the tile side */
-    StencilFaults faults;                   /* tests only */
+    /* Hierarchical: the depth's ranges in tiles of side TILE, computed once
+     * for the frame's lights (nullptr: computed by the pass). */
+    const detail::TileGrid *tile_grid = nullptr;
+    /* db, hier: the receivers' triangles grouped, kept across lights and
+     * frames (nullptr: grouped by the pass for itself). */
+    detail::SurfaceTrianglesCache *surface_triangles = nullptr;
+    StencilFaults faults; /* tests only */
 };
 
 struct StencilPassResult {

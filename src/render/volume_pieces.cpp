@@ -13,6 +13,7 @@
 #include "frame_math.h"
 #include "open_edges.h"
 #include "pass_bins.h"
+#include "surface_triangles.h"
 
 namespace sv::render::detail {
 namespace {
@@ -107,63 +108,38 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
     /* Per volume: which triangles are the receiver's own, and the edges
      * where those do not close among themselves. */
     std::vector<std::vector<uint8_t>> on_receiver(volumes.size()), cap_open(volumes.size());
+    /* The receivers' triangles grouped (surface_triangles.h): the
+     * caller's, kept from light to light and frame to frame, else this
+     * pass's own. Fetched here, one thread, before the volumes' tasks
+     * read them. */
+    SurfaceTrianglesCache own_groupings;
+    SurfaceTrianglesCache &groupings = in.surface_triangles ? *in.surface_triangles : own_groupings;
+    groupings.fit((int)scene.surfaces.size());
+    std::vector<const SurfaceTriangles *> grouped(volumes.size(), nullptr);
+    for (std::size_t vi = 0; vi < volumes.size(); vi++) {
+        const Volume &vol = volumes[vi];
+        const int n = vol.drawn_indices() / 3;
+        bool any = false; /* a triangle of the surface's vertices alone */
+        for (int t = 0; t < n && !any; t++) {
+            const int *i = &vol.indices[3 * (std::size_t)t];
+            any = ((i[0] | i[1] | i[2]) & 1) == 0;
+        }
+        if (!any) continue;
+        grouped[vi] = &groupings.get(vol.surface,
+                                     scene.surfaces[(std::size_t)vol.surface].prepared);
+    }
     parallel((int)volumes.size(), [&](int vi) {
         const Volume &vol = volumes[(std::size_t)vi];
         const int n = vol.drawn_indices() / 3;
         auto &mine = on_receiver[(std::size_t)vi];
         mine.assign((std::size_t)n, 0);
-        const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
-        auto sorted3 = [](int a, int b, int c, int v[3]) {
-            v[0] = a, v[1] = b, v[2] = c;
-            if (v[0] > v[1]) std::swap(v[0], v[1]);
-            if (v[1] > v[2]) std::swap(v[1], v[2]);
-            if (v[0] > v[1]) std::swap(v[0], v[1]);
-        };
-        bool any = false;
-        for (int t = 0; t < n && !any; t++) {
-            const int *i = &vol.indices[3 * (std::size_t)t];
-            any = ((i[0] | i[1] | i[2]) & 1) == 0;
-        }
-        if (!any) return;
-        /* The surface's triangles grouped by their lowest vertex (a
-         * counting sort), each as its other two, in order. */
-        const int nv = p.num_vertices(), nt = p.num_triangles();
-        std::vector<int> first((std::size_t)nv + 2, 0);
-        for (int t = 0; t < nt; t++) {
-            const int *i = &p.indices[3 * (std::size_t)t];
-            first[(std::size_t)std::min({i[0], i[1], i[2]}) + 1]++;
-        }
-        for (std::size_t v = 1; v < first.size(); v++) first[v] += first[v - 1];
-        std::vector<int> fill(first.begin(), first.end() - 1);
-        std::vector<std::pair<int, int>> others((std::size_t)first.back());
-        for (int t = 0; t < nt; t++) {
-            const int *i = &p.indices[3 * (std::size_t)t];
-            int v[3];
-            sorted3(i[0], i[1], i[2], v);
-            others[(std::size_t)fill[(std::size_t)v[0]]++] = {v[1], v[2]};
-        }
-        /* A vertex in many triangles (a fan's centre) has its group sorted
-         * and searched, so no mesh makes this quadratic. */
-        constexpr int kScan = 32;
-        for (std::size_t v = 0; v + 1 < first.size(); v++) {
-            if (first[v + 1] - first[v] > kScan) {
-                std::sort(others.begin() + first[v], others.begin() + first[v + 1]);
-            }
-        }
+        const SurfaceTriangles *surface_triangles = grouped[(std::size_t)vi];
+        if (!surface_triangles) return;
         std::vector<uint8_t> skip((std::size_t)n, 1);
         for (int t = 0; t < n; t++) {
             const int *i = &vol.indices[3 * (std::size_t)t];
             if (((i[0] | i[1] | i[2]) & 1) != 0) continue;
-            int v[3];
-            sorted3(i[0] / 2, i[1] / 2, i[2] / 2, v);
-            bool found = false;
-            if (v[0] >= 0 && v[2] < nv) {
-                const auto begin = others.begin() + first[(std::size_t)v[0]],
-                           end = others.begin() + first[(std::size_t)v[0] + 1];
-                const std::pair<int, int> want{v[1], v[2]};
-                found = end - begin > kScan ? std::binary_search(begin, end, want)
-                                            : std::find(begin, end, want) != end;
-            }
+            const bool found = surface_triangles->contains(i[0] / 2, i[1] / 2, i[2] / 2);
             mine[(std::size_t)t] = found;
             skip[(std::size_t)t] = !found || degenerate[(std::size_t)vi][(std::size_t)t];
         }

@@ -4,8 +4,10 @@
  * force ("bf") does, on every test scene, in both modes and with every
  * light kind, at 1, 2, 3 and all threads, every tile size, and frame sizes
  * that are no multiple of the tile; each of hier's tests made wrong on
- * purpose (StencilFaults) is caught by the same comparison; and hier's
- * per-pixel stage tests a fraction of brute force's pixels on a crowd.
+ * purpose (StencilFaults) is caught by the same comparison; hier's
+ * per-pixel stage tests a fraction of brute force's pixels on a crowd; and
+ * what the classifying methods keep from frame to frame (the receivers'
+ * triangles grouped) follows a changed mesh.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -20,6 +22,8 @@
 #include "frame.h"
 #include "row_kernels.h"
 #include "sequence.h"
+#include "shadowvol_mesh.h"
+#include "surface_triangles.h"
 #include "shadowvol_scene.h"
 #include "test_lights.h"
 #include "test_conditions.h"
@@ -332,6 +336,63 @@ TEST(StencilMethods, WrapAroundOf256OverlappingVolumesEqualsBruteForce) {
         for (StencilMethod m : {StencilMethod::depth_bounds, StencilMethod::hierarchical}) {
             EXPECT_EQ(stencil_differences(render_frame(many, options(96, 80, m, mode, 0)), bf), 0u)
                 << stencil_method_name(m) << ", " << mode_name(mode);
+        }
+    }
+}
+
+/* The grouping of a surface's triangles kept across frames is keyed by
+ * its index list: a changed list (the same surface number) is grouped
+ * again at the next frame, and within a frame the first one asked for is
+ * kept (the scene does not change within a frame). */
+TEST(StencilMethods, KeptSurfaceTrianglesFollowAChangedIndexList) {
+    /* One quad, cut along one diagonal (A) or the other (B). */
+    const float positions[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const uint32_t cut_a[] = {0, 1, 2, 0, 2, 3}, cut_b[] = {0, 1, 3, 1, 2, 3};
+    const PreparedSurface a = prepare_surface(positions, 4, cut_a, 6);
+    const PreparedSurface b = prepare_surface(positions, 4, cut_b, 6);
+    auto has_all = [](const detail::SurfaceTriangles &g, const PreparedSurface &p) {
+        bool all = true;
+        for (int t = 0; t < p.num_triangles(); t++) {
+            const int *i = &p.indices[3 * (std::size_t)t];
+            all &= g.contains(i[2], i[0], i[1]);
+        }
+        return all;
+    };
+    auto has_none = [](const detail::SurfaceTriangles &g, const PreparedSurface &p) {
+        bool any = false;
+        for (int t = 0; t < p.num_triangles(); t++) {
+            const int *i = &p.indices[3 * (std::size_t)t];
+            any |= g.contains(i[0], i[1], i[2]);
+        }
+        return !any;
+    };
+    detail::SurfaceTrianglesCache cache;
+    cache.fit(1);
+    cache.begin_frame();
+    EXPECT_TRUE(has_all(cache.get(0, a), a));
+    EXPECT_TRUE(has_none(cache.get(0, a), b));
+    EXPECT_TRUE(has_all(cache.get(0, b), a)) << "within a frame the first list is kept";
+    cache.begin_frame();
+    EXPECT_TRUE(has_all(cache.get(0, b), b)) << "the changed list was not grouped again";
+    EXPECT_TRUE(has_none(cache.get(0, b), a));
+    cache.begin_frame();
+    EXPECT_TRUE(has_all(cache.get(0, a), a));
+}
+
+/* One FrameScratch (what a sequence keeps) through frames of different
+ * scenes whose surface numbers name other meshes (surface 2: the ground,
+ * then a character): each frame's stencils equal brute force's. */
+TEST(StencilMethods, ScratchKeptAcrossScenesEqualsBruteForce) {
+    FrameScratch scratch;
+    for (Scene (*make)() : {character_scene, crowd, character_scene}) {
+        const Scene scene = make();
+        const Frame bf = render_frame(scene, options(kW, kH, StencilMethod::brute_force,
+                                                     ModeChoice::zfail, 1));
+        for (StencilMethod m : {StencilMethod::hierarchical, StencilMethod::depth_bounds}) {
+            RenderOptions o = options(kW, kH, m, ModeChoice::zfail, 2);
+            o.scratch = &scratch;
+            EXPECT_EQ(stencil_differences(render_frame(scene, o), bf), 0u)
+                << stencil_method_name(m) << ", " << scene.surfaces.size() << " surfaces";
         }
     }
 }
