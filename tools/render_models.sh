@@ -2,11 +2,23 @@
 # The renderer on every model, alone on a ground plane, under a point, a
 # spot and a directional light, in z-pass and in z-fail: the table of the
 # issue that built the renderer (issue 12), from each run's own report.
-#   tools/render_models.sh [BUILD_DIR] [WxH]      (default build, 1280x1024)
+#   tools/render_models.sh [BUILD_DIR] [WxH] [--stencil bf|db|hier] [--threads N]
+#     (default build, 1280x1024, bf, every core)
+# Our stencil pass and Mesa's are timed alike (render: the faster of two
+# drawings each, Mesa with LP_NUM_THREADS = our thread count).
 # Prints one row per model, mode and light; exits 1 if any run failed.
 set -u
 cd "$(dirname "$0")/.."
-build="${1:-build}"; size="${2:-1280x1024}"
+build=build size=1280x1024 stencil=bf threads="" positional=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --stencil) stencil="$2"; shift 2 ;;
+    --threads) threads="$2"; shift 2 ;;
+    -*) echo "tools/render_models.sh: unknown option $1" >&2; exit 2 ;;
+    *) if [ $positional -eq 0 ]; then build="$1"; else size="$1"; fi
+       positional=$((positional + 1)); shift ;;
+  esac
+done
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 models=(models/character_1344.glb)
 [ -d ../shared/models ] && models+=(../shared/models/*.glb)
@@ -17,7 +29,8 @@ for m in "${models[@]}"; do
   for mode in zpass zfail; do
     name=$(basename "$m" .glb)
     "$build/shadowvol" render --add "$m" --ground --light point:auto --light spot:auto --light dir:auto \
-      --size "$size" --mode "$mode" --out "$out/$name-$mode" >"$out/report" 2>"$out/err" || status=1
+      --size "$size" --mode "$mode" --stencil "$stencil" ${threads:+--threads "$threads"} \
+      --out "$out/$name-$mode" >"$out/report" 2>"$out/err" || status=1
     depth=$(sed -n 's/^depth pass: .* written, \([0-9.]*\) ms.*/\1/p' "$out/report")
     for i in 0 1 2; do
       row=$(grep -E "^$i +(point|spot|directional)" "$out/report")

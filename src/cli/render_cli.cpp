@@ -274,10 +274,30 @@ int render_main(int argc, char **argv) {
     }
     std::vector<sv::render::GlComparison> gls;
     std::string gl_renderer, gl_note;
+    int gl_threads = 0;
     if (args.gl) {
+        /* Like for like with Mesa's stencil pass (drawn twice, the faster
+         * kept, on as many threads as ours): ours drawn once more, warm,
+         * each light's faster stencil pass kept (the same bytes: the frame
+         * is the first drawing's). */
+        sv::render::Frame again;
+        try {
+            again = sv::render::render_frame(scene, opt);
+        } catch (const std::bad_alloc &) {
+            again = sv::render::Frame{}; /* the first drawing's times stand */
+        }
+        for (std::size_t li = 0; li < again.lights.size(); li++) {
+            sv::render::LightFrame &lf = frame.lights[li];
+            const sv::render::LightFrame &la = again.lights[li];
+            if (la.seconds_stencil < lf.seconds_stencil) {
+                lf.seconds_stencil = la.seconds_stencil;
+                lf.ticks_stencil = la.ticks_stencil;
+            }
+        }
         std::fprintf(stderr, "shadowvol render: drawing the same volumes with Mesa...\n");
         try {
-            gls = sv::render::compare_with_mesa(scene, frame, &gl_renderer, &gl_note);
+            gls = sv::render::compare_with_mesa(scene, frame, &gl_renderer, &gl_note, frame.threads,
+                                                &gl_threads);
         } catch (const std::exception &e) {
             /* A job the judge refuses or a GL error: say so, and fail. */
             std::fprintf(stderr, "shadowvol render: the Mesa judge failed: %s\n", e.what());
@@ -403,7 +423,9 @@ int render_main(int argc, char **argv) {
         }
     }
     if (!gls.empty()) {
-        std::printf("mesa: %s\n", gl_renderer.c_str());
+        std::printf("mesa: %s; LP_NUM_THREADS %d, ours %d thread(s); each stencil pass the "
+                    "faster of two drawings\n",
+                    gl_renderer.c_str(), gl_threads, frame.threads);
         for (std::size_t li = 0; li < gls.size(); li++) {
             const sv::render::GlComparison &g = gls[li];
             std::printf("gl %zu: %llu pixels differ (%.6f%%): %llu on a volume triangle's edge "
@@ -529,6 +551,8 @@ int render_main(int argc, char **argv) {
         }
         j.end_array();
         j.key("gl_renderer"), j.value(gl_renderer);
+        j.key("gl_lp_num_threads"), j.value(gl_threads);
+        j.key("threads"), j.value(frame.threads);
         j.key("notes");
         j.begin_array();
         for (const std::string &n : scene.notes) j.value(n);

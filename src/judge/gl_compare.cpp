@@ -76,15 +76,17 @@ std::vector<gl::MesaVolume> mesa_volumes(const LightFrame &lf,
 }
 
 std::vector<GlComparison> compare_with_mesa(const Scene &scene, const Frame &f,
-                                            std::string *renderer, std::string *note) {
+                                            std::string *renderer, std::string *note, int threads,
+                                            int *lp_threads) {
     std::string why;
-    const std::unique_ptr<gl::MesaContext> ctx = gl::MesaContext::create(f.width, f.height, 1,
+    const std::unique_ptr<gl::MesaContext> ctx = gl::MesaContext::create(f.width, f.height, threads,
                                                                          &why);
     if (!ctx) {
         *note = "no Mesa GL context (" + why + "): the comparison with OpenGL was skipped";
         return {};
     }
     *renderer = ctx->describe();
+    if (lp_threads) *lp_threads = ctx->lp_num_threads();
     std::vector<AlignedVector<Vec4>> buffers;
     for (const SceneSurface &s : scene.surfaces) buffers.push_back(shadow_vertices(s.prepared));
     std::vector<GlComparison> out;

@@ -44,9 +44,13 @@ std::vector<gl::MesaVolume> mesa_volumes(const LightFrame &lf,
                                          const std::vector<AlignedVector<Vec4>> &buffers);
 
 /* One comparison per light of F; empty (and *NOTE says why) when no GL
- * context can be made. *RENDERER: GL_RENDERER and GL_VERSION. */
+ * context can be made. *RENDERER: GL_RENDERER and GL_VERSION. THREADS:
+ * llvmpipe's LP_NUM_THREADS (read once per process: the first call's
+ * count holds for the process; *LP_THREADS, where given, gets the count
+ * that took effect, 0 for llvmpipe's own default). */
 std::vector<GlComparison> compare_with_mesa(const Scene &scene, const Frame &f,
-                                            std::string *renderer, std::string *note);
+                                            std::string *renderer, std::string *note,
+                                            int threads = 1, int *lp_threads = nullptr);
 
 /* The classification alone (for tests): pixels where OURS and THEIRS
  * differ, given the frame's drawn volume triangles of light LIGHT and the
