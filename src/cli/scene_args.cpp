@@ -70,6 +70,9 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
             r.out_dir = a.value();
         } else if (a.is("--json")) {
             r.json_path = a.value();
+        } else if (a.is("--webp")) {
+            r.webp_path = a.value();
+            if (r.webp_path.empty()) usage_error("--webp needs a file name");
         } else if (a.is("--skinning")) {
             r.skinning = a.value();
         } else if (a.arg().rfind('-', 0) == 0) {

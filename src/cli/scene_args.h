@@ -35,6 +35,7 @@ struct SceneArgs {
     int width = 640, height = 512;
     std::string out_dir = "shadowvol-scene";
     std::string json_path;
+    std::string webp_path; /* --webp: the frames as an animated WebP (issue 30) */
     std::string skinning;
 };
 

@@ -36,6 +36,7 @@
 #include "shadowvol_gltf.h"
 #include "timer.h"
 #include "truth.h"
+#include "webp_writer.h"
 
 #ifndef SV_DEMO_SCENE
 #define SV_DEMO_SCENE "models/demo_scene.glb"
@@ -188,6 +189,7 @@ void scene_usage(FILE *out) {
         "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
         "                       [--stencil-tile N] [--caster-rule auto|closed|general]\n"
         "                       [--ground-hints use|ignore] [--out DIR] [--json FILE]\n"
+        "                       [--webp FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
         "KHR_lights_punctual lights and its camera, frame by frame. Each frame builds only\n"
@@ -241,11 +243,14 @@ void scene_usage(FILE *out) {
         "  --skinning K      c_ref, sse2, avx2, avx512 (default: the best this CPU runs)\n"
         "  --out DIR         where the PNGs go (default shadowvol-scene)\n"
         "  --json FILE       the report as JSON (schema shadowvol-scene/1; - for stdout)\n"
+        "  --webp FILE       the frames also as an animated WebP a browser plays, looping,\n"
+        "                    1/F s a frame; lossless: each frame the PNG's bytes%s\n"
         "\n"
         "Exit status: 0 done; 1 a frame differs from the full frame where the light reaches,\n"
         "or disagrees with the truth off a shadow boundary; 2 bad arguments; 3 a file\n"
         "that cannot be loaded.\n",
-        SV_DEMO_SCENE);
+        SV_DEMO_SCENE,
+        webp_available() ? "" : "\n                    (not in this build: no libwebp)");
 }
 
 int scene_main(int argc, char **argv) {
@@ -266,6 +271,13 @@ int scene_main(int argc, char **argv) {
         return kExitUsage;
     }
     if (args.seq.file.empty()) args.seq.file = SV_DEMO_SCENE;
+    if (!args.webp_path.empty() && !webp_available()) {
+        std::fprintf(stderr,
+                     "shadowvol scene: --webp %s: this shadowvol was built without libwebp "
+                     "(Debian's libwebp-dev; cmake -DSV_WEBP=ON finds it)\n",
+                     args.webp_path.c_str());
+        return kExitUsage;
+    }
     if (!args.skinning.empty()) {
         args.seq.skinning = sv::skinning_kernel_by_name(args.skinning.c_str());
         if (!args.seq.skinning ||
@@ -367,6 +379,14 @@ int scene_main(int argc, char **argv) {
     Savings saved;
     std::vector<std::string> truth_notes;
     std::vector<sv::render::Image> tiles;
+    std::unique_ptr<WebpAnimation> webp;
+    try {
+        if (!args.webp_path.empty())
+            webp = std::make_unique<WebpAnimation>(args.width, args.height, args.fps);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "shadowvol scene: --webp %s: %s\n", args.webp_path.c_str(), e.what());
+        return kExitUsage;
+    }
     const int factor = std::max(1, (args.width + 319) / 320);
     bool failed = false;
     /* Progress on stderr when it is a terminal (a log gets the table only). */
@@ -446,6 +466,7 @@ int scene_main(int argc, char **argv) {
         img.rgb = f.rgb;
         try {
             sv::render::write_png(args.out_dir + name, img);
+            if (webp) webp->add(f.rgb);
         } catch (const std::exception &e) {
             std::fprintf(stderr, "\nshadowvol scene: %s\n", e.what());
             return kExitUsage;
@@ -473,6 +494,7 @@ int scene_main(int argc, char **argv) {
     if (progress) std::fprintf(stderr, "\n");
     try {
         sv::render::write_png(args.out_dir + "/contact.png", contact_sheet(tiles));
+        if (webp) webp->write(args.webp_path);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "shadowvol scene: %s\n", e.what());
         return kExitUsage;
@@ -557,8 +579,9 @@ int scene_main(int argc, char **argv) {
                     (unsigned long long)t.primary_disagreements);
         for (const std::string &n : truth_notes) std::printf("  %s\n", n.c_str());
     }
-    std::printf("images: %s/frame_000.png .. frame_%03zu.png, contact.png\n", args.out_dir.c_str(),
-                rows.size() - 1);
+    std::printf("images: %s/frame_000.png .. frame_%03zu.png, contact.png%s%s\n",
+                args.out_dir.c_str(), rows.size() - 1, webp ? "; animation: " : "",
+                webp ? args.webp_path.c_str() : "");
 
     if (!args.json_path.empty()) {
         svbench::JsonWriter j;
