@@ -5,8 +5,8 @@
  * dispatches.
  *
  * Exit status: 0 done; 1 a correctness check failed; 2 bad arguments; 3 a
- * model file could not be loaded (inspect, verify, render, scene); 4 verify
- * cannot decide.
+ * model file could not be loaded (inspect, verify, render, scene, view); 4
+ * verify cannot decide; 5 view cannot open a window (no display).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -19,6 +19,7 @@
 #include "model_cli.h"
 #include "render_cli.h"
 #include "scene_cli.h"
+#include "view_cli.h"
 #include "tune_cli.h"
 
 #ifndef SV_PROJECT_VERSION
@@ -48,6 +49,8 @@ const Command kCommands[] = {
     {"scene",
      "play a glTF scene in time, building only what each frame requires, proved pixel for pixel",
      svcli::scene_main, svcli::scene_usage},
+    {"view", "play a scene in a window: orbit, drag a light, switch modes, passes and shortcuts",
+     svcli::view_main, svcli::view_usage},
     {"check", "every routine of every variant this CPU runs against c_ref, ABI-checked; --bench",
      svcli::check_main, svcli::check_usage},
     {"tune",
@@ -79,7 +82,8 @@ void usage(FILE *out) {
                  "\n"
                  "'shadowvol <command> --help' describes a command's options.\n"
                  "Exit status: 0 done, 1 a correctness check failed, 2 bad arguments,\n"
-                 "3 a model could not be loaded, 4 verify cannot decide (the reason printed).\n");
+                 "3 a model could not be loaded, 4 verify cannot decide (the reason printed),\n"
+                 "5 view cannot open a window (no display, or built without SDL2).\n");
 }
 
 } // namespace

@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "cli_args.h"
 #include "frame.h"
 #include "sequence.h"
 #include "stencil_method.h"
@@ -37,6 +38,25 @@ struct SceneArgs {
     std::string json_path;
     std::string webp_path; /* --webp: the frames as an animated WebP (issue 30) */
     std::string skinning;
+};
+
+/* The options shadowvol scene and shadowvol view share (issue 30: the
+ * view takes them where they mean the same thing, through this one
+ * reader): the scene file FILE[@...][:ANIMATION], --add, --ground,
+ * --light, --camera, --animation, --stencil, --stencil-tile, --mode,
+ * --caster-rule, --ground-hints, --general-build, --full, --fps,
+ * --threads, --size, --skinning. */
+class SharedSceneOptions {
+public:
+    /* True when A's argument was one of them (read into R); false for
+     * another option, left to the caller. Throws as parse_scene_args. */
+    bool read(ArgReader &a, SceneArgs &r);
+    /* After the last argument: the scene file's FILE:ANIMATION against
+     * --animation (both: a usage error). */
+    void finish(SceneArgs &r) const;
+
+private:
+    std::string file_animation_;
 };
 
 /* argv[1..] of `shadowvol scene`. --help / -h sets HELP and returns at

@@ -13,6 +13,7 @@
  */
 #include "scene_cli.h"
 #include "scene_args.h"
+#include "scene_open.h"
 
 #include <tbb/info.h>
 #include <unistd.h>
@@ -45,7 +46,7 @@
 namespace svcli {
 namespace {
 
-constexpr int kExitMismatch = 1, kExitUsage = 2, kExitBadModel = 3;
+constexpr int kExitMismatch = 1, kExitUsage = 2; /* 3 (a file): open_scene */
 
 double ms(uint64_t ticks, double hz) { return hz > 0 ? 1e3 * (double)ticks / hz : 0; }
 double kt(uint64_t ticks) { return (double)ticks / 1000.0; }
@@ -270,7 +271,6 @@ int scene_main(int argc, char **argv) {
         std::fprintf(stderr, "shadowvol scene: %s\n", e.what());
         return kExitUsage;
     }
-    if (args.seq.file.empty()) args.seq.file = SV_DEMO_SCENE;
     if (!args.webp_path.empty() && !webp_available()) {
         std::fprintf(stderr,
                      "shadowvol scene: --webp %s: this shadowvol was built without libwebp "
@@ -278,39 +278,9 @@ int scene_main(int argc, char **argv) {
                      args.webp_path.c_str());
         return kExitUsage;
     }
-    if (!args.skinning.empty()) {
-        args.seq.skinning = sv::skinning_kernel_by_name(args.skinning.c_str());
-        if (!args.seq.skinning ||
-            (args.seq.skinning->isa & sv_cpu_isa()) != args.seq.skinning->isa) {
-            std::fprintf(stderr, "shadowvol scene: --skinning %s: %s\n", args.skinning.c_str(),
-                         args.seq.skinning ? "this CPU (or SV_ISA) does not run it"
-                                           : "unknown (c_ref, sse2, avx2, avx512)");
-            return kExitUsage;
-        }
-    }
-    args.seq.aspect = (double)args.width / args.height;
-
-    std::unique_ptr<sv::SceneSequence> seq;
-    try {
-        seq = std::make_unique<sv::SceneSequence>(args.seq);
-    } catch (const sv::GltfError &e) {
-        std::fprintf(stderr, "shadowvol scene: %s\n", e.what());
-        if (!args.seq.animation.empty() && !args.seq.adds.empty()) {
-            /* What a new user tried (issue 30): --animation for the file just added. */
-            std::fprintf(stderr,
-                         "note: --animation is the scene file's (%s); an added file's is "
-                         "--add FILE:ANIMATION\n",
-                         args.seq.file.c_str());
-        }
-        return kExitBadModel;
-    } catch (const sv::PrepareError &e) {
-        std::fprintf(stderr, "shadowvol scene: %s: %s\n", args.seq.file.c_str(), e.what());
-        return kExitBadModel;
-    } catch (const sv::SceneError &e) {
-        std::fprintf(stderr, "shadowvol scene: %s\n", e.what());
-        return kExitUsage;
-    }
-    for (const std::string &n : seq->scene().notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+    int open_status = 0;
+    const std::unique_ptr<sv::SceneSequence> seq = open_scene("scene", args, open_status);
+    if (!seq) return open_status;
 
     /* The frames' times. */
     std::vector<double> times;

@@ -9,14 +9,14 @@
 #include <cstdio>
 #include <stdexcept>
 
-#if SV_HAVE_WEBP
+#if SV_LIBWEBP_FOUND
 #include <webp/encode.h>
 #include <webp/mux.h>
 #endif
 
 namespace svcli {
 
-#if SV_HAVE_WEBP
+#if SV_LIBWEBP_FOUND
 
 bool webp_available() { return true; }
 

@@ -6,7 +6,7 @@
  * where one character moves stays small.
  *
  * Built with Debian's libwebp-dev (libwebpmux's WebPAnimEncoder); without
- * it (SV_HAVE_WEBP 0) webp_available() is false and the writer says so.
+ * it (SV_LIBWEBP_FOUND 0) webp_available() is false and the writer says so.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
