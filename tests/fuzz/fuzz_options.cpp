@@ -1,14 +1,16 @@
 /*
- * libFuzzer target: the command lines of `shadowvol render` and
- * `shadowvol scene` (issue 17: the render and scene option parsers), and
- * the placement syntax they share (--add, --light, --camera; scene_options.h).
+ * libFuzzer target: the command lines of `shadowvol render`, `shadowvol
+ * scene` and `shadowvol view` (issue 17: the render and scene option
+ * parsers; issue 30: view's, and its --script reader), and the placement
+ * syntax they share (--add, --light, --camera; scene_options.h).
  *
  * The input is split at NUL bytes into at most 64 arguments; its first byte
- * chooses the parser (render, scene, or one of the single-value parsers fed
- * the whole rest). Nothing is run and no file is opened: parsing only.
+ * chooses the parser (render, scene, view, or one of the single-value
+ * parsers and the script reader fed the whole rest). Nothing is run and no file is opened: parsing only.
  *
  * A finding: a crash or sanitizer report; an exception other than the
- * documented refusals (svcli::UsageError, sv::SceneError); a refusal whose
+ * documented refusals (svcli::UsageError, sv::SceneError; the script
+ * reader's std::runtime_error); a refusal whose
  * message is not bounded printable UTF-8; or an accepted command line that
  * breaks what the parsers promise: every number finite, sizes within
  * kMaxFrameSide / kMaxFramePixels, counts within their ranges, light
@@ -18,6 +20,7 @@
  */
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,8 @@
 #include "render_args.h"
 #include "scene_args.h"
 #include "scene_options.h"
+#include "view_args.h"
+#include "view_script.h"
 
 namespace {
 
@@ -102,13 +107,34 @@ void check_scene(const svcli::SceneArgs &s) {
     if (s.threads < 0 || s.threads > 256) finding("--threads outside 0..256 accepted");
 }
 
+/* What the script reader promises of an accepted script: frames from 0
+ * to 10^8 in order, drag points within 0..65535 and a button of 1 or 3,
+ * wheel notches within +-1000, a key or file name that is not empty. */
+void check_script(const std::vector<svcli::ScriptEvent> &events) {
+    long last = 0;
+    for (const svcli::ScriptEvent &e : events) {
+        if (e.frame < last || e.frame > 100000000) finding("script events out of frame order");
+        last = e.frame;
+        if (e.kind == svcli::ScriptEvent::drag &&
+            ((e.button != 1 && e.button != 3) || e.x0 < 0 || e.y0 < 0 || e.x1 < 0 || e.y1 < 0 ||
+             e.x0 > 65535 || e.y0 > 65535 || e.x1 > 65535 || e.y1 > 65535)) {
+            finding("a drag outside its ranges was accepted");
+        }
+        if (e.kind == svcli::ScriptEvent::wheel && (e.amount < -1000 || e.amount > 1000))
+            finding("a wheel outside -1000..1000 was accepted");
+        if ((e.kind == svcli::ScriptEvent::key || e.kind == svcli::ScriptEvent::snap) &&
+            e.text.empty())
+            finding("a key or snap without its name was accepted");
+    }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (size == 0) return 0;
-    const int which = data[0] % 6;
+    const int which = data[0] % 8;
     const std::string rest((const char *)data + 1, size - 1);
-    std::vector<std::string> args{which == 1 ? "scene" : "render"};
+    std::vector<std::string> args{which == 1 ? "scene" : which == 6 ? "view" : "render"};
     for (std::size_t start = 0; start <= rest.size() && args.size() <= kMaxArgs;) {
         const std::size_t nul = rest.find('\0', start);
         const std::size_t end = nul == std::string::npos ? rest.size() : nul;
@@ -138,6 +164,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         case 2: check_light(sv::parse_light(rest)); break;
         case 3: check_camera(sv::parse_camera(rest)); break;
         case 4: check_placement(sv::parse_model_placement(rest)); break;
+        case 6: {
+            const svcli::ViewArgs v = svcli::parse_view_args(argc, argv.data(), help);
+            if (!help) check_scene(v.scene);
+            break;
+        }
+        case 7: {
+            std::vector<svcli::ScriptEvent> events;
+            try {
+                events = svcli::parse_view_script(rest, "fuzz.script");
+            } catch (const std::runtime_error &e) {
+                check_message(e.what(), "a script refusal");
+            }
+            check_script(events);
+            break;
+        }
         default: {
             int w = 0, h = 0;
             svcli::parse_frame_size(rest, w, h);

@@ -233,7 +233,13 @@ int main(int argc, char **argv) {
             {2, {"spot:1,2,3,0,0,-1,5,40"}},
             {3, {"eye=0,1.5,4,target=0,1,0,up=0,1,0,fov=45"}},
             {4, {"a.glb@1e3,-2.5e-3,7,-90,0.25"}},
-            {5, {"8192x8192"}}};
+            {5, {"8192x8192"}},
+            {6,
+             {"scene.glb:walk", "--add", "b.glb@1,0,0:0", "--script", "s.txt", "--no-hud",
+              "--stencil", "hier", "--fps", "12", "--size=320x240"}},
+            {7,
+             {"# a script\n0 key Space\n1 drag left 10 20 30 5\n2 wheel -3\n3 key .\n"
+              "3 snap a.png\n3 print\n4 quit\n"}}};
         int k = 0;
         for (const auto &line : lines) {
             std::string bytes(1, line.first);
