@@ -26,6 +26,9 @@
 #include "shadowvol_mesh.h"  /* PreparedSurface */
 #include "shadowvol_scene.h" /* Mat4d, Vec3d, SceneLight, Camera */
 
+/* The arguments of a skinning-and-planes kernel (src/anim/skin_planes_kernels.h). */
+struct sv_skin_planes_args;
+
 namespace sv {
 
 struct AnimNode {
@@ -228,6 +231,46 @@ void joint_matrices(const AnimatedAsset &asset, int skin, const Pose &pose, cons
  * * p in double, rounded to float once (load_gltf's arithmetic; K unused). */
 void pose_surface(const AnimatedAsset &asset, const AnimatedSurface &surface, const Pose &pose,
                   const Mat4d &root, float *out, const SkinningKernel *k = nullptr);
+
+/* ---- Skinning and planes in one pass ------------------------------------
+ * A skinned surface needs its triangle planes again every frame. This pass
+ * writes the skinned positions (pose_surface()'s, the kernel's bits) and
+ * the planes of sv_derive_planes_c_ref on them, BIT-IDENTICAL to "skin with
+ * any kernel, then derive with any planes variant", in segments: each
+ * skins the vertices the next run of triangles completes, then derives
+ * those triangles' planes while the positions are in the first-level cache
+ * (src/anim/skin_planes_kernels.c says when that helps and when it is
+ * "skin, then planes" again; docs/PLANES.md has the measurements). */
+
+/* Runs of about SEGMENT_TRIANGLES triangles (the last may be shorter; 0:
+ * one segment) and, for each, the vertex count its corners need. Throws
+ * PrepareError when an index is negative or not below NUM_VERTICES. */
+struct SkinPlanesSchedule {
+    std::vector<std::size_t> vertex_end;
+    std::vector<int> triangle_end;
+};
+constexpr int kSkinPlanesSegmentTriangles = 256;
+SkinPlanesSchedule skin_planes_schedule(const int *indices, int num_triangles,
+                                        std::size_t num_vertices,
+                                        int segment_triangles = kSkinPlanesSegmentTriangles);
+
+struct SkinPlanesKernel {
+    const char *name;              /* "c_ref", "avx2", "avx512", "avx512_avx2" (skinning, planes) */
+    unsigned isa;                  /* SV_ISA_* bits the CPU must have */
+    const char *skinning, *planes; /* the kernels it runs: skinning_kernel_by_name,
+                                      sv_planes_variant_by_name */
+    void (*fn)(const ::sv_skin_planes_args *args);
+};
+const SkinPlanesKernel *skin_planes_kernels(int *count);
+const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name);
+
+/* pose_surface() and the planes of SURFACE (skinned, surface.skin >= 0) in
+ * one pass by K, with SCHEDULE (built by skin_planes_schedule for the
+ * surface's prepared indices). OUT: 3 floats per welded vertex; PLANES:
+ * one per triangle. */
+void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface &surface,
+                              const Pose &pose, const Mat4d &root, const SkinPlanesKernel &k,
+                              const SkinPlanesSchedule &schedule, float *out, Plane *planes);
 
 /* surface.prepared with its positions replaced by POSITIONS (3 per welded
  * vertex, e.g. from pose_surface) and every plane re-derived by

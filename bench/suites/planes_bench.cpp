@@ -21,6 +21,8 @@
  *     every call's facing bytes compared with the C references'.
  *  3. how often the two facings disagree over the 16 lights (they round
  *     differently near a triangle's plane).
+ *  4. the skinned characters: skinning alone, skinning then planes, and
+ *     both in one pass (skin_planes_bench.cpp).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -36,6 +38,7 @@
 #include "planes_bench.h"
 #include "seed_bench.h"
 #include "shadowvol_planes.h"
+#include "skin_planes_bench.h"
 
 #ifndef SV_MODELS_DIR
 #define SV_MODELS_DIR "models"
@@ -297,7 +300,8 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
     }
 }
 
-std::string planes_json(const std::vector<PlanesResult> &results, const SeedTimer &t) {
+std::string planes_json(const std::vector<PlanesResult> &results,
+                        const std::vector<SkinPlanesResult> &skinned, const SeedTimer &t) {
     JsonWriter j;
     j.begin_object();
     seed_json_header(j, "shadowvol-planes/1", t);
@@ -336,6 +340,7 @@ std::string planes_json(const std::vector<PlanesResult> &results, const SeedTime
         j.end_object();
     }
     j.end_array();
+    skin_planes_json(j, skinned);
     j.end_object();
     return j.str();
 }
@@ -378,7 +383,19 @@ int run_planes_bench(const SeedCommand &cmd) {
         FILE *progress = isatty(fileno(stderr)) ? stderr : nullptr;
         for (PlanesResult &r : results) measure(r, timer, cmd.seed, progress);
         print_tables(out, results);
+        const std::vector<SkinPlanesResult> skinned = measure_skin_planes(timer, cmd.sharedModels,
+                                                                          cmd.quick, out, progress);
+        print_skin_planes(out, skinned);
         int failed = 0;
+        for (const SkinPlanesResult &r : skinned) {
+            for (const SkinPlanesRow &row : r.rows) {
+                if (!row.t.ok) {
+                    failed++;
+                    std::fprintf(out, "FAILED %s %s %s: %s\n", r.name.c_str(), row.what.c_str(),
+                                 row.variant.c_str(), row.t.failure.c_str());
+                }
+            }
+        }
         for (const PlanesResult &r : results) {
             for (const PlanesRow &row : r.rows) {
                 if (!row.t.ok) {
@@ -388,7 +405,7 @@ int run_planes_bench(const SeedCommand &cmd) {
                 }
             }
         }
-        *doc = planes_json(results, timer);
+        *doc = planes_json(results, skinned, timer);
         return failed;
     });
 }

@@ -22,6 +22,20 @@ bool same_light(const SceneLight &a, const SceneLight &b) {
            a.intensity == b.intensity && a.color == b.color;
 }
 
+/* The one-pass kernel that runs SKINNING and PLANES, or nullptr. */
+const SkinPlanesKernel *matching_skin_planes(const SkinningKernel *skinning,
+                                             const sv_planes_variant *planes) {
+    int n = 0;
+    const SkinPlanesKernel *k = skin_planes_kernels(&n);
+    for (int i = 0; i < n; i++) {
+        if (std::strcmp(k[i].skinning, skinning->name) == 0 &&
+            std::strcmp(k[i].planes, planes->name) == 0) {
+            return &k[i];
+        }
+    }
+    return nullptr;
+}
+
 } // namespace
 
 struct SceneSequence::Model {
@@ -33,7 +47,11 @@ struct SceneSequence::Model {
     std::vector<char> node_moves;
     Pose pose;
     std::vector<float> scratch;
+    AlignedVector<Plane> plane_scratch;
     std::vector<float> joint_scratch;
+    /* Per surface of the asset: its one-pass schedule (built the first time
+     * the surface is skinned with planes). */
+    std::vector<SkinPlanesSchedule> schedules;
 
     bool surface_moves(int s) const {
         const AnimatedSurface &as = asset.surfaces[(std::size_t)s];
@@ -50,7 +68,9 @@ struct SceneSequence::Model {
 
 SceneSequence::SceneSequence(const SequenceOptions &o)
     : skinning_(o.skinning ? o.skinning : best_skinning_kernel()),
-      planes_(o.planes ? o.planes : sv_best_planes_variant()), aspect_(o.aspect) {
+      planes_(o.planes ? o.planes : sv_best_planes_variant()),
+      skin_planes_(o.skin_planes ? o.skin_planes : matching_skin_planes(skinning_, planes_)),
+      aspect_(o.aspect) {
     std::vector<ModelPlacement> files;
     files.push_back({o.file, o.placement, o.animation});
     files.insert(files.end(), o.adds.begin(), o.adds.end());
@@ -181,9 +201,23 @@ PoseStats SceneSequence::set_time(double time) {
         SceneSurface &s = scene_.surfaces[si];
         const AnimatedSurface &as = m.asset.surfaces[(std::size_t)link.surface];
         m.scratch.resize(s.prepared.positions.size());
+        const bool one_pass = skin_planes_ && as.skin >= 0;
         k0 = __rdtsc();
-        pose_surface(m.asset, as, m.pose, m.root, m.scratch.data(), skinning_);
-        st.ticks_skinning += __rdtsc() - k0;
+        if (one_pass) {
+            m.schedules.resize(m.asset.surfaces.size());
+            SkinPlanesSchedule &sch = m.schedules[(std::size_t)link.surface];
+            if (sch.triangle_end.empty() && sch.vertex_end.empty()) {
+                sch = skin_planes_schedule(s.prepared.indices.data(), s.prepared.num_triangles(),
+                                           static_cast<std::size_t>(s.prepared.num_vertices()));
+            }
+            m.plane_scratch.resize(s.prepared.planes.size());
+            pose_surface_with_planes(m.asset, as, m.pose, m.root, *skin_planes_, sch,
+                                     m.scratch.data(), m.plane_scratch.data());
+            st.ticks_skin_planes += __rdtsc() - k0;
+        } else {
+            pose_surface(m.asset, as, m.pose, m.root, m.scratch.data(), skinning_);
+            st.ticks_skinning += __rdtsc() - k0;
+        }
         for (float v : m.scratch) {
             /* A pose can overflow float (a scale key of 1e30): refused, as
              * a non-finite input position is. */
@@ -197,10 +231,14 @@ PoseStats SceneSequence::set_time(double time) {
             continue;
         }
         std::swap(m.scratch, s.prepared.positions);
-        k0 = __rdtsc();
-        planes_->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
-                               s.prepared.num_triangles(), s.prepared.planes.data());
-        st.ticks_planes += __rdtsc() - k0;
+        if (one_pass) {
+            std::swap(m.plane_scratch, s.prepared.planes);
+        } else {
+            k0 = __rdtsc();
+            planes_->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
+                                   s.prepared.num_triangles(), s.prepared.planes.data());
+            st.ticks_planes += __rdtsc() - k0;
+        }
         st.planes_derived += s.prepared.num_triangles();
         update_bounds(s);
         s.revision++;

@@ -46,14 +46,19 @@ struct SequenceOptions {
     double aspect = 1.25;
     const SkinningKernel *skinning = nullptr;  /* nullptr: the best */
     const sv_planes_variant *planes = nullptr; /* nullptr: the best */
+    /* Skinned surfaces: positions and planes in one pass by this kernel.
+     * nullptr: the one that runs SKINNING and PLANES, where there is one
+     * (else two passes). */
+    const SkinPlanesKernel *skin_planes = nullptr;
 };
 
 /* What set_time did. */
 struct PoseStats {
-    uint64_t ticks_pose = 0;     /* node matrices, lights, camera */
-    uint64_t ticks_skinning = 0; /* world positions of the moving surfaces */
-    uint64_t ticks_planes = 0;   /* their planes */
-    int64_t planes_derived = 0;  /* triangles */
+    uint64_t ticks_pose = 0;        /* node matrices, lights, camera */
+    uint64_t ticks_skinning = 0;    /* world positions of the moving surfaces */
+    uint64_t ticks_planes = 0;      /* their planes */
+    uint64_t ticks_skin_planes = 0; /* skinned surfaces' positions and planes in one pass */
+    int64_t planes_derived = 0;     /* triangles (both ways) */
     int surfaces_moved = 0;
     int lights_moved = 0;
 };
@@ -96,6 +101,7 @@ private:
     std::string animation_name_;
     const SkinningKernel *skinning_;
     const sv_planes_variant *planes_;
+    const SkinPlanesKernel *skin_planes_; /* nullptr: two passes */
     double aspect_;
 };
 

@@ -1,0 +1,102 @@
+/*
+ * Skinning and planes in one pass (include/shadowvol_anim.h): the
+ * schedule that cuts a surface into segments, the kernel table, and the
+ * call for a posed surface. The kernels are in skin_planes_kernels.c.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "shadowvol_anim.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "shadowvol_planes.h"
+#include "skin_planes_kernels.h"
+
+namespace sv {
+
+SkinPlanesSchedule skin_planes_schedule(const int *indices, int num_triangles,
+                                        std::size_t num_vertices, int segment_triangles) {
+    SkinPlanesSchedule s;
+    if (num_triangles < 0) throw PrepareError("skin_planes_schedule: a negative triangle count");
+    if (num_triangles > 0 && !indices) {
+        throw PrepareError("skin_planes_schedule: no indices for " + std::to_string(num_triangles) +
+                           " triangles");
+    }
+    const int run = segment_triangles > 0 ? segment_triangles : std::max(num_triangles, 1);
+    std::size_t need = 0; /* vertices the triangles so far need */
+    for (int t0 = 0; t0 < num_triangles; t0 += run) {
+        const int t1 = std::min(num_triangles, t0 + std::min(run, num_triangles - t0));
+        for (int i = 3 * t0; i < 3 * t1; i++) {
+            const int v = indices[i];
+            if (v < 0 || static_cast<std::size_t>(v) >= num_vertices) {
+                throw PrepareError("skin_planes_schedule: index " + std::to_string(i) + " is " +
+                                   std::to_string(v) + ", not a vertex of " +
+                                   std::to_string(num_vertices));
+            }
+            need = std::max(need, static_cast<std::size_t>(v) + 1);
+        }
+        s.vertex_end.push_back(need);
+        s.triangle_end.push_back(t1);
+    }
+    /* Vertices no triangle uses are skinned too (the positions are the
+     * surface's, all of them). */
+    if (s.vertex_end.empty() || s.vertex_end.back() < num_vertices) {
+        s.vertex_end.push_back(num_vertices);
+        s.triangle_end.push_back(num_triangles);
+    }
+    return s;
+}
+
+const SkinPlanesKernel *skin_planes_kernels(int *count) {
+    static const SkinPlanesKernel kKernels[] = {
+        {"c_ref", SV_ISA_NONE, "c_ref", "c_ref", &sv_skin_planes_c_ref},
+        /* The ISA bits of both kernels it runs (the planes' include SSE2:
+         * their tails). */
+        {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2, "avx2", "avx2", &sv_skin_planes_avx2},
+        {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "avx512", "avx512",
+         &sv_skin_planes_avx512},
+        {"avx512_avx2", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "avx512", "avx2",
+         &sv_skin_planes_avx512_avx2},
+    };
+    if (count) *count = static_cast<int>(sizeof kKernels / sizeof kKernels[0]);
+    return kKernels;
+}
+
+const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name) {
+    int n;
+    const SkinPlanesKernel *k = skin_planes_kernels(&n);
+    for (int i = 0; name && i < n; i++) {
+        if (std::strcmp(k[i].name, name) == 0) return &k[i];
+    }
+    return nullptr;
+}
+
+void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface &surface,
+                              const Pose &pose, const Mat4d &root, const SkinPlanesKernel &k,
+                              const SkinPlanesSchedule &schedule, float *out, Plane *planes) {
+    if (surface.skin < 0) {
+        throw PrepareError(surface.name + ": pose_surface_with_planes needs a skinned surface");
+    }
+    const PreparedSurface &p = surface.prepared;
+    AlignedVector<float> jm(16 * asset.skins[surface.skin].joints.size());
+    joint_matrices(asset, surface.skin, pose, root, jm.data());
+    sv_skin_planes_args a{};
+    a.joint_matrices = jm.data();
+    a.rest = surface.rest_positions.data();
+    a.joints = surface.joints.data();
+    a.weights = surface.weights.data();
+    a.influences = surface.influences;
+    a.num_vertices = surface.rest_positions.size() / 3;
+    a.indices = p.indices.data();
+    a.num_triangles = p.num_triangles();
+    a.segments = static_cast<int>(schedule.triangle_end.size());
+    a.vertex_end = schedule.vertex_end.data();
+    a.triangle_end = schedule.triangle_end.data();
+    a.out = out;
+    a.planes = planes;
+    k.fn(&a);
+}
+
+} // namespace sv
