@@ -22,9 +22,11 @@
 #include <vector>
 
 #include "shadowvol.h"
-#include "shadowvol_gltf.h"  /* GltfError */
-#include "shadowvol_mesh.h"  /* PreparedSurface */
-#include "shadowvol_scene.h" /* Mat4d, Vec3d, SceneLight, Camera */
+#include "shadowvol_gltf.h"   /* GltfError */
+#include "shadowvol_mesh.h"   /* PreparedSurface */
+#include "shadowvol_plan.h"   /* sv_deform_routine */
+#include "shadowvol_planes.h" /* sv_planes_variant */
+#include "shadowvol_scene.h"  /* Mat4d, Vec3d, SceneLight, Camera */
 
 /* The arguments of a skinning-and-planes kernel (src/anim/skin_planes_kernels.h). */
 struct sv_skin_planes_args;
@@ -271,6 +273,38 @@ const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name);
 void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface &surface,
                               const Pose &pose, const Mat4d &root, const SkinPlanesKernel &k,
                               const SkinPlanesSchedule &schedule, float *out, Plane *planes);
+
+/* ---- The deforming pass chosen by measurement ----------------------------
+ * Which skinning kernel, planes variant and one-pass kernel a skinned
+ * surface of NUM_TRIANGLES triangles runs: the planner's choice for its
+ * size class (include/shadowvol_plan.h: measured in this process, or this
+ * CPU's wisdom file, which `shadowvol tune` writes), each name checked
+ * against the tables and this CPU; else the static choice: the widest
+ * skinning kernel, sv_best_planes_variant(), two passes. */
+struct DeformPlan {
+    const SkinningKernel *skinning = nullptr;
+    const sv_planes_variant *planes = nullptr;
+    const SkinPlanesKernel *skin_planes = nullptr; /* nullptr: two passes */
+    const char *source = "static"; /* "measured", "wisdom" or "static" (of skin_planes' choice) */
+};
+DeformPlan deform_plan_for(int num_triangles);
+
+/* One variant's time in measure_deform_plan. */
+struct DeformTiming {
+    sv_deform_routine routine;
+    std::string variant; /* skin_planes: a one-pass kernel, or "two passes" (the chosen K then P) */
+    double ticks_per_triangle; /* the lowest of the rounds' medians */
+};
+/* Times every skinning kernel, planes variant and one-pass kernel this CPU
+ * runs on a generated skinned height field of size class SIZE_CLASS
+ * (sv_size_class_triangles triangles, vertices in row order, 4 influences
+ * of 24 joints), in rounds, each output checked bit for bit against the C
+ * references; records the winners with sv_deform_choice_set (a kernel
+ * keeps the static choice unless another is more than 3% faster; the
+ * one-pass kernel is chosen only when more than 3% faster than the chosen
+ * two passes). Throws std::runtime_error when a kernel disagrees with the
+ * reference (nothing recorded) or SIZE_CLASS is out of range. */
+std::vector<DeformTiming> measure_deform_plan(int size_class);
 
 /* surface.prepared with its positions replaced by POSITIONS (3 per welded
  * vertex, e.g. from pose_surface) and every plane re-derived by

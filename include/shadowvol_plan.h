@@ -190,7 +190,39 @@ int sv_shadow_volume_for_light(const sv_plan *plan, const sv_surface *surface, c
                                const Plane *lightPlanes, int *shadowIndices, size_t capacity,
                                uint8_t *facing, uint8_t *cullBits);
 
-/* Forgets every measured and wisdom plan (tests). */
+/* ---- Deforming surfaces: skinning and per-frame planes -----------------
+ * What a skinned surface runs each frame before any light: a skinning
+ * kernel (sv::skinning_kernels), a planes variant (sv_planes_variants) and,
+ * where it is faster than the two in a row, a one-pass kernel that does
+ * both (sv::skin_planes_kernels). Those tables live in the animation
+ * layer, which measures them (sv::measure_deform_plan, `shadowvol tune`)
+ * and asks here for the choice: per size class, measured in this process
+ * or read from the wisdom file (this CPU model's section, lines
+ * "class N skinning avx2 2.9", ticks per triangle). With neither, the
+ * animation layer uses its static choice (sv::deform_plan_for says which). */
+typedef enum sv_deform_routine {
+    SV_DEFORM_SKINNING,      /* a skinning kernel's name */
+    SV_DEFORM_DERIVE_PLANES, /* a planes variant's name */
+    SV_DEFORM_SKIN_PLANES,   /* a one-pass kernel's name, or "none": two passes */
+    SV_NUM_DEFORM_ROUTINES
+} sv_deform_routine;
+/* "skinning", "derive_planes", "skin_planes"; NULL out of range. */
+const char *sv_deform_routine_name(sv_deform_routine r);
+
+typedef struct sv_deform_choice {
+    char variant[32];   /* the chosen name */
+    double ticks;       /* ticks per triangle where it was measured */
+    const char *source; /* "measured" or "wisdom" */
+} sv_deform_choice;
+/* Fills OUT with the choice for R in SIZECLASS and returns 1; 0 when there
+ * is none (nothing measured, nothing in the wisdom file), -1 out of range. */
+int sv_deform_choice_for(int sizeClass, sv_deform_routine r, sv_deform_choice *out);
+/* Records a measurement's choice for this process (sv_wisdom_save writes
+ * it; the wisdom file never overrides it). VARIANT: up to 31 characters of
+ * [a-z0-9_]. 0, or -1 for a bad class, routine or name. */
+int sv_deform_choice_set(int sizeClass, sv_deform_routine r, const char *variant, double ticks);
+
+/* Forgets every measured and wisdom plan and deform choice (tests). */
 void sv_plan_reset(void);
 
 #ifdef __cplusplus

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "shadowvol_gltf.h"
+#include "shadowvol_plan.h"
 
 #ifndef SV_DEMO_SCENE
 #define SV_DEMO_SCENE "models/demo_scene.glb"
@@ -33,6 +34,12 @@ std::unique_ptr<sv::SceneSequence> open_scene(const char *command, SceneArgs &ar
         }
     }
     args.seq.aspect = (double)args.width / args.height;
+    /* The plans `shadowvol tune` measured for this CPU (the volume kernels'
+     * and the skinned surfaces' deforming pass), as bench and check read
+     * them; without the file, the static choices. Every choice gives the
+     * same bytes. */
+    char wisdom[1024];
+    sv_wisdom_load(sv_wisdom_default_path(wisdom, sizeof wisdom));
     std::unique_ptr<sv::SceneSequence> seq;
     try {
         seq = std::make_unique<sv::SceneSequence>(args.seq);

@@ -28,6 +28,7 @@
 
 #include "cli_args.h"
 #include "model_load.h"
+#include "shadowvol_anim.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_plan.h"
 
@@ -44,6 +45,8 @@ void tune_usage(FILE *out) {
         "  Without MODEL a class is measured on the generated character at %d, %d,\n"
         "  %d and %d triangles; with MODEL on the model's largest surface in each\n"
         "  class it has (its own shape and silhouette share), and only those classes.\n"
+        "  Then, per class, the deforming pass of skinned surfaces (skinning kernel,\n"
+        "  planes variant, and one pass or two) on a generated skinned height field.\n"
         "  --class N       measure class N only (repeatable; default: all four, or\n"
         "                  those of MODEL's surfaces)\n"
         "  --wisdom FILE   the wisdom file (default: $SV_WISDOM, else\n"
@@ -87,6 +90,33 @@ void print_class(int c, const std::string &measuredOn, const std::vector<sv_plan
                         is_static ? (chosen ? ", static" : "(static)") : "");
         }
     }
+}
+
+/* The deforming pass of class C (skinning, planes, one pass): every
+ * kernel's ticks per triangle, the choices marked. Returns false when a
+ * kernel disagreed with the C references. */
+bool tune_deform(int c) {
+    std::vector<sv::DeformTiming> t;
+    try {
+        t = sv::measure_deform_plan(c);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr,
+                     "shadowvol tune: class %d: %s; nothing saved (a bug: please report it)\n", c,
+                     e.what());
+        return false;
+    }
+    std::printf("\nclass %d, deforming surfaces (a skinned height field of about %d triangles; "
+                "ticks per triangle)\n",
+                c, sv_size_class_triangles(c));
+    for (const sv::DeformTiming &x : t) {
+        sv_deform_choice ch;
+        const bool chosen = sv_deform_choice_for(c, x.routine, &ch) == 1 &&
+                            (x.variant == ch.variant ||
+                             (x.variant == "two passes" && std::string(ch.variant) == "none"));
+        std::printf("%-22s %-14s %12.2f  %s\n", sv_deform_routine_name(x.routine),
+                    x.variant.c_str(), x.ticks_per_triangle, chosen ? "<- planned" : "");
+    }
+    return true;
 }
 
 } // namespace
@@ -194,6 +224,7 @@ int tune_main(int argc, char **argv) {
         }
         t.resize((size_t)std::min(n, (int)t.size()));
         print_class(c, measuredOn, t);
+        if (!tune_deform(c)) return 1;
     }
     if (dry) {
         std::printf("\n--dry-run: nothing saved\n");

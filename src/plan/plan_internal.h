@@ -29,6 +29,14 @@ bool measured(int sizeClass, sv_plan *out);
 /* The built-in plan for this CPU (builtin.cpp). */
 sv_plan builtin_plan(int sizeClass);
 
+/* Deform choices (deform_choices.cpp): KIND 2 wisdom, 3 measured (a
+ * measurement is never replaced by the wisdom file). As sv_deform_choice_set
+ * returns. */
+int set_deform_choice(int sizeClass, int r, const char *variant, double ticks, int kind);
+/* The class's choice for R when this process measured it. */
+bool measured_deform_choice(int sizeClass, int r, sv_deform_choice *out);
+void reset_deform_choices();
+
 } // namespace svplan
 
 #endif

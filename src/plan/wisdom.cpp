@@ -5,6 +5,8 @@
  *   cpu AuthenticAMD 23/1/2 avx2 AMD EPYC
  *   class 0 calculate_facing avx2 3421.5
  *   ...                                      (one line per class and routine)
+ *   class 0 skinning avx512 2.7              (deforming surfaces: ticks per
+ *   class 0 skin_planes none 6.3              triangle; "none": two passes)
  *   cpu <another CPU's key>
  *   ...
  *
@@ -42,8 +44,23 @@ struct Entry {
     std::string variant;
     double ticks = 0;
 };
-/* cpu key -> class -> routine -> entry */
+/* cpu key -> class -> routine -> entry; the deform routines (skinning,
+ * derive_planes, skin_planes) are numbered SV_NUM_ROUTINES + r. */
 using Sections = std::map<std::string, std::map<int, std::map<int, Entry>>>;
+
+constexpr int kAllRoutines = SV_NUM_ROUTINES + SV_NUM_DEFORM_ROUTINES;
+
+const char *routine_name(int r) {
+    return r < SV_NUM_ROUTINES ? sv_routine_name((sv_routine)r)
+                               : sv_deform_routine_name((sv_deform_routine)(r - SV_NUM_ROUTINES));
+}
+
+int routine_number(const std::string &name) {
+    for (int r = 0; r < kAllRoutines; r++) {
+        if (name == routine_name(r)) return r;
+    }
+    return -1;
+}
 
 bool parse(const std::string &path, Sections &out, std::vector<std::string> &order) {
     std::ifstream in(path);
@@ -67,9 +84,8 @@ bool parse(const std::string &path, Sections &out, std::vector<std::string> &ord
             cls < 0 || cls >= SV_NUM_SIZE_CLASSES || !(ticks >= 0)) {
             return false;
         }
-        int r = 0;
-        while (r < SV_NUM_ROUTINES && routine != sv_routine_name((sv_routine)r)) r++;
-        if (r == SV_NUM_ROUTINES) return false;
+        const int r = routine_number(routine);
+        if (r < 0) return false;
         out[cpu][cls][r] = Entry{variant, ticks};
     }
     return true;
@@ -124,12 +140,19 @@ int sv_wisdom_load(const char *path) {
     for (const auto &[cls, routines] : it->second) {
         const char *names[SV_NUM_ROUTINES] = {};
         double ticks[SV_NUM_ROUTINES] = {};
+        bool volume = false;
         for (const auto &[r, e] : routines) {
+            if (r >= SV_NUM_ROUTINES) {
+                /* Names the animation layer checks against its tables. */
+                svplan::set_deform_choice(cls, r - SV_NUM_ROUTINES, e.variant.c_str(), e.ticks, 2);
+                continue;
+            }
             names[r] = e.variant.c_str();
             ticks[r] = e.ticks;
+            volume = true;
         }
         /* make_plan copies the static names, so e.variant may go. */
-        svplan::install(cls, svplan::make_plan(cls, "wisdom", names, ticks), 2);
+        if (volume) svplan::install(cls, svplan::make_plan(cls, "wisdom", names, ticks), 2);
         classes++;
     }
     return classes;
@@ -150,6 +173,14 @@ int sv_wisdom_save(const char *path) {
         if (!svplan::measured(c, &p)) continue;
         for (int r = 0; r < SV_NUM_ROUTINES; r++) mine[c][r] = Entry{p.variant[r], p.ticks[r]};
     }
+    for (int c = 0; c < SV_NUM_SIZE_CLASSES; c++) {
+        for (int r = 0; r < SV_NUM_DEFORM_ROUTINES; r++) {
+            sv_deform_choice d;
+            if (svplan::measured_deform_choice(c, r, &d)) {
+                mine[c][SV_NUM_ROUTINES + r] = Entry{d.variant, d.ticks};
+            }
+        }
+    }
     const std::string tmp = std::string(path) + ".tmp";
     {
         std::ofstream out(tmp);
@@ -160,9 +191,9 @@ int sv_wisdom_save(const char *path) {
             for (const auto &[cls, routines] : all[key]) {
                 for (const auto &[r, e] : routines) {
                     char t[64];
-                    std::snprintf(t, sizeof t, "%.1f", e.ticks);
-                    out << "class " << cls << " " << sv_routine_name((sv_routine)r) << " "
-                        << e.variant << " " << t << "\n";
+                    std::snprintf(t, sizeof t, r < SV_NUM_ROUTINES ? "%.1f" : "%.3f", e.ticks);
+                    out << "class " << cls << " " << routine_name(r) << " " << e.variant << " " << t
+                        << "\n";
                 }
             }
         }

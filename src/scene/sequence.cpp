@@ -22,20 +22,6 @@ bool same_light(const SceneLight &a, const SceneLight &b) {
            a.intensity == b.intensity && a.color == b.color;
 }
 
-/* The one-pass kernel that runs SKINNING and PLANES, or nullptr. */
-const SkinPlanesKernel *matching_skin_planes(const SkinningKernel *skinning,
-                                             const sv_planes_variant *planes) {
-    int n = 0;
-    const SkinPlanesKernel *k = skin_planes_kernels(&n);
-    for (int i = 0; i < n; i++) {
-        if (std::strcmp(k[i].skinning, skinning->name) == 0 &&
-            std::strcmp(k[i].planes, planes->name) == 0) {
-            return &k[i];
-        }
-    }
-    return nullptr;
-}
-
 } // namespace
 
 struct SceneSequence::Model {
@@ -68,9 +54,8 @@ struct SceneSequence::Model {
 
 SceneSequence::SceneSequence(const SequenceOptions &o)
     : skinning_(o.skinning ? o.skinning : best_skinning_kernel()),
-      planes_(o.planes ? o.planes : sv_best_planes_variant()),
-      skin_planes_(o.skin_planes ? o.skin_planes : matching_skin_planes(skinning_, planes_)),
-      aspect_(o.aspect) {
+      planes_(o.planes ? o.planes : sv_best_planes_variant()), skin_planes_(o.skin_planes),
+      forced_(o.skinning || o.planes || o.skin_planes), aspect_(o.aspect) {
     std::vector<ModelPlacement> files;
     files.push_back({o.file, o.placement, o.animation});
     files.insert(files.end(), o.adds.begin(), o.adds.end());
@@ -171,6 +156,16 @@ SceneSequence::SceneSequence(const SequenceOptions &o)
     validate_scene(scene_);
 }
 
+DeformPlan SceneSequence::deform_for(int num_triangles) const {
+    if (!forced_) return deform_plan_for(num_triangles);
+    DeformPlan d;
+    d.skinning = skinning_;
+    d.planes = planes_;
+    d.skin_planes = skin_planes_;
+    d.source = "options";
+    return d;
+}
+
 PoseStats SceneSequence::set_time(double time) {
     PoseStats st;
     uint64_t k0 = __rdtsc();
@@ -201,7 +196,8 @@ PoseStats SceneSequence::set_time(double time) {
         SceneSurface &s = scene_.surfaces[si];
         const AnimatedSurface &as = m.asset.surfaces[(std::size_t)link.surface];
         m.scratch.resize(s.prepared.positions.size());
-        const bool one_pass = skin_planes_ && as.skin >= 0;
+        const DeformPlan d = deform_for(s.prepared.num_triangles());
+        const bool one_pass = d.skin_planes && as.skin >= 0;
         k0 = __rdtsc();
         if (one_pass) {
             m.schedules.resize(m.asset.surfaces.size());
@@ -211,11 +207,11 @@ PoseStats SceneSequence::set_time(double time) {
                                            static_cast<std::size_t>(s.prepared.num_vertices()));
             }
             m.plane_scratch.resize(s.prepared.planes.size());
-            pose_surface_with_planes(m.asset, as, m.pose, m.root, *skin_planes_, sch,
+            pose_surface_with_planes(m.asset, as, m.pose, m.root, *d.skin_planes, sch,
                                      m.scratch.data(), m.plane_scratch.data());
             st.ticks_skin_planes += __rdtsc() - k0;
         } else {
-            pose_surface(m.asset, as, m.pose, m.root, m.scratch.data(), skinning_);
+            pose_surface(m.asset, as, m.pose, m.root, m.scratch.data(), d.skinning);
             st.ticks_skinning += __rdtsc() - k0;
         }
         for (float v : m.scratch) {
@@ -235,8 +231,8 @@ PoseStats SceneSequence::set_time(double time) {
             std::swap(m.plane_scratch, s.prepared.planes);
         } else {
             k0 = __rdtsc();
-            planes_->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
-                                   s.prepared.num_triangles(), s.prepared.planes.data());
+            d.planes->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
+                                    s.prepared.num_triangles(), s.prepared.planes.data());
             st.ticks_planes += __rdtsc() - k0;
         }
         st.planes_derived += s.prepared.num_triangles();

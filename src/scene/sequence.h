@@ -44,11 +44,13 @@ struct SequenceOptions {
     bool has_camera = false;
     Camera camera; /* else the file's first camera, else frame_camera */
     double aspect = 1.25;
-    const SkinningKernel *skinning = nullptr;  /* nullptr: the best */
-    const sv_planes_variant *planes = nullptr; /* nullptr: the best */
-    /* Skinned surfaces: positions and planes in one pass by this kernel.
-     * nullptr: the one that runs SKINNING and PLANES, where there is one
-     * (else two passes). */
+    const SkinningKernel *skinning = nullptr;  /* nullptr: the planned or static choice */
+    const sv_planes_variant *planes = nullptr; /* nullptr: the planned or static choice */
+    /* Skinned surfaces: positions and planes in one pass by this kernel
+     * (nullptr: two passes). With none of the three set, each surface runs
+     * what deform_plan_for() chooses for its size (the planner's
+     * measurement or wisdom, else the static choice); with any set, the
+     * ones not set are the static choices and two passes. */
     const SkinPlanesKernel *skin_planes = nullptr;
 };
 
@@ -102,6 +104,8 @@ private:
     const SkinningKernel *skinning_;
     const sv_planes_variant *planes_;
     const SkinPlanesKernel *skin_planes_; /* nullptr: two passes */
+    bool forced_;                         /* the options named a kernel */
+    DeformPlan deform_for(int num_triangles) const;
     double aspect_;
 };
 

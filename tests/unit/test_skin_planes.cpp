@@ -7,12 +7,17 @@
 // the outputs, every call through the ABI checker; a schedule that skins
 // too little is caught by the same comparison (so it could fail); and the
 // skinned characters of the demo scene (the bundled character, skinned), ../shared/models and its open/ folder
-// over a few frames of each of their animations.
+// over a few frames of each of their animations. The choice by measurement:
+// the planner keeps a choice per class and routine, a measurement records
+// runnable kernels, the wisdom file carries them, unknown names are not taken.
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include "test_support.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -308,6 +313,131 @@ SV_TIERED_TEST_P(SkinPlanesModels, SkinnedCharactersOverTheirAnimations) {
     }
     std::printf("[ skin+planes ] %s: %d skinned surfaces\n", GetParam().c_str(), skinned);
     EXPECT_GT(skinned, 0) << "no skinned surface in " << GetParam();
+}
+
+} // namespace
+
+namespace {
+
+// ================================================ the choice by measurement
+
+struct PlanReset {
+    PlanReset() { sv_plan_reset(); }
+    ~PlanReset() { sv_plan_reset(); }
+};
+
+TEST(DeformPlan, ChoicesAreKeptPerClassAndRoutine) {
+    PlanReset reset;
+    sv_deform_choice c;
+    EXPECT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKINNING, &c), 0);
+    EXPECT_EQ(sv_deform_choice_for(SV_NUM_SIZE_CLASSES, SV_DEFORM_SKINNING, &c), -1);
+    EXPECT_EQ(sv_deform_choice_for(0, SV_NUM_DEFORM_ROUTINES, &c), -1);
+    EXPECT_EQ(sv_deform_choice_set(1, SV_DEFORM_DERIVE_PLANES, "avx2", 4.25), 0);
+    ASSERT_EQ(sv_deform_choice_for(1, SV_DEFORM_DERIVE_PLANES, &c), 1);
+    EXPECT_STREQ(c.variant, "avx2");
+    EXPECT_EQ(c.ticks, 4.25);
+    EXPECT_STREQ(c.source, "measured");
+    EXPECT_EQ(sv_deform_choice_for(0, SV_DEFORM_DERIVE_PLANES, &c), 0); // other classes untouched
+    for (const char *bad : {"", "AVX2", "two passes", "a/b", "x123456789012345678901234567890ab"}) {
+        EXPECT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKINNING, bad, 1.0), -1) << bad;
+    }
+    EXPECT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKINNING, "avx2", -1.0), -1);
+    EXPECT_STREQ(sv_deform_routine_name(SV_DEFORM_SKIN_PLANES), "skin_planes");
+    EXPECT_EQ(sv_deform_routine_name(SV_NUM_DEFORM_ROUTINES), nullptr);
+}
+
+// Without a choice the static one; a choice naming a kernel that is not in
+// the table (an old or foreign wisdom file) is not taken.
+TEST(DeformPlan, StaticChoiceAndUnknownNames) {
+    PlanReset reset;
+    sv::DeformPlan p = sv::deform_plan_for(1000);
+    EXPECT_EQ(p.skinning, sv::best_skinning_kernel());
+    EXPECT_EQ(p.planes, sv_best_planes_variant());
+    EXPECT_EQ(p.skin_planes, nullptr);
+    EXPECT_STREQ(p.source, "static");
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKINNING, "avx1024", 1.0), 0);
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKIN_PLANES, "nope", 1.0), 0);
+    p = sv::deform_plan_for(1000);
+    EXPECT_EQ(p.skinning, sv::best_skinning_kernel());
+    EXPECT_EQ(p.skin_planes, nullptr);
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKINNING, "c_ref", 1.0), 0);
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKIN_PLANES, "c_ref", 1.0), 0);
+    p = sv::deform_plan_for(1000);
+    EXPECT_STREQ(p.skinning->name, "c_ref");
+    ASSERT_NE(p.skin_planes, nullptr);
+    EXPECT_STREQ(p.skin_planes->name, "c_ref");
+    EXPECT_STREQ(p.source, "measured");
+    EXPECT_EQ(sv::deform_plan_for(100000).skin_planes, nullptr); // class 2: nothing chosen
+}
+
+// A measurement records a runnable choice for each routine, its timings
+// cover every kernel this CPU runs, and the scene's lookup returns it.
+TEST(DeformPlan, MeasurementChoosesRunnableKernels) {
+    PlanReset reset;
+    const std::vector<sv::DeformTiming> t = sv::measure_deform_plan(0);
+    int want = 1; // "two passes"
+    int n = 0;
+    const sv::SkinningKernel *sk = sv::skinning_kernels(&n);
+    for (int i = 0; i < n; i++) want += (sk[i].isa & sv_cpu_isa()) == sk[i].isa;
+    const sv_planes_variant *pv = sv_planes_variants(&n);
+    for (int i = 0; i < n; i++) want += (pv[i].isa & sv_cpu_isa()) == pv[i].isa;
+    const sv::SkinPlanesKernel *fk = sv::skin_planes_kernels(&n);
+    for (int i = 0; i < n; i++) want += (fk[i].isa & sv_cpu_isa()) == fk[i].isa;
+    EXPECT_EQ((int)t.size(), want);
+    for (const sv::DeformTiming &x : t) {
+        EXPECT_GT(x.ticks_per_triangle, 0.0) << x.variant;
+        EXPECT_TRUE(std::isfinite(x.ticks_per_triangle)) << x.variant;
+    }
+    sv_deform_choice c;
+    for (int r = 0; r < SV_NUM_DEFORM_ROUTINES; r++) {
+        ASSERT_EQ(sv_deform_choice_for(0, (sv_deform_routine)r, &c), 1) << r;
+        EXPECT_STREQ(c.source, "measured");
+    }
+    const sv::DeformPlan p = sv::deform_plan_for(1344);
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKINNING, &c), 1);
+    EXPECT_STREQ(p.skinning->name, c.variant);
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_DERIVE_PLANES, &c), 1);
+    EXPECT_STREQ(p.planes->name, c.variant);
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKIN_PLANES, &c), 1);
+    EXPECT_STREQ(p.skin_planes ? p.skin_planes->name : "none", c.variant);
+    EXPECT_STREQ(p.source, "measured");
+    std::printf("[ deform   ] class 0: skinning %s, planes %s, %s\n", p.skinning->name,
+                p.planes->name, p.skin_planes ? p.skin_planes->name : "two passes");
+    EXPECT_THROW(sv::measure_deform_plan(SV_NUM_SIZE_CLASSES), std::runtime_error);
+}
+
+// The wisdom file carries the choices to the next process; a measurement
+// in this process outranks it.
+TEST(DeformPlan, WisdomRoundTrip) {
+    PlanReset reset;
+    const std::string path = ::testing::TempDir() + "/skin_planes_wisdom";
+    std::remove(path.c_str());
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKINNING, "sse2", 3.5), 0);
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_DERIVE_PLANES, "c_ref", 14.25), 0);
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKIN_PLANES, "none", 17.75), 0);
+    ASSERT_EQ(sv_wisdom_save(path.c_str()), 0);
+    sv_plan_reset();
+    sv_deform_choice c;
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKINNING, &c), 0);
+    ASSERT_EQ(sv_wisdom_load(path.c_str()), 1);
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKINNING, &c), 1);
+    EXPECT_STREQ(c.variant, "sse2");
+    EXPECT_EQ(c.ticks, 3.5);
+    EXPECT_STREQ(c.source, "wisdom");
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKIN_PLANES, &c), 1);
+    EXPECT_STREQ(c.variant, "none");
+    const sv::DeformPlan p = sv::deform_plan_for(10);
+    EXPECT_STREQ(p.skinning->name, "sse2");
+    EXPECT_STREQ(p.planes->name, "c_ref");
+    EXPECT_EQ(p.skin_planes, nullptr);
+    EXPECT_STREQ(p.source, "wisdom");
+    // Measured here: the file does not replace it.
+    ASSERT_EQ(sv_deform_choice_set(0, SV_DEFORM_SKINNING, "c_ref", 8.0), 0);
+    ASSERT_EQ(sv_wisdom_load(path.c_str()), 1);
+    ASSERT_EQ(sv_deform_choice_for(0, SV_DEFORM_SKINNING, &c), 1);
+    EXPECT_STREQ(c.variant, "c_ref");
+    EXPECT_STREQ(c.source, "measured");
+    std::remove(path.c_str());
 }
 
 } // namespace
