@@ -1,6 +1,7 @@
 # The installable library (issue 16): `cmake --install <build> --prefix P`
 # puts in place
 #   P/include/shadowvol.h, shadowvol_planes.h,  the C API (routines; per-frame planes;
+#     shadowvol_skin.h                          skinning, with planes in one pass;
 #     shadowvol_plan.h                          dispatch by measurement)
 #   P/include/shadowvol_mesh.h                  the C++ mesh preparation
 #   P/include/shadowvol_casters.h               shells and the caster rule (issue 27)
@@ -62,7 +63,7 @@ set_property(TARGET shadowvol APPEND PROPERTY INTERFACE_LINK_LIBRARIES
   $<INSTALL_INTERFACE:stdc++> $<INSTALL_INTERFACE:m>)
 
 install(FILES include/shadowvol.h include/shadowvol_mesh.h include/shadowvol_casters.h
-              include/shadowvol_planes.h
+              include/shadowvol_planes.h include/shadowvol_skin.h
               include/shadowvol_plan.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS shadowvol shadowvol_shared EXPORT shadowvolTargets

@@ -26,10 +26,8 @@
 #include "shadowvol_mesh.h"   /* PreparedSurface */
 #include "shadowvol_plan.h"   /* sv_deform_routine */
 #include "shadowvol_planes.h" /* sv_planes_variant */
+#include "shadowvol_skin.h"   /* the C kernels and their tables */
 #include "shadowvol_scene.h"  /* Mat4d, Vec3d, SceneLight, Camera */
-
-/* The arguments of a skinning-and-planes kernel (src/anim/skin_planes_kernels.h). */
-struct sv_skin_planes_args;
 
 namespace sv {
 
@@ -193,24 +191,12 @@ void sample(const AnimSampler &sampler, double t, double *out);
 
 /* ---- Skinning ----------------------------------------------------------- */
 
-/* out[v] = B_v * (rest[v], 1), B_v = sum over k < influences of
- * weights[v*influences+k] * M[joints[v*influences+k]], where M holds 16
- * floats per joint, column-major (column c at M + 16 j + 4 c; row 3 is
- * ignored: the SIMD kernels load it, so all 16 must be there). The exact order of operations, which every kernel keeps:
- *   B = w_0 * M_0;  B = B + w_k * M_k  for k = 1, 2, ...   (each element)
- *   out.r = ((B[0][r]*x + B[1][r]*y) + B[2][r]*z) + B[3][r]
- * in float, each operation rounded (no FMA): so every kernel gives the C
- * reference's bits. influences: 1..8 (the loader gives 4 or 8). out: 3
- * floats per vertex, nothing written past. No alignment required. */
-typedef void (*SkinningFn)(const float *joint_matrices, const float *rest, const uint16_t *joints,
-                           const float *weights, int influences, std::size_t num_vertices,
-                           float *out);
-
-struct SkinningKernel {
-    const char *name; /* "c_ref", "sse2", "avx2", "avx512" */
-    unsigned isa;     /* SV_ISA_* bits the CPU must have */
-    SkinningFn fn;
-};
+/* The kernels and their contract (the order of operations every one keeps,
+ * so that all give the C reference's bits): include/shadowvol_skin.h. */
+using SkinningFn = sv_skin_fn;
+/* name ("c_ref", "sse2", "avx2", "avx512"), isa (SV_ISA_* bits the CPU must
+ * have), fn: sv_skin_variants()' entries. */
+using SkinningKernel = sv_skin_variant;
 
 /* Every kernel, from the C reference to the widest; check isa against
  * sv_cpu_isa() before calling. */
@@ -241,7 +227,7 @@ void pose_surface(const AnimatedAsset &asset, const AnimatedSurface &surface, co
  * any kernel, then derive with any planes variant", in segments: each
  * skins the vertices the next run of triangles completes, then derives
  * those triangles' planes while the positions are in the first-level cache
- * (src/anim/skin_planes_kernels.c says when that helps and when it is
+ * (src/deform/skin_planes_kernels.c says when that helps and when it is
  * "skin, then planes" again; docs/PLANES.md has the measurements). */
 
 /* Runs of about SEGMENT_TRIANGLES triangles (the last may be shorter; 0:
@@ -256,13 +242,9 @@ SkinPlanesSchedule skin_planes_schedule(const int *indices, int num_triangles,
                                         std::size_t num_vertices,
                                         int segment_triangles = kSkinPlanesSegmentTriangles);
 
-struct SkinPlanesKernel {
-    const char *name;              /* "c_ref", "avx2", "avx512", "avx512_avx2" (skinning, planes) */
-    unsigned isa;                  /* SV_ISA_* bits the CPU must have */
-    const char *skinning, *planes; /* the kernels it runs: skinning_kernel_by_name,
-                                      sv_planes_variant_by_name */
-    void (*fn)(const ::sv_skin_planes_args *args);
-};
+/* name ("c_ref", "avx2", "avx512", "avx512_avx2"), isa, the skinning and
+ * planes kernels it runs, fn: sv_skin_planes_variants()' entries. */
+using SkinPlanesKernel = sv_skin_planes_variant;
 const SkinPlanesKernel *skin_planes_kernels(int *count);
 const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name);
 

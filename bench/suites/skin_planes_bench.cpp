@@ -23,7 +23,7 @@
 #include "json_writer.h"
 #include "shadowvol_anim.h"
 #include "shadowvol_planes.h"
-#include "../../src/anim/skin_planes_kernels.h"
+#include "shadowvol_skin.h"
 
 #ifndef SV_DEMO_SCENE
 #define SV_DEMO_SCENE "models/demo_scene.glb"

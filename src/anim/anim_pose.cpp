@@ -28,8 +28,6 @@
  */
 #include "shadowvol_anim.h"
 
-#include "skinning_kernels.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -205,16 +203,7 @@ Pose pose_at(const AnimatedAsset &asset, int animation, double time_seconds) {
 
 // -------------------------------------------------------------- skinning --
 
-const SkinningKernel *skinning_kernels(int *count) {
-    static const SkinningKernel kKernels[] = {
-        {"c_ref", SV_ISA_NONE, &sv_skin_c_ref},
-        {"sse2", SV_ISA_SSE2, &sv_skin_sse2},
-        {"avx2", SV_ISA_AVX2, &sv_skin_avx2},
-        {"avx512", SV_ISA_AVX512, &sv_skin_avx512},
-    };
-    if (count) *count = static_cast<int>(sizeof kKernels / sizeof kKernels[0]);
-    return kKernels;
-}
+const SkinningKernel *skinning_kernels(int *count) { return sv_skin_variants(count); }
 
 const SkinningKernel *best_skinning_kernel() {
     int n;
@@ -228,12 +217,7 @@ const SkinningKernel *best_skinning_kernel() {
 }
 
 const SkinningKernel *skinning_kernel_by_name(const char *name) {
-    int n;
-    const SkinningKernel *k = skinning_kernels(&n);
-    for (int i = 0; name && i < n; i++) {
-        if (std::strcmp(k[i].name, name) == 0) return &k[i];
-    }
-    return nullptr;
+    return sv_skin_variant_by_name(name);
 }
 
 void joint_matrices(const AnimatedAsset &asset, int skin, const Pose &pose, const Mat4d &root,

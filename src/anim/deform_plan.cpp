@@ -22,8 +22,6 @@
 #include <string>
 #include <vector>
 
-#include "skin_planes_kernels.h"
-
 namespace sv {
 
 namespace {

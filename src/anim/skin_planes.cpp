@@ -1,7 +1,8 @@
 /*
  * Skinning and planes in one pass (include/shadowvol_anim.h): the
  * schedule that cuts a surface into segments, the kernel table, and the
- * call for a posed surface. The kernels are in skin_planes_kernels.c.
+ * call for a posed surface. The kernels and their table are in
+ * src/deform/skin_planes_kernels.c.
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -12,7 +13,6 @@
 #include <string>
 
 #include "shadowvol_planes.h"
-#include "skin_planes_kernels.h"
 
 namespace sv {
 
@@ -49,28 +49,10 @@ SkinPlanesSchedule skin_planes_schedule(const int *indices, int num_triangles,
     return s;
 }
 
-const SkinPlanesKernel *skin_planes_kernels(int *count) {
-    static const SkinPlanesKernel kKernels[] = {
-        {"c_ref", SV_ISA_NONE, "c_ref", "c_ref", &sv_skin_planes_c_ref},
-        /* The ISA bits of both kernels it runs (the planes' include SSE2:
-         * their tails). */
-        {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2, "avx2", "avx2", &sv_skin_planes_avx2},
-        {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "avx512", "avx512",
-         &sv_skin_planes_avx512},
-        {"avx512_avx2", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "avx512", "avx2",
-         &sv_skin_planes_avx512_avx2},
-    };
-    if (count) *count = static_cast<int>(sizeof kKernels / sizeof kKernels[0]);
-    return kKernels;
-}
+const SkinPlanesKernel *skin_planes_kernels(int *count) { return sv_skin_planes_variants(count); }
 
 const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name) {
-    int n;
-    const SkinPlanesKernel *k = skin_planes_kernels(&n);
-    for (int i = 0; name && i < n; i++) {
-        if (std::strcmp(k[i].name, name) == 0) return &k[i];
-    }
-    return nullptr;
+    return sv_skin_planes_variant_by_name(name);
 }
 
 void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface &surface,

@@ -16,7 +16,7 @@ fail() { echo "check_install: $*" >&2; exit 1; }
 
 cmake --install "$build" --prefix "$prefix" >/dev/null || fail "cmake --install failed"
 libdir=$(cd "$prefix" && ls -d lib*/ | head -1); libdir="${libdir%/}"
-for f in include/shadowvol.h include/shadowvol_mesh.h include/shadowvol_planes.h "$libdir/libshadowvol.a" \
+for f in include/shadowvol.h include/shadowvol_mesh.h include/shadowvol_planes.h include/shadowvol_skin.h "$libdir/libshadowvol.a" \
          "$libdir/cmake/shadowvol/shadowvolConfig.cmake" \
          "$libdir/cmake/shadowvol/shadowvolConfigVersion.cmake" \
          "$libdir/pkgconfig/shadowvol.pc"; do
@@ -28,7 +28,8 @@ so=$(ls "$prefix/$libdir"/libshadowvol.so.* 2>/dev/null | head -1)
 # Every routine of the variant table is exported by the shared library.
 exports=$(nm -D --defined-only "$so")
 for sym in sv_best_variant sv_variants sv_count_facing_c_ref sv_create_shadow_volume_checked \
-           sv_count_facing_sse2_paper sv_calculate_facing_c_ref sv_derive_planes_c_ref; do
+           sv_count_facing_sse2_paper sv_calculate_facing_c_ref sv_derive_planes_c_ref \
+           sv_skin_planes_c_ref sv_skin_variants; do
   grep -qw "$sym" <<<"$exports" || fail "$so does not export $sym"
 done
 

@@ -24,7 +24,7 @@
 #include "shadowvol_anim.h"
 #include "shadowvol_planes.h"
 #include "model_surfaces.h"
-#include "../../src/anim/skin_planes_kernels.h"
+#include "shadowvol_skin.h"
 
 namespace {
 

@@ -1,5 +1,6 @@
 /*
- * CPU skinning of positions: the C reference and its SIMD versions.
+ * CPU skinning of positions (include/shadowvol_skin.h): the C reference,
+ * its SIMD versions and their table.
  *
  * Every kernel computes, for each vertex v with influences k = 0..n-1
  * (joint j_k, weight w_k, joint matrix M_j: 16 floats, column-major):
@@ -24,9 +25,14 @@
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
-#include "skinning_kernels.h"
-
 #include <immintrin.h>
+#include <string.h>
+
+#include "shadowvol_skin.h"
+
+#define SV_SKIN_ARGS                                                                               \
+    const float *joint_matrices, const float *rest, const uint16_t *joints, const float *weights,  \
+        int influences, size_t num_vertices, float *out
 
 void sv_skin_c_ref(SV_SKIN_ARGS) {
     for (size_t v = 0; v < num_vertices; v++) {
@@ -152,4 +158,24 @@ vertex_avx512(const float *joint_matrices, const float *p, const uint16_t *j, co
 
 __attribute__((target("avx512f,avx512vl"))) void sv_skin_avx512(SV_SKIN_ARGS) {
     SV_SKIN_LOOP(vertex_avx512);
+}
+
+const sv_skin_variant *sv_skin_variants(int *count) {
+    static const sv_skin_variant kVariants[] = {
+        {"c_ref", SV_ISA_NONE, &sv_skin_c_ref},
+        {"sse2", SV_ISA_SSE2, &sv_skin_sse2},
+        {"avx2", SV_ISA_AVX2, &sv_skin_avx2},
+        {"avx512", SV_ISA_AVX512, &sv_skin_avx512},
+    };
+    if (count) *count = (int)(sizeof kVariants / sizeof kVariants[0]);
+    return kVariants;
+}
+
+const sv_skin_variant *sv_skin_variant_by_name(const char *name) {
+    int n = 0;
+    const sv_skin_variant *v = sv_skin_variants(&n);
+    for (int i = 0; name && i < n; i++) {
+        if (strcmp(v[i].name, name) == 0) return &v[i];
+    }
+    return NULL;
 }

@@ -1,5 +1,5 @@
 /*
- * Skinning and planes in one pass: each segment of a schedule skins its
+ * Skinning and planes in one pass (include/shadowvol_skin.h): each segment of a schedule skins its
  * vertices and at once derives the planes of the triangles those vertices
  * complete, while they are in the first-level cache; the C reference skins
  * everything and then derives every plane.
@@ -23,14 +23,13 @@
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
-#include "skin_planes_kernels.h"
+#include <string.h>
 
 #include "shadowvol_planes.h"
-#include "skinning_kernels.h"
+#include "shadowvol_skin.h"
 
-typedef void (*skin_fn)(SV_SKIN_ARGS);
-
-static void run_segments(const sv_skin_planes_args *a, skin_fn skin, sv_derive_planes_fn planes) {
+static void run_segments(const sv_skin_planes_args *a, sv_skin_fn skin,
+                         sv_derive_planes_fn planes) {
     const size_t n = (size_t)a->influences;
     if (a->segments <= 0) {
         skin(a->joint_matrices, a->rest, a->joints, a->weights, a->influences, a->num_vertices,
@@ -71,4 +70,28 @@ void sv_skin_planes_avx512(const sv_skin_planes_args *a) {
 
 void sv_skin_planes_avx512_avx2(const sv_skin_planes_args *a) {
     run_segments(a, sv_skin_avx512, sv_derive_planes_avx2);
+}
+
+const sv_skin_planes_variant *sv_skin_planes_variants(int *count) {
+    static const sv_skin_planes_variant kVariants[] = {
+        {"c_ref", SV_ISA_NONE, "c_ref", "c_ref", &sv_skin_planes_c_ref},
+        /* The ISA bits of both kernels it runs (the planes' include SSE2:
+         * their tails). */
+        {"avx2", SV_ISA_SSE2 | SV_ISA_AVX2, "avx2", "avx2", &sv_skin_planes_avx2},
+        {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "avx512", "avx512",
+         &sv_skin_planes_avx512},
+        {"avx512_avx2", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, "avx512", "avx2",
+         &sv_skin_planes_avx512_avx2},
+    };
+    if (count) *count = (int)(sizeof kVariants / sizeof kVariants[0]);
+    return kVariants;
+}
+
+const sv_skin_planes_variant *sv_skin_planes_variant_by_name(const char *name) {
+    int n = 0;
+    const sv_skin_planes_variant *v = sv_skin_planes_variants(&n);
+    for (int i = 0; name && i < n; i++) {
+        if (strcmp(v[i].name, name) == 0) return &v[i];
+    }
+    return NULL;
 }
