@@ -84,6 +84,21 @@ typedef struct sv_skin_planes_args {
 } sv_skin_planes_args;
 typedef void (*sv_skin_planes_fn)(const sv_skin_planes_args *args);
 
+/* The schedule for NUMTRIANGLES triangles (INDICES, 3 each) over
+ * NUMVERTICES vertices: runs of SEGMENTTRIANGLES triangles (the last may be
+ * shorter; <= 0: one run of all), each with the vertex count its corners
+ * need (the running maximum of its indices + 1), then, when vertices
+ * remain that no triangle uses, a last segment skinning them. Writes up to
+ * CAPACITY segments to VERTEXEND and TRIANGLEEND; returns the number of
+ * segments the schedule has (more than CAPACITY: call again with room for
+ * them; at most numTriangles / max(segmentTriangles, 1) + 2), or
+ * SV_E_INDEX_RANGE when an index is negative or not below NUMVERTICES,
+ * SV_E_COUNT for a negative NUMTRIANGLES, SV_E_NULL for NULL INDICES with
+ * triangles or NULL outputs with CAPACITY > 0. */
+int sv_skin_planes_schedule(const int *indices, int numTriangles, size_t numVertices,
+                            int segmentTriangles, size_t *vertexEnd, int *triangleEnd,
+                            int capacity);
+
 /* Skin, then sv_derive_planes_c_ref: the definition every kernel matches
  * bit for bit (it ignores the schedule). */
 void sv_skin_planes_c_ref(const sv_skin_planes_args *args);

@@ -8,7 +8,6 @@
  */
 #include "shadowvol_anim.h"
 
-#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -18,34 +17,27 @@ namespace sv {
 
 SkinPlanesSchedule skin_planes_schedule(const int *indices, int num_triangles,
                                         std::size_t num_vertices, int segment_triangles) {
-    SkinPlanesSchedule s;
-    if (num_triangles < 0) throw PrepareError("skin_planes_schedule: a negative triangle count");
-    if (num_triangles > 0 && !indices) {
-        throw PrepareError("skin_planes_schedule: no indices for " + std::to_string(num_triangles) +
-                           " triangles");
-    }
-    const int run = segment_triangles > 0 ? segment_triangles : std::max(num_triangles, 1);
-    std::size_t need = 0; /* vertices the triangles so far need */
-    for (int t0 = 0; t0 < num_triangles; t0 += run) {
-        const int t1 = std::min(num_triangles, t0 + std::min(run, num_triangles - t0));
-        for (int i = 3 * t0; i < 3 * t1; i++) {
-            const int v = indices[i];
-            if (v < 0 || static_cast<std::size_t>(v) >= num_vertices) {
+    const int n = sv_skin_planes_schedule(indices, num_triangles, num_vertices, segment_triangles,
+                                          nullptr, nullptr, 0);
+    if (n == SV_E_INDEX_RANGE) {
+        for (long i = 0; i < 3L * num_triangles; i++) {
+            if (indices[i] < 0 || static_cast<std::size_t>(indices[i]) >= num_vertices) {
                 throw PrepareError("skin_planes_schedule: index " + std::to_string(i) + " is " +
-                                   std::to_string(v) + ", not a vertex of " +
+                                   std::to_string(indices[i]) + ", not a vertex of " +
                                    std::to_string(num_vertices));
             }
-            need = std::max(need, static_cast<std::size_t>(v) + 1);
         }
-        s.vertex_end.push_back(need);
-        s.triangle_end.push_back(t1);
     }
-    /* Vertices no triangle uses are skinned too (the positions are the
-     * surface's, all of them). */
-    if (s.vertex_end.empty() || s.vertex_end.back() < num_vertices) {
-        s.vertex_end.push_back(num_vertices);
-        s.triangle_end.push_back(num_triangles);
+    if (n < 0) {
+        throw PrepareError(num_triangles < 0 ? "skin_planes_schedule: a negative triangle count"
+                                             : "skin_planes_schedule: no indices for " +
+                                                   std::to_string(num_triangles) + " triangles");
     }
+    SkinPlanesSchedule s;
+    s.vertex_end.resize(static_cast<std::size_t>(n));
+    s.triangle_end.resize(static_cast<std::size_t>(n));
+    sv_skin_planes_schedule(indices, num_triangles, num_vertices, segment_triangles,
+                            s.vertex_end.data(), s.triangle_end.data(), n);
     return s;
 }
 

@@ -843,3 +843,263 @@ void run_create_general_cap_triangles(std::vector<Row> &rows, Rng &rng) {
 }
 
 } // namespace svcheck
+
+// ---- Deforming surfaces: planes, facing from positions, skinning, one pass --
+
+namespace svcheck {
+
+namespace {
+
+// What a case's positions and triangles are like: the planes' contract
+// holds for every input (the zero plane for a NaN, an overflow or no area).
+enum class Shape { ordinary, specials, extreme_scales, degenerate };
+constexpr Shape kShapes[] = {Shape::ordinary, Shape::specials, Shape::extreme_scales,
+                             Shape::degenerate};
+
+const char *shape_name(Shape s) {
+    switch (s) {
+    case Shape::ordinary: return "ordinary";
+    case Shape::specials: return "some 0, -0, NaN, infinity";
+    case Shape::extreme_scales: return "huge and tiny coordinates";
+    default: return "many zero-area triangles";
+    }
+}
+
+// V positions of SHAPE.
+std::vector<float> deform_positions(Rng &rng, int v, Shape shape) {
+    std::vector<float> p(3 * (size_t)std::max(v, 0));
+    for (float &x : p) {
+        const double r = rng.unit();
+        x = shape == Shape::specials && r < 0.05        ? special_float(rng)
+            : shape == Shape::extreme_scales && r < 0.3 ? rng.uniform(-1, 1) * 1e30f
+            : shape == Shape::extreme_scales && r < 0.6 ? rng.uniform(-1, 1) * 1e-30f
+                                                        : rng.uniform(-50, 50);
+    }
+    return p;
+}
+
+// 3 * T vertex numbers below V (V > 0 when T > 0); some repeated corners,
+// many for SHAPE degenerate.
+std::vector<int> deform_indices(Rng &rng, int t, int v, Shape shape) {
+    const double repeat = shape == Shape::degenerate ? 0.5 : 0.05;
+    std::vector<int> ix;
+    for (int i = 0; i < 3 * t; i++) {
+        ix.push_back(i % 3 && rng.chance(repeat) ? ix.back() : (int)rng.below((uint32_t)v));
+    }
+    return ix;
+}
+
+} // namespace
+
+void run_derive_planes(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(true, kShapes, [&](int n, Shape shape, size_t caseno) {
+        const int v = std::max(n, 0) / 2 + 3;
+        const std::vector<float> pos = deform_positions(rng, v, shape);
+        const std::vector<int> ix = deform_indices(rng, std::max(n, 0), v, shape);
+        const uint8_t pat = guard_pattern(rng);
+        std::vector<Plane> want((size_t)std::max(n, 0));
+        sv_derive_planes_c_ref(pos.data(), ix.data(), n, want.data());
+        const size_t po = pick(kIntOffsets, caseno), oo = pick(kIntOffsets, caseno + 3);
+        const std::string at = "n=" + std::to_string(n) + ", " + shape_name(shape) + ", offset " +
+                               std::to_string(oo);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(n);
+            GuardedBuffer pbuf = guarded_copy(pos, po, pat);
+            GuardedBuffer ibuf = guarded_copy(ix, 0, pat);
+            GuardedBuffer out(want.size() * sizeof(Plane), oo, pat);
+            uint32_t failed = 0;
+            abi_call(row.abi, &failed, k.planes->derive_planes, pbuf.as<const float>(),
+                     ibuf.as<const int>(), n, out.as<Plane>());
+            count_case(row);
+            record_abi(row, failed, at);
+            for (size_t t = 0; t < want.size(); t++) {
+                if (std::memcmp(out.data() + t * sizeof(Plane), &want[t], sizeof(Plane)) != 0) {
+                    record_failure(row, at, "plane " + std::to_string(t) + " differs from c_ref's");
+                    break;
+                }
+            }
+            if (!unchanged(pbuf, pos) || !unchanged(ibuf, ix)) {
+                record_failure(row, at, "modified its const positions or indices");
+            }
+            check_guards(row, at,
+                         {"around the planes", "around the positions", "around the indices"},
+                         {&out, &pbuf, &ibuf});
+        }
+    });
+}
+
+void run_facing_from_positions(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(true, kShapes, [&](int n, Shape shape, size_t caseno) {
+        const int v = std::max(n, 0) / 2 + 3;
+        const std::vector<float> pos = deform_positions(rng, v, shape);
+        const std::vector<int> ix = deform_indices(rng, std::max(n, 0), v, shape);
+        Vec4 light = random_light(rng);
+        if (n > 0 && shape == Shape::degenerate) { // on a vertex: facing sums of 0
+            const int c = ix[0];
+            light = {pos[3 * (size_t)c], pos[3 * (size_t)c + 1], pos[3 * (size_t)c + 2], 1.0f};
+        }
+        const uint8_t pat = guard_pattern(rng);
+        const size_t out_bytes = n >= 0 ? (size_t)n + 1 : 0;
+        std::vector<uint8_t> want(out_bytes, pat);
+        sv_facing_from_positions_c_ref(pos.data(), ix.data(), n, &light, want.data());
+        const size_t po = pick(kIntOffsets, caseno), fo = pick(kByteOffsets, caseno);
+        const std::string at = "n=" + std::to_string(n) + ", " + shape_name(shape) + ", offset " +
+                               std::to_string(fo);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(n);
+            GuardedBuffer pbuf = guarded_copy(pos, po, pat);
+            GuardedBuffer ibuf = guarded_copy(ix, 0, pat);
+            GuardedBuffer out(out_bytes, fo, pat);
+            const Vec4 l = light;
+            uint32_t failed = 0;
+            abi_call(row.abi, &failed, k.planes->facing_from_positions, pbuf.as<const float>(),
+                     ibuf.as<const int>(), n, &l, out.data());
+            count_case(row);
+            record_abi(row, failed, at);
+            const std::string d = first_difference(out.data(), want.data(), out_bytes, "facing");
+            if (!d.empty()) record_failure(row, at, d);
+            if (!unchanged(pbuf, pos) || !unchanged(ibuf, ix)) {
+                record_failure(row, at, "modified its const positions or indices");
+            }
+            check_guards(row, at,
+                         {"around the facing bytes", "around the positions", "around the indices"},
+                         {&out, &pbuf, &ibuf});
+        }
+    });
+}
+
+namespace {
+
+// A skin of J joints over V vertices with INFLUENCES each: matrices with
+// wide translations, weights with exact zeros (as files have them).
+struct CheckSkin {
+    std::vector<float> matrices, rest, weights;
+    std::vector<uint16_t> joints;
+    int influences = 4;
+};
+
+CheckSkin check_skin(Rng &rng, int v, int influences) {
+    const int kJoints = 13;
+    CheckSkin s;
+    s.influences = influences;
+    s.matrices.resize(16 * kJoints);
+    for (float &m : s.matrices) m = rng.uniform(-2, 2);
+    for (int j = 0; j < kJoints; j++) {
+        for (int r = 0; r < 3; r++)
+            s.matrices[(size_t)(16 * j + 12 + r)] = rng.uniform(-1000, 1000);
+    }
+    s.rest = deform_positions(rng, v, Shape::ordinary);
+    for (int i = 0; i < v * influences; i++) {
+        s.joints.push_back((uint16_t)rng.below(kJoints));
+        s.weights.push_back(rng.chance(0.3) ? 0.0f : (float)rng.unit());
+    }
+    return s;
+}
+
+} // namespace
+
+// Influences per vertex: the loader's 4 and 8 (unrolled in the kernels)
+// and counts on the general path.
+constexpr int kInfluences[] = {1, 3, 4, 8};
+
+void run_skinning(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(false, kInfluences, [&](int n, int influences, size_t caseno) {
+        const CheckSkin s = check_skin(rng, n, influences);
+        const uint8_t pat = guard_pattern(rng);
+        std::vector<float> want(3 * (size_t)n);
+        sv_skin_c_ref(s.matrices.data(), s.rest.data(), s.joints.data(), s.weights.data(),
+                      influences, (size_t)n, want.data());
+        const size_t oo = pick(kIntOffsets, caseno);
+        const std::string at = "vertices=" + std::to_string(n) + ", influences " +
+                               std::to_string(influences) + ", offset " + std::to_string(oo);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(n);
+            GuardedBuffer mbuf = guarded_copy(s.matrices, 0, pat);
+            GuardedBuffer rbuf = guarded_copy(s.rest, pick(kIntOffsets, caseno + 1), pat);
+            GuardedBuffer out(want.size() * sizeof(float), oo, pat);
+            uint32_t failed = 0;
+            abi_call(row.abi, &failed, k.skin->fn, mbuf.as<const float>(), rbuf.as<const float>(),
+                     s.joints.data(), s.weights.data(), influences, (size_t)n, out.as<float>());
+            count_case(row);
+            record_abi(row, failed, at);
+            if (!want.empty() && std::memcmp(out.data(), want.data(), out.size()) != 0) {
+                record_failure(row, at, "positions differ from c_ref's");
+            }
+            if (!unchanged(mbuf, s.matrices) || !unchanged(rbuf, s.rest)) {
+                record_failure(row, at, "modified its const matrices or rest positions");
+            }
+            check_guards(row, at,
+                         {"around the positions", "around the matrices",
+                          "around the rest positions"},
+                         {&out, &mbuf, &rbuf});
+        }
+    });
+}
+
+// Segment lengths of the schedule: one segment, single triangles, and
+// lengths across the vector widths.
+constexpr int kSegmentLengths[] = {0, 1, 17, 256};
+
+void run_skin_planes(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(false, kSegmentLengths, [&](int n, int seg, size_t caseno) {
+        const int influences = kInfluences[caseno % 4];
+        const CheckSkin s = check_skin(rng, n, influences);
+        const int t = n > 0 ? (int)rng.below((uint32_t)(2 * n + 2)) : 0;
+        std::vector<int> ix;
+        for (int i = 0; i < 3 * t; i++) { // near their place in the list, as exported meshes
+            const int centre = (int)((long long)(i / 3) * n / std::max(t, 1));
+            ix.push_back(std::min(n - 1, centre + (int)rng.below(4)));
+        }
+        const int segments = sv_skin_planes_schedule(ix.data(), t, (size_t)n, seg, nullptr, nullptr,
+                                                     0);
+        std::vector<size_t> vend((size_t)std::max(segments, 0));
+        std::vector<int> tend(vend.size());
+        sv_skin_planes_schedule(ix.data(), t, (size_t)n, seg, vend.data(), tend.data(), segments);
+        const uint8_t pat = guard_pattern(rng);
+        std::vector<float> want(3 * (size_t)n);
+        std::vector<Plane> want_planes((size_t)t);
+        sv_skin_c_ref(s.matrices.data(), s.rest.data(), s.joints.data(), s.weights.data(),
+                      influences, (size_t)n, want.data());
+        sv_derive_planes_c_ref(want.data(), ix.data(), t, want_planes.data());
+        const std::string at = "vertices=" + std::to_string(n) + ", triangles " +
+                               std::to_string(t) + ", segments of " + std::to_string(seg);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(t);
+            if (!k.skin_planes) continue; /* "planned" chose two passes for this class */
+            GuardedBuffer out(want.size() * sizeof(float), pick(kIntOffsets, caseno), pat);
+            GuardedBuffer planes(want_planes.size() * sizeof(Plane), pick(kIntOffsets, caseno + 2),
+                                 pat);
+            sv_skin_planes_args a{};
+            a.joint_matrices = s.matrices.data();
+            a.rest = s.rest.data();
+            a.joints = s.joints.data();
+            a.weights = s.weights.data();
+            a.influences = influences;
+            a.num_vertices = (size_t)n;
+            a.indices = ix.data();
+            a.num_triangles = t;
+            a.segments = segments;
+            a.vertex_end = vend.data();
+            a.triangle_end = tend.data();
+            a.out = out.as<float>();
+            a.planes = planes.as<Plane>();
+            uint32_t failed = 0;
+            abi_call(row.abi, &failed, k.skin_planes->fn, (const sv_skin_planes_args *)&a);
+            count_case(row);
+            record_abi(row, failed, at);
+            if (!want.empty() && std::memcmp(out.data(), want.data(), out.size()) != 0) {
+                record_failure(row, at, "positions differ from c_ref's");
+            }
+            for (size_t i = 0; i < want_planes.size(); i++) {
+                if (std::memcmp(planes.data() + i * sizeof(Plane), &want_planes[i],
+                                sizeof(Plane))) {
+                    record_failure(row, at, "plane " + std::to_string(i) + " differs from c_ref's");
+                    break;
+                }
+            }
+            check_guards(row, at, {"around the positions", "around the planes"}, {&out, &planes});
+        }
+    });
+}
+
+} // namespace svcheck

@@ -43,6 +43,13 @@ struct BenchWorkload::Data {
     std::vector<SilEdge> edges;
     std::vector<uint8_t> facing; // numTriangles + 1, the sentinel last
     std::vector<uint8_t> cull;
+    // The deforming surfaces' inputs: the positions as 3 floats, a skin
+    // of 13 joints with 4 influences, outputs, one-pass segments of 256.
+    std::vector<float> pos3, matrices, weights, pos_out;
+    std::vector<uint16_t> joints;
+    std::vector<Plane> plane_out;
+    std::vector<size_t> vertex_end;
+    std::vector<int> triangle_end;
     // Every array a kernel reads or writes, on a 64-byte boundary.
     GuardedBuffer facing_buf, scratch_facing, indices_buf, out, cull_out;
     double overhead = 0;
@@ -83,6 +90,21 @@ struct BenchWorkload::Data {
         for (auto &c : cull) c = (uint8_t)(rng.chance(0.2) ? 1u << rng.below(6) : 0);
         std::memcpy(facing_buf.data(), facing.data(), facing.size());
         std::memcpy(indices_buf.data(), indices.data(), indices.size() * sizeof(int));
+        for (const Vec4 &v : positions) pos3.insert(pos3.end(), {v.x, v.y, v.z});
+        matrices.resize(16 * 13);
+        for (float &m : matrices) m = rng.uniform(-1, 1);
+        for (int i = 0; i < 4 * numVerts; i++) {
+            joints.push_back((uint16_t)rng.below(13));
+            weights.push_back((float)rng.unit());
+        }
+        pos_out.resize(pos3.size());
+        plane_out.resize(kTriangles);
+        const int segs = sv_skin_planes_schedule(indices.data(), kTriangles, (size_t)numVerts, 256,
+                                                 nullptr, nullptr, 0);
+        vertex_end.resize((size_t)segs);
+        triangle_end.resize((size_t)segs);
+        sv_skin_planes_schedule(indices.data(), kTriangles, (size_t)numVerts, 256,
+                                vertex_end.data(), triangle_end.data(), segs);
         // The fences' cost: an empty region, timed the same way.
         std::vector<double> t(kCalls);
         for (double &x : t) {
@@ -181,6 +203,38 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
             sink = k.general->create_general_cap_triangles(d.out.as<int>(), d.facing_buf.data(),
                                                            d.indices_buf.as<int>(), 3 * n);
         });
+    case Routine::derive_planes:
+        return d.time_calls([&] {
+            k.planes->derive_planes(d.pos3.data(), d.indices.data(), n, d.plane_out.data());
+        });
+    case Routine::facing_from_positions:
+        return d.time_calls([&] {
+            k.planes->facing_from_positions(d.pos3.data(), d.indices.data(), n, &d.light,
+                                            d.scratch_facing.data());
+        });
+    case Routine::skinning:
+        return d.time_calls([&] {
+            k.skin->fn(d.matrices.data(), d.pos3.data(), d.joints.data(), d.weights.data(), 4,
+                       (size_t)d.numVerts, d.pos_out.data());
+        });
+    case Routine::skin_planes: {
+        if (!k.skin_planes) return 0;
+        sv_skin_planes_args a{};
+        a.joint_matrices = d.matrices.data();
+        a.rest = d.pos3.data();
+        a.joints = d.joints.data();
+        a.weights = d.weights.data();
+        a.influences = 4;
+        a.num_vertices = (size_t)d.numVerts;
+        a.indices = d.indices.data();
+        a.num_triangles = n;
+        a.segments = (int)d.vertex_end.size();
+        a.vertex_end = d.vertex_end.data();
+        a.triangle_end = d.triangle_end.data();
+        a.out = d.pos_out.data();
+        a.planes = d.plane_out.data();
+        return d.time_calls([&] { k.skin_planes->fn(&a); });
+    }
     case Routine::shadow_volume:
     case Routine::shadow_volume_cull: {
         const uint8_t *cull = routine == Routine::shadow_volume_cull ? d.cull.data() : nullptr;

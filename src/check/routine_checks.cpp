@@ -26,6 +26,10 @@ const char *const kRoutineNames[kNumRoutines] = {
     "shadow_volume_for_light",
     "create_general_sil_triangles",
     "create_general_cap_triangles",
+    "derive_planes",
+    "facing_from_positions",
+    "skinning",
+    "skin_planes",
 };
 
 // The library's own contract check decides whether bit 7 is in
@@ -38,6 +42,38 @@ bool honours_cull_bit7(const sv_variant &k) {
     const int indices[3] = {0, 0, 0};
     const uint8_t cull[1] = {0x80};
     return sv_count_facing_cull_checked(&k, facing, 1, indices, cull, 1) != SV_E_CULL_BITS;
+}
+
+bool runs_here(unsigned isa) { return (isa & sv_cpu_isa()) == isa; }
+
+// The deforming surfaces' choices of size class C, as sv::deform_plan_for
+// makes them (src/anim/deform_plan.cpp): the planner's name where it is in
+// the table and runs here, else the static choice (the widest skinning
+// kernel, sv_best_planes_variant(), two passes: no one-pass kernel).
+void planned_deform(int c, Kernels &k) {
+    sv_deform_choice ch;
+    k.skin = nullptr;
+    if (sv_deform_choice_for(c, SV_DEFORM_SKINNING, &ch) == 1) {
+        k.skin = sv_skin_variant_by_name(ch.variant);
+    }
+    if (!k.skin || !runs_here(k.skin->isa)) {
+        int n = 0;
+        const sv_skin_variant *sk = sv_skin_variants(&n);
+        k.skin = &sk[0];
+        for (int i = 0; i < n; i++) {
+            if (runs_here(sk[i].isa)) k.skin = &sk[i];
+        }
+    }
+    k.planes = nullptr;
+    if (sv_deform_choice_for(c, SV_DEFORM_DERIVE_PLANES, &ch) == 1) {
+        k.planes = sv_planes_variant_by_name(ch.variant);
+    }
+    if (!k.planes || !runs_here(k.planes->isa)) k.planes = sv_best_planes_variant();
+    k.skin_planes = nullptr;
+    if (sv_deform_choice_for(c, SV_DEFORM_SKIN_PLANES, &ch) == 1) {
+        k.skin_planes = sv_skin_planes_variant_by_name(ch.variant);
+        if (k.skin_planes && !runs_here(k.skin_planes->isa)) k.skin_planes = nullptr;
+    }
 }
 
 } // namespace
@@ -77,6 +113,10 @@ bool Variant::has(Routine r) const {
     case Routine::shadow_volume_for_light: return k.plan != nullptr;
     case Routine::create_general_sil_triangles:
     case Routine::create_general_cap_triangles: return k.general != nullptr;
+    case Routine::derive_planes:
+    case Routine::facing_from_positions: return k.planes != nullptr;
+    case Routine::skinning: return k.skin != nullptr;
+    case Routine::skin_planes: return k.skin_planes != nullptr;
     default: return k.kernels.count_facing != nullptr;
     }
 }
@@ -98,6 +138,11 @@ Variant make_variant(const std::string &name, const sv_facing_variant *facing,
         k.cull_bit7 = honours_cull_bit7(*kernels);
     }
     if ((k.general = sv_general_variant_by_name(name.c_str()))) v.isa |= k.general->isa;
+    if ((k.planes = sv_planes_variant_by_name(name.c_str()))) v.isa |= k.planes->isa;
+    if ((k.skin = sv_skin_variant_by_name(name.c_str()))) v.isa |= k.skin->isa;
+    if ((k.skin_planes = sv_skin_planes_variant_by_name(name.c_str()))) {
+        v.isa |= k.skin_planes->isa;
+    }
     for (Kernels &c : v.by_class) c = k;
     return v;
 }
@@ -118,6 +163,21 @@ std::vector<Variant> library_variants() {
         if (!sv_variant_by_name(fv[i].name))
             out.push_back(make_variant(fv[i].name, &fv[i], nullptr));
     }
+    // Names only the deforming surfaces' tables have (avx2_gather,
+    // avx512_avx2).
+    auto add_new = [&](const char *name) {
+        for (const Variant &v : out) {
+            if (v.name == name) return;
+        }
+        out.push_back(make_variant(name, nullptr, nullptr));
+    };
+    int n = 0;
+    const sv_planes_variant *pv = sv_planes_variants(&n);
+    for (int i = 0; i < n; i++) add_new(pv[i].name);
+    const sv_skin_variant *sk = sv_skin_variants(&n);
+    for (int i = 0; i < n; i++) add_new(sk[i].name);
+    const sv_skin_planes_variant *sp = sv_skin_planes_variants(&n);
+    for (int i = 0; i < n; i++) add_new(sp[i].name);
     // The plans this process would use now (SV_PLAN_ESTIMATE: the wisdom
     // file's or the built-in ones; nothing is measured here).
     Variant planned;
@@ -137,6 +197,8 @@ std::vector<Variant> library_variants() {
                 planned.isa |= f->isa;
             }
         }
+        planned_deform(c, k);
+        planned.isa |= k.planes->isa | k.skin->isa | (k.skin_planes ? k.skin_planes->isa : 0u);
     }
     out.push_back(planned);
     return out;
@@ -216,6 +278,10 @@ std::vector<Result> check_routine(Routine routine, const std::vector<Variant> &t
     case Routine::create_general_cap_triangles:
         run_create_general_cap_triangles(rows, input);
         break;
+    case Routine::derive_planes: run_derive_planes(rows, input); break;
+    case Routine::facing_from_positions: run_facing_from_positions(rows, input); break;
+    case Routine::skinning: run_skinning(rows, input); break;
+    case Routine::skin_planes: run_skin_planes(rows, input); break;
     }
     // Back in table order, each run row in its place.
     size_t next = 0;

@@ -19,6 +19,8 @@
 
 #include "shadowvol.h"
 #include "shadowvol_plan.h"
+#include "shadowvol_planes.h"
+#include "shadowvol_skin.h"
 
 namespace svcheck {
 
@@ -38,8 +40,12 @@ enum class Routine {
     shadow_volume_for_light,
     create_general_sil_triangles, /* the general rule (issue 27) */
     create_general_cap_triangles,
+    derive_planes, /* deforming surfaces (shadowvol_planes.h, shadowvol_skin.h) */
+    facing_from_positions,
+    skinning,
+    skin_planes,
 };
-constexpr int kNumRoutines = 12;
+constexpr int kNumRoutines = 16;
 const char *routine_name(Routine r);
 // false when NAME is none of routine_name()'s.
 bool routine_by_name(const std::string &name, Routine *out);
@@ -57,6 +63,11 @@ struct Kernels {
     const sv_plan *plan = nullptr;
     // The general rule's kernels of the variant's name (null: none).
     const sv_general_variant *general = nullptr;
+    // The deforming surfaces' kernels of the variant's name (null: none):
+    // derive_planes and facing_from_positions, skinning, skin_planes.
+    const sv_planes_variant *planes = nullptr;
+    const sv_skin_variant *skin = nullptr;
+    const sv_skin_planes_variant *skin_planes = nullptr;
     // Whether the contract lets CountFacingCull see cull bit 7
     // (sse2_paper's does not, erratum D-5): asked of the library's own
     // contract check (sv_count_facing_cull_checked), not known by name.
@@ -76,7 +87,10 @@ struct Variant {
 
 // The library's variants: the union of sv_variants() and
 // sv_facing_variants() by name (avx2's facing and its kernels are one
-// row), then "planned" (sv_plan_for, SV_PLAN_ESTIMATE, per size class).
+// row), with the planes, skinning and one-pass kernels of the same name
+// (and rows of their own for names only they have), then "planned"
+// (sv_plan_for, SV_PLAN_ESTIMATE, per size class, and the deform choices:
+// sv_deform_choice_for, else the static ones).
 std::vector<Variant> library_variants();
 // A plain variant from the library's tables; FACING or KERNELS may be null.
 Variant make_variant(const std::string &name, const sv_facing_variant *facing,

@@ -95,3 +95,38 @@ const sv_skin_planes_variant *sv_skin_planes_variant_by_name(const char *name) {
     }
     return NULL;
 }
+
+int sv_skin_planes_schedule(const int *indices, int numTriangles, size_t numVertices,
+                            int segmentTriangles, size_t *vertexEnd, int *triangleEnd,
+                            int capacity) {
+    if (numTriangles < 0) return SV_E_COUNT;
+    if ((numTriangles > 0 && !indices) || (capacity > 0 && (!vertexEnd || !triangleEnd))) {
+        return SV_E_NULL;
+    }
+    const int run = segmentTriangles > 0 ? segmentTriangles : (numTriangles > 0 ? numTriangles : 1);
+    size_t need = 0; /* vertices the triangles so far need */
+    int segments = 0;
+    for (int t0 = 0; t0 < numTriangles; t0 += run) {
+        const int t1 = numTriangles - t0 > run ? t0 + run : numTriangles;
+        for (long i = 3L * t0; i < 3L * t1; i++) {
+            const int v = indices[i];
+            if (v < 0 || (size_t)v >= numVertices) return SV_E_INDEX_RANGE;
+            if ((size_t)v + 1 > need) need = (size_t)v + 1;
+        }
+        if (segments < capacity) {
+            vertexEnd[segments] = need;
+            triangleEnd[segments] = t1;
+        }
+        segments++;
+    }
+    /* Vertices no triangle uses are skinned too (the positions are the
+     * surface's, all of them). */
+    if (segments == 0 || need < numVertices) {
+        if (segments < capacity) {
+            vertexEnd[segments] = numVertices;
+            triangleEnd[segments] = numTriangles;
+        }
+        segments++;
+    }
+    return segments;
+}

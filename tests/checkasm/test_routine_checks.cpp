@@ -8,6 +8,7 @@
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -206,6 +207,32 @@ TEST(RoutineChecks, ReportsABrokenPlanInThePerLightCall) {
                                        "broken_plan", "returned");
     EXPECT_GT(bad.failures, 0);
     EXPECT_LT(bad.failures, bad.cases); // only the 3-mod-7 edge counts
+}
+
+// A one-pass kernel that derives each segment's planes before it skins
+// the segment's vertices: the planes read positions not yet written.
+void planes_before_skinning(const sv_skin_planes_args *a) {
+    size_t v0 = 0;
+    int t0 = 0;
+    const size_t k = (size_t)a->influences;
+    for (int s = 0; s < std::max(a->segments, 1); s++) {
+        const size_t v1 = a->segments ? a->vertex_end[s] : a->num_vertices;
+        const int t1 = a->segments ? a->triangle_end[s] : a->num_triangles;
+        sv_derive_planes_c_ref(a->out, a->indices + 3 * t0, t1 - t0, a->planes + t0);
+        sv_skin_c_ref(a->joint_matrices, a->rest + 3 * v0, a->joints + k * v0, a->weights + k * v0,
+                      a->influences, v1 - v0, a->out + 3 * v0);
+        v0 = v1, t0 = t1;
+    }
+}
+
+TEST(RoutineChecks, ReportsAOnePassKernelThatDerivesBeforeSkinning) {
+    static const sv_skin_planes_variant broken = {"early", SV_ISA_NONE, "c_ref", "c_ref",
+                                                  planes_before_skinning};
+    Variant v = svcheck::make_variant("early", nullptr, nullptr);
+    for (auto &k : v.by_class) k.skin_planes = &broken;
+    const Result bad = expect_reported(Routine::skin_planes, with_good({v}), "early",
+                                       "differs from c_ref's");
+    EXPECT_GT(bad.failures, 0);
 }
 
 TEST(RoutineChecks, SkipsAVariantAboveTheIsaLimitWithTheReason) {
