@@ -15,13 +15,16 @@
 #include "skin_planes_bench.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 
 #include <unistd.h>
 
+#include "fnv1a.h"
 #include "json_writer.h"
 #include "shadowvol_anim.h"
+#include "shadowvol_plan.h"
 #include "shadowvol_planes.h"
 #include "shadowvol_skin.h"
 
@@ -42,8 +45,18 @@ struct PosedSurface {
     std::vector<Plane> want_planes;
     sv::SkinPlanesSchedule schedule;
     sv_skin_planes_args args{};
+    /* The per-light job: the posed positions as Vec4, the stored planes
+     * (the reference's, made beforehand), and per light of a frame (up to
+     * 4) its own output and facing, so each volume can be checked. */
+    std::vector<Vec4> pos4;
+    Bounds bounds{};
+    sv::AlignedVector<int> out[4];
+    sv::AlignedVector<uint8_t> facing[4];
+    int count[4] = {0, 0, 0, 0};
     std::size_t vertices() const { return as->rest_positions.size() / 3; }
 };
+
+constexpr int kJobLights = 16;
 
 void skin(const sv::SkinningKernel &k, PosedSurface &s) {
     k.fn(s.jm.data(), s.as->rest_positions.data(), s.as->joints.data(), s.as->weights.data(),
@@ -62,6 +75,159 @@ std::string compare(const std::vector<std::unique_ptr<PosedSurface>> &surfaces, 
         }
     }
     return "";
+}
+
+/* 16 point lights on a ring around the posed character (1.5 of its size
+ * out), as bench --planes's other tables place them. */
+std::vector<Vec4> ring_lights(const std::vector<std::unique_ptr<PosedSurface>> &surfaces) {
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (const auto &s : surfaces) {
+        for (std::size_t i = 0; i < s->want_pos.size(); i++) {
+            lo[i % 3] = std::min(lo[i % 3], s->want_pos[i]);
+            hi[i % 3] = std::max(hi[i % 3], s->want_pos[i]);
+        }
+    }
+    const double r = 1.5 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) + 1e-3;
+    std::vector<Vec4> out;
+    for (int i = 0; i < kJobLights; i++) {
+        const double a = 2 * M_PI * (i + 0.37) / kJobLights, e = 0.3 + 0.8 * (i % 5) / 5.0;
+        out.push_back(Vec4{(float)(0.5 * (lo[0] + hi[0]) + r * std::cos(a) * std::cos(e)),
+                           (float)(0.5 * (lo[1] + hi[1]) + r * std::sin(e)),
+                           (float)(0.5 * (lo[2] + hi[2]) + r * std::sin(a) * std::cos(e)), 1.0f});
+    }
+    return out;
+}
+
+/* The volume of S for LIGHT into slot J: the plan's one call on PLANES
+ * (none: BFG's way, facing from the positions, then the plan's kernels). */
+void volume(PosedSurface &s, const sv_plan *plan, const Plane *planes, const Vec4 &light, int j,
+            const sv_planes_variant *bfg) {
+    const sv::PreparedSurface &p = s.as->prepared;
+    if (bfg) {
+        bfg->facing_from_positions(s.want_pos.data(), p.indices.data(), p.num_triangles(), &light,
+                                   s.facing[j].data());
+        s.count[j] = sv_create_shadow_volume(&plan->kernels, s.out[j].data(), p.indices.data(),
+                                             p.num_indices(), p.sil_edges.data(), p.num_sil_edges(),
+                                             s.facing[j].data(), nullptr);
+        return;
+    }
+    const sv_surface v{
+        planes,        p.indices.data(), p.num_indices(), p.sil_edges.data(), p.num_sil_edges(),
+        s.pos4.data(), p.num_vertices(), s.bounds};
+    s.count[j] = sv_shadow_volume_for_light(plan, &v, &light, nullptr, s.out[j].data(),
+                                            s.out[j].size(), s.facing[j].data(), nullptr);
+}
+
+/* The C references' volume of S for LIGHT: facing of the planes (or, BFG,
+ * of the positions), then the c_ref kernels; its fingerprint. */
+uint64_t reference_volume(PosedSurface &s, const Vec4 &light, bool bfg, uint64_t h) {
+    const sv::PreparedSurface &p = s.as->prepared;
+    std::vector<uint8_t> f((std::size_t)p.num_triangles() + 1);
+    if (bfg) {
+        sv_facing_from_positions_c_ref(s.want_pos.data(), p.indices.data(), p.num_triangles(),
+                                       &light, f.data());
+    } else {
+        sv_calculate_facing_c_ref(s.want_planes.data(), p.num_triangles(), &light, f.data());
+    }
+    std::vector<int> out(s.out[0].size());
+    const int n = sv_create_shadow_volume(sv_variant_by_name("c_ref"), out.data(), p.indices.data(),
+                                          p.num_indices(), p.sil_edges.data(), p.num_sil_edges(),
+                                          f.data(), nullptr);
+    h = sv::fnv1a64(&n, sizeof n, h);
+    return sv::fnv1a64(out.data(), sizeof(int) * (std::size_t)std::max(n, 0), h);
+}
+
+/* The per-light job rows: stored planes, planes derived once per frame,
+ * and (4 lights) BFG's facing from positions, each checked volume by
+ * volume against the C references. */
+void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>> &surfaces,
+                  const SeedTimer &timer) {
+    const std::vector<Vec4> lights = ring_lights(surfaces);
+    const sv_plan *plan = sv_plan_for(r.triangles / std::max(1, r.surfaces), SV_PLAN_ESTIMATE);
+    const sv::DeformPlan deform = sv::deform_plan_for(r.triangles / std::max(1, r.surfaces));
+    const sv_planes_variant *pv = deform.planes;
+    for (auto &s : surfaces) {
+        const sv::PreparedSurface &p = s->as->prepared;
+        for (std::size_t v = 0; v < s->vertices(); v++) {
+            s->pos4.push_back(
+                Vec4{s->want_pos[3 * v], s->want_pos[3 * v + 1], s->want_pos[3 * v + 2], 1.0f});
+        }
+        s->bounds = sv::surface_bounds(p);
+        for (int j = 0; j < 4; j++) {
+            s->out[j].resize(sv_shadow_volume_capacity(p.num_indices(), p.num_sil_edges()));
+            s->facing[j].resize((std::size_t)p.num_triangles() + 1);
+        }
+    }
+    /* The references' fingerprints per light, with planes and BFG's. */
+    std::vector<uint64_t> ref_planes(kJobLights), ref_bfg(kJobLights);
+    for (int l = 0; l < kJobLights; l++) {
+        uint64_t hp = sv::kFnv1a64OffsetBasis, hb = sv::kFnv1a64OffsetBasis;
+        for (auto &s : surfaces) {
+            hp = reference_volume(*s, lights[(std::size_t)l], false, hp);
+            hb = reference_volume(*s, lights[(std::size_t)l], true, hb);
+        }
+        ref_planes[(std::size_t)l] = hp, ref_bfg[(std::size_t)l] = hb;
+    }
+    auto check = [&](int i, int k, const std::vector<uint64_t> &ref) {
+        for (int j = 0; j < k; j++) {
+            const int l = (k * i + j) % kJobLights;
+            uint64_t h = sv::kFnv1a64OffsetBasis;
+            for (auto &s : surfaces) {
+                h = sv::fnv1a64(&s->count[j], sizeof s->count[j], h);
+                h = sv::fnv1a64(s->out[j].data(),
+                                sizeof(int) * (std::size_t)std::max(s->count[j], 0), h);
+            }
+            if (h != ref[(std::size_t)l]) {
+                return "light " + std::to_string(l) + ": the volumes differ from the C references'";
+            }
+        }
+        return std::string();
+    };
+    for (int k : {1, 4}) {
+        const std::string n = std::to_string(k);
+        SkinPlanesRow stored{"job_stored_" + n, "plan", {}};
+        stored.t = time_seed_row(
+            timer,
+            [&](int i) {
+                for (auto &s : surfaces) {
+                    for (int j = 0; j < k; j++) {
+                        volume(*s, plan, s->want_planes.data(),
+                               lights[(std::size_t)((k * i + j) % kJobLights)], j, nullptr);
+                    }
+                }
+            },
+            [&](int i) { return check(i, k, ref_planes); });
+        r.rows.push_back(stored);
+        SkinPlanesRow derived{"job_derived_" + n, pv->name, {}};
+        derived.t = time_seed_row(
+            timer,
+            [&](int i) {
+                for (auto &s : surfaces) {
+                    const sv::PreparedSurface &p = s->as->prepared;
+                    pv->derive_planes(s->want_pos.data(), p.indices.data(), p.num_triangles(),
+                                      s->planes.data());
+                    for (int j = 0; j < k; j++) {
+                        volume(*s, plan, s->planes.data(),
+                               lights[(std::size_t)((k * i + j) % kJobLights)], j, nullptr);
+                    }
+                }
+            },
+            [&](int i) { return check(i, k, ref_planes); });
+        r.rows.push_back(derived);
+        SkinPlanesRow bfg{"job_bfg_" + n, pv->name, {}};
+        bfg.t = time_seed_row(
+            timer,
+            [&](int i) {
+                for (auto &s : surfaces) {
+                    for (int j = 0; j < k; j++) {
+                        volume(*s, plan, nullptr, lights[(std::size_t)((k * i + j) % kJobLights)],
+                               j, pv);
+                    }
+                }
+            },
+            [&](int i) { return check(i, k, ref_bfg); });
+        r.rows.push_back(bfg);
+    }
 }
 
 SkinPlanesResult measure_character(const std::string &path, const SeedTimer &timer,
@@ -164,6 +330,8 @@ SkinPlanesResult measure_character(const std::string &path, const SeedTimer &tim
             [&](int) { return compare(surfaces, true); });
         r.rows.push_back(one);
     }
+    note("the per-light job");
+    measure_jobs(r, surfaces, timer);
     return r;
 }
 
@@ -209,6 +377,8 @@ std::vector<SkinPlanesResult> measure_skin_planes(const SeedTimer &timer, const 
     return results;
 }
 
+void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results);
+
 void print_skin_planes(FILE *out, const std::vector<SkinPlanesResult> &results) {
     if (results.empty()) return;
     std::fprintf(out,
@@ -239,6 +409,43 @@ void print_skin_planes(FILE *out, const std::vector<SkinPlanesResult> &results) 
                          per_triangle(&one, r.triangles).c_str(), beyond);
         }
     }
+    print_jobs(out, results);
+}
+
+void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results) {
+    std::fprintf(out, "\nthe per-light job of a skinned character, positions already skinned: "
+                      "planes + facing + volume (sv_shadow_volume_for_light), ticks per triangle "
+                      "(median; every volume checked against the C references)\n"
+                      "  stored: the planes made beforehand; derived: derived once per frame "
+                      "(the planned variant); bfg: facing from positions per light, no planes\n");
+    std::fprintf(out, "%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s\n", "character", "triangles",
+                 "stored 1", "derived", "ratio", "bfg 1", "stored 4", "derived", "ratio", "bfg 4");
+    for (const SkinPlanesResult &r : results) {
+        auto row = [&](const char *what) -> const SkinPlanesRow * {
+            for (const SkinPlanesRow &x : r.rows) {
+                if (x.what == what) return &x;
+            }
+            return nullptr;
+        };
+        auto ratio = [&](const char *a, const char *b) {
+            char buf[16] = "-";
+            const SkinPlanesRow *x = row(a), *y = row(b);
+            if (x && y && y->t.median > 0) {
+                std::snprintf(buf, sizeof buf, "%.2f", x->t.median / y->t.median);
+            }
+            return std::string(buf);
+        };
+        std::fprintf(out, "%-22s %9d %8s %8s %8s %8s %8s %8s %8s %8s\n", r.name.c_str(),
+                     r.triangles, per_triangle(row("job_stored_1"), r.triangles).c_str(),
+                     per_triangle(row("job_derived_1"), r.triangles).c_str(),
+                     ratio("job_derived_1", "job_stored_1").c_str(),
+                     per_triangle(row("job_bfg_1"), r.triangles).c_str(),
+                     per_triangle(row("job_stored_4"), r.triangles).c_str(),
+                     per_triangle(row("job_derived_4"), r.triangles).c_str(),
+                     ratio("job_derived_4", "job_stored_4").c_str(),
+                     per_triangle(row("job_bfg_4"), r.triangles).c_str());
+    }
+    std::fprintf(out, "  ratio: derived / stored, same run\n");
 }
 
 void skin_planes_json(JsonWriter &j, const std::vector<SkinPlanesResult> &results) {
