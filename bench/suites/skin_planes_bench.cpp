@@ -259,24 +259,13 @@ SkinPlanesResult measure_character(const std::string &path, const SeedTimer &tim
         sv_derive_planes_c_ref(s->want_pos.data(), p.indices.data(), p.num_triangles(),
                                s->want_planes.data());
         s->schedule = sv::skin_planes_schedule(p.indices.data(), p.num_triangles(), s->vertices());
-        sv_skin_planes_args &g = s->args;
-        g.joint_matrices = s->jm.data();
-        g.rest = as.rest_positions.data();
-        g.joints = as.joints.data();
-        g.weights = as.weights.data();
-        g.influences = as.influences;
-        g.num_vertices = s->vertices();
-        g.indices = p.indices.data();
-        g.num_triangles = p.num_triangles();
-        g.segments = (int)s->schedule.triangle_end.size();
-        g.vertex_end = s->schedule.vertex_end.data();
-        g.triangle_end = s->schedule.triangle_end.data();
-        g.out = s->pos.data();
-        g.planes = s->planes.data();
+        s->args = sv::skin_planes_args(as, s->jm.data(), s->schedule, s->pos.data(),
+                                       s->planes.data());
+        const int segments = s->args.segments;
         r.surfaces++;
         r.triangles += p.num_triangles();
         r.vertices += (int)s->vertices();
-        r.segments += g.segments;
+        r.segments += segments;
         surfaces.push_back(std::move(s));
     }
     if (surfaces.empty()) return r;

@@ -47,17 +47,12 @@ const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name) {
     return sv_skin_planes_variant_by_name(name);
 }
 
-void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface &surface,
-                              const Pose &pose, const Mat4d &root, const SkinPlanesKernel &k,
-                              const SkinPlanesSchedule &schedule, float *out, Plane *planes) {
-    if (surface.skin < 0) {
-        throw PrepareError(surface.name + ": pose_surface_with_planes needs a skinned surface");
-    }
+sv_skin_planes_args skin_planes_args(const AnimatedSurface &surface, const float *joint_matrices,
+                                     const SkinPlanesSchedule &schedule, float *out,
+                                     Plane *planes) {
     const PreparedSurface &p = surface.prepared;
-    AlignedVector<float> jm(16 * asset.skins[surface.skin].joints.size());
-    joint_matrices(asset, surface.skin, pose, root, jm.data());
     sv_skin_planes_args a{};
-    a.joint_matrices = jm.data();
+    a.joint_matrices = joint_matrices;
     a.rest = surface.rest_positions.data();
     a.joints = surface.joints.data();
     a.weights = surface.weights.data();
@@ -70,6 +65,18 @@ void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface 
     a.triangle_end = schedule.triangle_end.data();
     a.out = out;
     a.planes = planes;
+    return a;
+}
+
+void pose_surface_with_planes(const AnimatedAsset &asset, const AnimatedSurface &surface,
+                              const Pose &pose, const Mat4d &root, const SkinPlanesKernel &k,
+                              const SkinPlanesSchedule &schedule, float *out, Plane *planes) {
+    if (surface.skin < 0) {
+        throw PrepareError(surface.name + ": pose_surface_with_planes needs a skinned surface");
+    }
+    AlignedVector<float> jm(16 * asset.skins[surface.skin].joints.size());
+    joint_matrices(asset, surface.skin, pose, root, jm.data());
+    const sv_skin_planes_args a = skin_planes_args(surface, jm.data(), schedule, out, planes);
     k.fn(&a);
 }
 
