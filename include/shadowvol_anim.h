@@ -280,7 +280,7 @@ DeformPlan deform_plan_for(int num_triangles);
 /* One variant's time in measure_deform_plan. */
 struct DeformTiming {
     sv_deform_routine routine;
-    std::string variant; /* skin_planes: a one-pass kernel, or "two passes" (the chosen K then P) */
+    std::string variant; /* skin_planes: a one-pass kernel, or "two_passes" (the chosen K then P) */
     double ticks_per_triangle; /* the lowest of the rounds' medians */
 };
 /* Times every skinning kernel, planes variant and one-pass kernel this CPU

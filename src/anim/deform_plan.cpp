@@ -258,7 +258,7 @@ std::vector<DeformTiming> measure_deform_plan(int size_class) {
 
     std::vector<DeformTiming> out;
     for (const Candidate &c : cands) out.push_back({c.routine, c.name, c.best});
-    out.push_back({SV_DEFORM_SKIN_PLANES, "two passes", two});
+    out.push_back({SV_DEFORM_SKIN_PLANES, "two_passes", two});
     return out;
 }
 

@@ -15,9 +15,11 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 rc=$?
 cat "$tmp/out"
 [ $rc -eq 0 ] || err "tune --class 0 exited $rc: $(cat "$tmp/err")"
-[ "$(grep -c '<- planned' "$tmp/out")" -eq 6 ] || err "not one planned variant per routine"
+# Six volume routines and three of the deforming pass (skinning, planes,
+# one pass or two).
+[ "$(grep -c '<- planned' "$tmp/out")" -eq 9 ] || err "not one planned variant per routine"
 for r in calculate_facing calculate_cull_bits count_facing count_facing_cull create_sil_triangles \
-         create_cap_triangles; do
+         create_cap_triangles skinning derive_planes skin_planes; do
   grep -q "^$r .* c_ref " "$tmp/out" || err "no c_ref timing for $r"
   [ "$(grep -c "^class 0 $r " "$tmp/w/wisdom")" -eq 1 ] || err "the wisdom has no single class-0 line for $r"
 done
@@ -37,15 +39,26 @@ awk '$1 ~ /^(calc|count|create)/ { if (!($1 in best) || $3 < best[$1]) best[$1] 
              print r; bad = 1 }
            exit bad }' "$tmp/out" \
   || err "a planned variant is neither the static choice nor the fastest by more than 3%"
+# The deforming pass: skinning and planes planned at the fastest or within
+# the 3% margin of it; the one-pass kernel only when it beats the two
+# passes by more than 3%, else "two_passes".
+awk '$1 ~ /^(skinning|derive_planes|skin_planes)$/ { t[$1 " " $2] = $3
+       if (!($1 in best) || $3 < best[$1]) best[$1] = $3 }
+     $1 ~ /^(skinning|derive_planes|skin_planes)$/ && /<- planned/ { planned[$1] = $3 }
+     END { for (r in best) if (!(r in planned) || planned[r] > best[r] * 1.03 + 0.005) { print r; bad = 1 }
+           exit bad }' "$tmp/out" \
+  || err "a deforming-pass choice is not within 3% of the fastest"
+grep -qE '^class 0 skin_planes (none|[a-z0-9_]+) [0-9.]+$' "$tmp/w/wisdom" || err "no skin_planes line in the wisdom"
 
 # tune MODEL: measured on the model's own surface, its class only.
 "$sv" tune "$src_models/character_1344.glb" --wisdom "$tmp/m/wisdom" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 [ $rc -eq 0 ] || err "tune MODEL exited $rc: $(cat "$tmp/err")"
 grep -q '^class 0 (.*character_1344.glb, surface .*: 1344 triangles)$' "$tmp/out" || err "tune MODEL: not measured on the model: $(head -5 "$tmp/out")"
-[ "$(grep -c '^class ' "$tmp/out")" -eq 1 ] || err "tune MODEL measured other classes than the model's"
-[ "$(grep -c '<- planned' "$tmp/out")" -eq 6 ] || err "tune MODEL: not one planned variant per routine"
-[ "$(grep -c '^class 0 ' "$tmp/m/wisdom")" -eq 6 ] && ! grep -q '^class [123] ' "$tmp/m/wisdom" \
+[ "$(grep -c '^class [0-9] (' "$tmp/out")" -eq 1 ] || err "tune MODEL measured other classes than the model's"
+[ "$(grep -c '^class 0, deforming surfaces' "$tmp/out")" -eq 1 ] || err "tune MODEL: no deforming pass for its class"
+[ "$(grep -c '<- planned' "$tmp/out")" -eq 9 ] || err "tune MODEL: not one planned variant per routine"
+[ "$(grep -c '^class 0 ' "$tmp/m/wisdom")" -eq 9 ] && ! grep -q '^class [123] ' "$tmp/m/wisdom" \
   || err "tune MODEL: the wisdom is not the model's class alone"
 
 # --dry-run saves nothing.
