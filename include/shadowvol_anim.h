@@ -251,8 +251,7 @@ const SkinPlanesKernel *skin_planes_kernel_by_name(const char *name);
 /* The one-pass kernels' arguments for SURFACE (skinned) with JOINT_MATRICES
  * (joint_matrices() at a pose), SCHEDULE and the outputs. */
 sv_skin_planes_args skin_planes_args(const AnimatedSurface &surface, const float *joint_matrices,
-                                     const SkinPlanesSchedule &schedule, float *out,
-                                     Plane *planes);
+                                     const SkinPlanesSchedule &schedule, float *out, Plane *planes);
 
 /* pose_surface() and the planes of SURFACE (skinned, surface.skin >= 0) in
  * one pass by K, with SCHEDULE (built by skin_planes_schedule for the

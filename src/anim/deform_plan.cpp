@@ -257,6 +257,7 @@ std::vector<DeformTiming> measure_deform_plan(int size_class) {
                          kf ? kf->best : two);
 
     std::vector<DeformTiming> out;
+    out.reserve(cands.size() + 1);
     for (const Candidate &c : cands) out.push_back({c.routine, c.name, c.best});
     out.push_back({SV_DEFORM_SKIN_PLANES, "two_passes", two});
     return out;

@@ -883,6 +883,7 @@ std::vector<float> deform_positions(Rng &rng, int v, Shape shape) {
 std::vector<int> deform_indices(Rng &rng, int t, int v, Shape shape) {
     const double repeat = shape == Shape::degenerate ? 0.5 : 0.05;
     std::vector<int> ix;
+    ix.reserve(3 * (size_t)std::max(t, 0));
     for (int i = 0; i < 3 * t; i++) {
         ix.push_back(i % 3 && rng.chance(repeat) ? ix.back() : (int)rng.below((uint32_t)v));
     }
@@ -913,6 +914,8 @@ void run_derive_planes(std::vector<Row> &rows, Rng &rng) {
             count_case(row);
             record_abi(row, failed, at);
             for (size_t t = 0; t < want.size(); t++) {
+                // Bit for bit is the contract (-0.0 against 0.0, a NaN's payload).
+                // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
                 if (std::memcmp(out.data() + t * sizeof(Plane), &want[t], sizeof(Plane)) != 0) {
                     record_failure(row, at, "plane " + std::to_string(t) + " differs from c_ref's");
                     break;
@@ -986,7 +989,7 @@ CheckSkin check_skin(Rng &rng, int v, int influences) {
     for (float &m : s.matrices) m = rng.uniform(-2, 2);
     for (int j = 0; j < kJoints; j++) {
         for (int r = 0; r < 3; r++)
-            s.matrices[(size_t)(16 * j + 12 + r)] = rng.uniform(-1000, 1000);
+            s.matrices[16 * (size_t)j + 12 + (size_t)r] = rng.uniform(-1000, 1000);
     }
     s.rest = deform_positions(rng, v, Shape::ordinary);
     for (int i = 0; i < v * influences; i++) {
@@ -1091,8 +1094,9 @@ void run_skin_planes(std::vector<Row> &rows, Rng &rng) {
                 record_failure(row, at, "positions differ from c_ref's");
             }
             for (size_t i = 0; i < want_planes.size(); i++) {
+                // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
                 if (std::memcmp(planes.data() + i * sizeof(Plane), &want_planes[i],
-                                sizeof(Plane))) {
+                                sizeof(Plane)) != 0) {
                     record_failure(row, at, "plane " + std::to_string(i) + " differs from c_ref's");
                     break;
                 }

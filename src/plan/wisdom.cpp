@@ -48,7 +48,7 @@ struct Entry {
  * derive_planes, skin_planes) are numbered SV_NUM_ROUTINES + r. */
 using Sections = std::map<std::string, std::map<int, std::map<int, Entry>>>;
 
-constexpr int kAllRoutines = SV_NUM_ROUTINES + SV_NUM_DEFORM_ROUTINES;
+constexpr int kAllRoutines = (int)SV_NUM_ROUTINES + (int)SV_NUM_DEFORM_ROUTINES;
 
 const char *routine_name(int r) {
     return r < SV_NUM_ROUTINES ? sv_routine_name((sv_routine)r)

@@ -79,9 +79,9 @@ const Result &row(const std::vector<Result> &rs, const std::string &variant) {
 
 // The library's variants beside the broken ones: the good rows of every
 // table below, which must stay ok (or skipped, where this CPU lacks them).
-std::vector<Variant> with_good(std::vector<Variant> broken) {
+std::vector<Variant> with_good(const std::vector<Variant> &broken) {
     std::vector<Variant> t = svcheck::library_variants();
-    for (Variant &b : broken) t.push_back(b);
+    for (const Variant &b : broken) t.push_back(b);
     return t;
 }
 

@@ -129,6 +129,7 @@ size_t mismatches(Rng &rng, const sv::SkinPlanesKernel &k, const RandomSkin &s,
     size_t bad = 0;
     if (s.vertices) bad += std::memcmp(pos.data(), want_pos.data(), pos.size()) != 0;
     for (int t = 0; t < s.triangles; t++) {
+        // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
         bad += std::memcmp(planes.data() + (size_t)t * sizeof(Plane), &want_planes[(size_t)t],
                            sizeof(Plane)) != 0;
     }
