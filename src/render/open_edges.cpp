@@ -55,10 +55,14 @@ std::vector<uint8_t> triangles_on_open_edges(const int *indices, int num_triangl
     auto vertex_of = [&](int t, int corner) {
         return dense[3 * (std::size_t)t + (std::size_t)corner];
     };
-    /* Per lower vertex: its uses' upper vertices and signs. */
+    /* Every use of an edge, grouped by its lower vertex (a counting
+     * sort): its upper vertex and its sign, 0 for a skipped triangle's
+     * (it closes nothing, but its edges are asked about too). USE_AT: the
+     * slot of triangle t's edge e (3t + e), kNoSlot where its ends are
+     * one vertex. */
+    constexpr uint32_t kNoSlot = UINT32_MAX;
     std::vector<uint32_t> first((std::size_t)vertices + 1, 0);
     for (int t = 0; t < num_triangles; t++) {
-        if (skip[(std::size_t)t]) continue;
         for (int e = 0; e < 3; e++) {
             const uint32_t a = vertex_of(t, e), b = vertex_of(t, (e + 1) % 3);
             if (a != b) first[(std::size_t)std::min(a, b) + 1]++;
@@ -66,53 +70,36 @@ std::vector<uint8_t> triangles_on_open_edges(const int *indices, int num_triangl
     }
     for (std::size_t v = 1; v < first.size(); v++) first[v] += first[v - 1];
     std::vector<uint32_t> fill(first.begin(), first.end() - 1);
-    std::vector<uint32_t> upper(first.back());
+    std::vector<uint32_t> upper(first.back()), use_at(dense.size(), kNoSlot);
     std::vector<int8_t> sign(first.back());
     for (int t = 0; t < num_triangles; t++) {
-        if (skip[(std::size_t)t]) continue;
+        const bool closes = skip[(std::size_t)t] == 0;
         for (int e = 0; e < 3; e++) {
             const uint32_t a = vertex_of(t, e), b = vertex_of(t, (e + 1) % 3);
             if (a == b) continue;
             const uint32_t at = fill[std::min(a, b)]++;
             upper[at] = std::max(a, b);
-            sign[at] = a < b ? 1 : -1;
+            sign[at] = !closes ? 0 : a < b ? 1 : -1;
+            use_at[3 * (std::size_t)t + (std::size_t)e] = at;
         }
     }
-    /* A vertex has few edges: its group is scanned. The groups of a
-     * vertex with many (a fan's centre) are sorted and searched, so no
-     * mesh makes this quadratic. */
-    constexpr uint32_t kScan = 32;
+    /* Per group, each edge's sum of signs in a table by upper vertex
+     * (added, read, then cleared by the same group): every use's edge is
+     * open where its sum is not 0. Linear in the uses, whatever a
+     * vertex's degree (a fan's centre, a directional light's shared
+     * point). */
+    std::vector<int> sum_by_upper(vertices, 0);
+    std::vector<uint8_t> use_open(upper.size(), 0);
     for (std::size_t v = 0; v + 1 < first.size(); v++) {
-        if (first[v + 1] - first[v] <= kScan) continue;
-        std::vector<std::pair<uint32_t, int8_t>> group;
-        for (uint32_t k = first[v]; k < first[v + 1]; k++) group.emplace_back(upper[k], sign[k]);
-        std::sort(group.begin(), group.end());
-        for (uint32_t k = first[v]; k < first[v + 1]; k++) {
-            upper[k] = group[k - first[v]].first;
-            sign[k] = group[k - first[v]].second;
-        }
+        const uint32_t begin = first[v], end = first[v + 1];
+        for (uint32_t k = begin; k < end; k++) sum_by_upper[upper[k]] += sign[k];
+        for (uint32_t k = begin; k < end; k++) use_open[k] = sum_by_upper[upper[k]] != 0;
+        for (uint32_t k = begin; k < end; k++) sum_by_upper[upper[k]] = 0;
     }
-    /* Is edge (lo, hi)'s sum of signs not 0? */
-    auto open = [&](uint32_t lo, uint32_t hi) {
-        const uint32_t begin = first[lo], end = first[(std::size_t)lo + 1];
-        int sum = 0;
-        if (end - begin <= kScan) {
-            for (uint32_t k = begin; k < end; k++) sum += upper[k] == hi ? sign[k] : 0;
-        } else {
-            const uint32_t *u = upper.data();
-            for (auto k = (std::size_t)(std::lower_bound(u + begin, u + end, hi) - u);
-                 k < end && u[k] == hi; k++) {
-                sum += sign[k];
-            }
-        }
-        return sum != 0;
-    };
     for (int t = 0; t < num_triangles; t++) {
         for (int e = 0; e < 3; e++) {
-            const uint32_t a = vertex_of(t, e), b = vertex_of(t, (e + 1) % 3);
-            if (a != b && open(std::min(a, b), std::max(a, b))) {
-                on_open[(std::size_t)t] |= (uint8_t)(1u << e);
-            }
+            const uint32_t at = use_at[3 * (std::size_t)t + (std::size_t)e];
+            if (at != kNoSlot && use_open[at]) on_open[(std::size_t)t] |= (uint8_t)(1u << e);
         }
     }
     return on_open;
