@@ -9,10 +9,10 @@
 # Prints one row per model, mode and light; exits 1 if any run failed.
 set -u
 cd "$(dirname "$0")/.."
-build=build size=1280x1024 stencil=bf threads="" positional=0
+build=build size=1280x1024 method=bf threads="" positional=0
 while [ $# -gt 0 ]; do
   case "$1" in
-    --stencil) stencil="$2"; shift 2 ;;
+    --stencil) method="$2"; shift 2 ;;
     --threads) threads="$2"; shift 2 ;;
     -*) echo "tools/render_models.sh: unknown option $1" >&2; exit 2 ;;
     *) if [ $positional -eq 0 ]; then build="$1"; else size="$1"; fi
@@ -29,7 +29,7 @@ for m in "${models[@]}"; do
   for mode in zpass zfail; do
     name=$(basename "$m" .glb)
     "$build/shadowvol" render --add "$m" --ground --light point:auto --light spot:auto --light dir:auto \
-      --size "$size" --mode "$mode" --stencil "$stencil" ${threads:+--threads "$threads"} \
+      --size "$size" --mode "$mode" --stencil "$method" ${threads:+--threads "$threads"} \
       --out "$out/$name-$mode" >"$out/report" 2>"$out/err" || status=1
     depth=$(sed -n 's/^depth pass: .* written, \([0-9.]*\) ms.*/\1/p' "$out/report")
     for i in 0 1 2; do
