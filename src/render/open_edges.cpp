@@ -79,7 +79,7 @@ std::vector<uint8_t> triangles_on_open_edges(const int *indices, int num_triangl
             if (a == b) continue;
             const uint32_t at = fill[std::min(a, b)]++;
             upper[at] = std::max(a, b);
-            sign[at] = !closes ? 0 : a < b ? 1 : -1;
+            sign[at] = (int8_t)(!closes ? 0 : a < b ? 1 : -1);
             use_at[3 * (std::size_t)t + (std::size_t)e] = at;
         }
     }
