@@ -1,0 +1,52 @@
+/*
+ * The reference expression of include/shadowvol_extrude.h for one vertex,
+ * shared by the C reference and the SIMD variants' tails (so they are the
+ * same operations by construction). Built with -ffp-contract=off, like
+ * every C file of the library.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_EXTRUDE_INTERNAL_H
+#define SV_EXTRUDE_INTERNAL_H
+
+#include <math.h>
+#include <stddef.h>
+#include <xmmintrin.h>
+
+#include "shadowvol_extrude.h"
+
+/* sqrtf without errno handling (and without libm): the correctly rounded
+ * square root, sqrtss, as sqrtps computes it lane by lane. */
+static inline float sv_extrude_sqrt(float x) { return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))); }
+
+/* Whether LIGHT and RANGE extrude to the seed's finite length (else to
+ * infinity, w = 0). */
+static inline int sv_extrude_finite(const Vec4 *light, float range) {
+    return light->w != 0.0f && range > 0.0f && range < INFINITY;
+}
+
+static inline Vec4 sv_extrude_one(const float *v, const Vec4 *l, float range, int finite) {
+    const float px = v[0], py = v[1], pz = v[2];
+    const float nx = v[3], ny = v[4], nz = v[5];
+    const float dx = px * l->w - l->x;
+    const float dy = py * l->w - l->y;
+    const float dz = pz * l->w - l->z;
+    const float len2 = (dx * dx + dy * dy) + dz * dz;
+    const float inv = 1.0f / sv_extrude_sqrt(len2);
+    const float ux = dx * inv, uy = dy * inv, uz = dz * inv;
+    const float dot = (nx * ux + ny * uy) + nz * uz;
+    Vec4 o;
+    if (dot < 0.0f || !(len2 > 0.0f)) {
+        o.x = px, o.y = py, o.z = pz, o.w = 1.0f;
+    } else if (!finite) {
+        o.x = dx, o.y = dy, o.z = dz, o.w = 0.0f;
+    } else {
+        const float len = 1.0f / inv;
+        float ext = range - len;
+        ext = ext > 0.0f ? ext : 0.0f;
+        o.x = ux * ext + px, o.y = uy * ext + py, o.z = uz * ext + pz, o.w = 1.0f;
+    }
+    return o;
+}
+
+#endif /* SV_EXTRUDE_INTERNAL_H */
