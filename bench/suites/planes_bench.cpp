@@ -57,11 +57,8 @@ struct PlanesMesh {
     int triangles = 0, vertices = 0;
 };
 
-struct PlanesRow {
-    std::string what; /* "derive", "bfg_1", "bfg_4", "planes_1", "planes_4" */
-    std::string variant;
-    SeedTiming t;
-};
+/* Rows: what is "derive", "bfg_1", "bfg_4", "planes_1" or "planes_4". */
+using PlanesRow = VariantRow;
 
 struct PlanesResult {
     PlanesMesh mesh;
@@ -110,30 +107,6 @@ PlanesMesh grid_mesh(int n) {
     return g;
 }
 
-std::vector<Vec4> lights_around(const PlanesMesh &m, uint64_t seed) {
-    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-    for (int v = 0; v < m.vertices; v++) {
-        for (int c = 0; c < 3; c++) {
-            lo[c] = std::min(lo[c], m.positions[3 * v + c]);
-            hi[c] = std::max(hi[c], m.positions[3 * v + c]);
-        }
-    }
-    const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
-    const double r = 1.5 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) + 1e-3;
-    std::vector<Vec4> out;
-    uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1;
-    for (int i = 0; i < kLightsPlanes; i++) {
-        s = s * 6364136223846793005ull + 1442695040888963407ull;
-        const double jitter = (double)(s >> 40) / (double)(1ull << 24);
-        const double a = 2 * M_PI * (i + jitter) / kLightsPlanes;
-        const double e = 0.2 + 0.9 * ((i * 7) % kLightsPlanes) / kLightsPlanes;
-        out.push_back(Vec4{(float)(cx + r * std::cos(a) * std::cos(e)),
-                           (float)(cy + r * std::sin(e)),
-                           (float)(cz + r * std::sin(a) * std::cos(e)), 1.0f});
-    }
-    return out;
-}
-
 std::string first_plane_diff(const Plane *got, const std::vector<Plane> &ref) {
     for (size_t t = 0; t < ref.size(); t++) {
         // Bit for bit is the contract (-0.0 against 0.0, a NaN's payload).
@@ -150,7 +123,7 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
     const int n = m.triangles;
     const float *pos = m.positions.data();
     const int *idx = m.indices.data();
-    const std::vector<Vec4> lights = lights_around(m, seed);
+    const std::vector<Vec4> lights = lights_around(pos, m.vertices, kLightsPlanes, seed);
 
     std::vector<Plane> refPlanes((size_t)n);
     sv_derive_planes_c_ref(pos, idx, n, refPlanes.data());
@@ -227,22 +200,6 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
     if (progress) std::fprintf(progress, "\r%60s\r", "");
 }
 
-const PlanesRow *find_row(const PlanesResult &r, const std::string &what,
-                          const std::string &variant) {
-    for (const PlanesRow &row : r.rows) {
-        if (row.what == what && (variant.empty() || row.variant == variant)) return &row;
-    }
-    return nullptr;
-}
-
-std::string cell(const PlanesRow *row, int triangles) {
-    if (!row) return "-";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f%s", row->t.median / std::max(1, triangles),
-                  row->t.ok ? "" : " FAIL");
-    return buf;
-}
-
 void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
     std::vector<std::string> variants;
     for (const PlanesRow &r : results.front().rows) {
@@ -256,7 +213,9 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
     for (const PlanesResult &r : results) {
         std::fprintf(out, "%-24s %9d", r.mesh.name.c_str(), r.mesh.triangles);
         for (const std::string &v : variants) {
-            std::fprintf(out, " %11s", cell(find_row(r, "derive", v), r.mesh.triangles).c_str());
+            std::fprintf(
+                out, " %11s",
+                ticks_cell(find_variant_row(r.rows, "derive", v), r.mesh.triangles).c_str());
         }
         std::fprintf(out, "\n");
     }
@@ -275,10 +234,11 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
         char dis[48];
         std::snprintf(dis, sizeof dis, "%lld/%lld", r.disagree, r.compared);
         std::fprintf(out, "%-24s %9d %9s %9s %9s %9s %12s\n", r.mesh.name.c_str(), r.mesh.triangles,
-                     cell(find_row(r, "bfg_1", best), r.mesh.triangles).c_str(),
-                     cell(find_row(r, "planes_1", ""), r.mesh.triangles).c_str(),
-                     cell(find_row(r, "bfg_4", best), r.mesh.triangles).c_str(),
-                     cell(find_row(r, "planes_4", ""), r.mesh.triangles).c_str(), dis);
+                     ticks_cell(find_variant_row(r.rows, "bfg_1", best), r.mesh.triangles).c_str(),
+                     ticks_cell(find_variant_row(r.rows, "planes_1", ""), r.mesh.triangles).c_str(),
+                     ticks_cell(find_variant_row(r.rows, "bfg_4", best), r.mesh.triangles).c_str(),
+                     ticks_cell(find_variant_row(r.rows, "planes_4", ""), r.mesh.triangles).c_str(),
+                     dis);
     }
     std::fprintf(out,
                  "  disagree: triangles whose BFG facing differs from the derived planes' "
@@ -292,8 +252,9 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
     for (const PlanesResult &r : results) {
         std::fprintf(out, "%-24s", r.mesh.name.c_str());
         for (const std::string &v : variants) {
-            const std::string c = cell(find_row(r, "bfg_1", v), r.mesh.triangles) + " | " +
-                                  cell(find_row(r, "bfg_4", v), r.mesh.triangles);
+            const std::string c =
+                ticks_cell(find_variant_row(r.rows, "bfg_1", v), r.mesh.triangles) + " | " +
+                ticks_cell(find_variant_row(r.rows, "bfg_4", v), r.mesh.triangles);
             std::fprintf(out, " %17s", c.c_str());
         }
         std::fprintf(out, "\n");
@@ -347,6 +308,58 @@ std::string planes_json(const std::vector<PlanesResult> &results,
 
 } // namespace
 
+std::vector<Vec4> lights_around(const float *positions, int vertices, int count, uint64_t seed) {
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (int v = 0; v < vertices; v++) {
+        for (int c = 0; c < 3; c++) {
+            lo[c] = std::min(lo[c], positions[3 * v + c]);
+            hi[c] = std::max(hi[c], positions[3 * v + c]);
+        }
+    }
+    const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
+    const double r = 1.5 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) + 1e-3;
+    std::vector<Vec4> out;
+    uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1;
+    for (int i = 0; i < count; i++) {
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        const double jitter = (double)(s >> 40) / (double)(1ull << 24);
+        const double a = 2 * M_PI * (i + jitter) / count;
+        const double e = 0.2 + 0.9 * ((i * 7) % count) / count;
+        out.push_back(Vec4{(float)(cx + r * std::cos(a) * std::cos(e)),
+                           (float)(cy + r * std::sin(e)),
+                           (float)(cz + r * std::sin(a) * std::cos(e)), 1.0f});
+    }
+    return out;
+}
+
+const VariantRow *find_variant_row(const std::vector<VariantRow> &rows, const std::string &what,
+                                   const std::string &variant) {
+    for (const VariantRow &row : rows) {
+        if (row.what == what && (variant.empty() || row.variant == variant)) return &row;
+    }
+    return nullptr;
+}
+
+std::string ticks_cell(const VariantRow *row, double per) {
+    if (!row) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f%s", row->t.median / std::max(1.0, per),
+                  row->t.ok ? "" : " FAIL");
+    return buf;
+}
+
+int print_failed_rows(FILE *out, const std::string &mesh, const std::vector<VariantRow> &rows) {
+    int failed = 0;
+    for (const VariantRow &row : rows) {
+        if (!row.t.ok) {
+            failed++;
+            std::fprintf(out, "FAILED %s %s %s: %s\n", mesh.c_str(), row.what.c_str(),
+                         row.variant.c_str(), row.t.failure.c_str());
+        }
+    }
+    return failed;
+}
+
 int run_planes_bench(const SeedCommand &cmd) {
     return run_seed_frame(cmd, "planes", [&](FILE *out, std::string *doc) {
         const int cpu = pin_to_current_cpu();
@@ -396,15 +409,7 @@ int run_planes_bench(const SeedCommand &cmd) {
                 }
             }
         }
-        for (const PlanesResult &r : results) {
-            for (const PlanesRow &row : r.rows) {
-                if (!row.t.ok) {
-                    failed++;
-                    std::fprintf(out, "FAILED %s %s %s: %s\n", r.mesh.name.c_str(),
-                                 row.what.c_str(), row.variant.c_str(), row.t.failure.c_str());
-                }
-            }
-        }
+        for (const PlanesResult &r : results) failed += print_failed_rows(out, r.mesh.name, r.rows);
         *doc = planes_json(results, skinned, timer);
         return failed;
     });

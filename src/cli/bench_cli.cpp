@@ -23,6 +23,7 @@
 #include "model_list.h"
 #include "model_workload.h"
 #include "output_file.h"
+#include "extrude_bench.h"
 #include "planes_bench.h"
 #include "cli_args.h"
 #include "render_args.h"
@@ -195,6 +196,7 @@ struct CliOptions {
     bool silhouette = false; /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
     bool backface = false;   /* --backface: seed 001's culling (backface_bench.cpp) */
     bool planes = false;     /* --planes: per-frame planes (planes_bench.cpp) */
+    bool extrude = false;    /* --extrude: seed 002's vertex program (extrude_bench.cpp) */
     bool scene = false;      /* --scene: the demo scene per frame (scene_bench.cpp) */
     bool casters = false;    /* --casters: the general rule's builders (casters_bench.cpp) */
     std::string casterRule;  /* --caster-rule R (with --scene); "" the default, auto */
@@ -325,6 +327,8 @@ CliOptions parse(int argc, char **argv) {
             c.backface = true;
         } else if (opt == "--planes" && !hasValue) {
             c.planes = true;
+        } else if (opt == "--extrude" && !hasValue) {
+            c.extrude = true;
         } else if (opt == "--scene" && !hasValue) {
             c.scene = true;
         } else if (opt == "--casters" && !hasValue) {
@@ -383,8 +387,8 @@ CliOptions parse(int argc, char **argv) {
             c.maxTriangles = (long)parse_int(opt, need(), 1, kMaxTriangles);
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
                                 opt == "--silhouette" || opt == "--backface" || opt == "--planes" ||
-                                opt == "--scene" || opt == "--casters" || opt == "--frame" ||
-                                opt == "--figure1" || opt == "--no-mesa")) {
+                                opt == "--extrude" || opt == "--scene" || opt == "--casters" ||
+                                opt == "--frame" || opt == "--figure1" || opt == "--no-mesa")) {
             bad(opt + " takes no value");
         } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -393,17 +397,17 @@ CliOptions parse(int argc, char **argv) {
         }
     }
     if (c.figure1) {
-        if (c.frame || c.silhouette || c.backface || c.planes || c.scene || c.casters ||
-            c.scaling || c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven ||
-            c.frameOptions.out_dir.empty()) {
+        if (c.frame || c.silhouette || c.backface || c.planes || c.extrude || c.scene ||
+            c.casters || c.scaling || c.limits || !c.plot.empty() || !c.models.empty() ||
+            c.lightGiven || c.frameOptions.out_dir.empty()) {
             bad("--figure1 takes --out DIR, --preset and --size only (and needs --out)");
         }
         return c;
     }
     if (c.frame) {
-        if (c.silhouette || c.backface || c.planes || c.scene || c.casters || c.scaling ||
-            c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
-            !c.table.routines.empty() || !c.variants.empty() || c.table.batch ||
+        if (c.silhouette || c.backface || c.planes || c.extrude || c.scene || c.casters ||
+            c.scaling || c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven ||
+            c.regimeGiven || !c.table.routines.empty() || !c.variants.empty() || c.table.batch ||
             !c.casterRule.empty() || c.maxTriangles) {
             bad("--frame takes --preset, --size, --threads, --stencil, --frames, --runs, "
                 "--no-mesa, --out, "
@@ -422,18 +426,19 @@ CliOptions parse(int argc, char **argv) {
     if (c.frameOptionGiven) {
         bad("--threads, --stencil, --frames, --no-mesa and --out are options of --frame");
     }
-    if (c.silhouette || c.backface || c.planes || c.scene || c.casters) {
+    if (c.silhouette || c.backface || c.planes || c.extrude || c.scene || c.casters) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
          * backface_bench.cpp, planes_bench.cpp, casters_bench.cpp). */
         const std::string mode = c.silhouette ? "--silhouette"
                                  : c.backface ? "--backface"
                                  : c.planes   ? "--planes"
+                                 : c.extrude  ? "--extrude"
                                  : c.casters  ? "--casters"
                                               : "--scene";
-        if ((c.silhouette + c.backface + c.planes + c.scene + c.casters > 1) || c.scaling ||
-            c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven || c.regimeGiven ||
-            !c.table.routines.empty() || !c.variants.empty() || c.runs || c.table.batch ||
-            c.targets.facing != LightTargets{}.facing ||
+        if ((c.silhouette + c.backface + c.planes + c.extrude + c.scene + c.casters > 1) ||
+            c.scaling || c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven ||
+            c.regimeGiven || !c.table.routines.empty() || !c.variants.empty() || c.runs ||
+            c.table.batch || c.targets.facing != LightTargets{}.facing ||
             c.targets.silhouette != LightTargets{}.silhouette) {
             bad(mode + " takes --quick, --json, --max-triangles, --seed, --timer and --isa only");
         }
@@ -690,6 +695,13 @@ void bench_usage(FILE *out) {
         "100,352-triangle grid; every call bit-identical to the C references (docs/PLANES.md).\n"
         "JSON schema shadowvol-planes/1. --quick: the character and a small grid.\n"
         "\n"
+        "Seed 002: shadowvol bench --extrude [--quick] [--json FILE] [--max-triangles N]\n"
+        "The seed's vertex program emulated on the CPU (every variant, a range and none)\n"
+        "beside the paper's pipeline (sv_shadow_volume_for_light), 16 moving lights, on\n"
+        "the bundled and real characters and the open one; every call checked; the\n"
+        "seed's buffers against the paper's index lists (docs/EXTRUSION.md). JSON schema\n"
+        "shadowvol-extrude/1. --quick: the bundled character.\n"
+        "\n"
         "Per frame: shadowvol bench --scene [--quick] [--caster-rule R] [--json FILE]\n"
         "           [--preset simple|knights|demo|FILE] [--size WxH]\n"
         "The demo scene's frames (8 at 640x512; --quick 4 at 320x256) with only what each\n"
@@ -768,6 +780,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.planes) {
             return run_planes_bench(seed_command(c));
+        }
+        if (c.extrude) {
+            return run_extrude_bench(seed_command(c));
         }
         if (c.scene) {
             return run_scene_bench(seed_command(c));

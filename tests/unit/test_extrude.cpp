@@ -297,15 +297,15 @@ void check_mesh_shape(const sv::ShadowMesh &m, const sv::PreparedSurface &c,
     int64_t quads = 0;
     for (size_t i = 0; i < m.indices.size();) {
         const int *x = m.indices.data() + i;
-        if (x[0] == 3 * next_face && x[1] == 3 * next_face + 1 && x[2] == 3 * next_face + 2 &&
-            (i + 3 == m.indices.size() || x[3] / 3 != next_face || x[3] % 3 != 0 ||
-             x[4] / 3 == next_face)) {
+        // A face is (3t, 3t+1, 3t+2); a quad's first triangle never is (its
+        // second vertex is on the other face).
+        if (x[0] == 3 * next_face && x[1] == 3 * next_face + 1 && x[2] == 3 * next_face + 2) {
             next_face++;
             i += 3;
             continue;
         }
-        // A quad (a1, b2, b1), (a1, a2, b2): a1, b1 on one face, a2, b2 on an
-        // earlier or the current one... the later face is the current.
+        // A quad (a1, b2, b1), (a1, a2, b2): a1, b1 on the earlier face, a2,
+        // b2 on the later one, the face just emitted.
         ASSERT_LE(i + 6, m.indices.size());
         const int a1 = x[0], b2 = x[1], b1 = x[2], a2 = x[4];
         ASSERT_TRUE(x[3] == a1 && x[5] == b2) << "quad at " << i;

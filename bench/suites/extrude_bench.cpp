@@ -1,0 +1,368 @@
+/*
+ * `shadowvol bench --extrude`: seed 002 (Brennan, ShaderX 2002), shadow
+ * volumes extruded by a vertex program, its program emulated on the CPU
+ * (include/shadowvol_extrude.h), against the paper's pipeline
+ * (sv_shadow_volume_for_light: facing and count fused, silhouette quads and
+ * caps, the planner's kernels) on the same meshes and lights.
+ *
+ * Meshes: the bundled character (closed), and when present the real
+ * characters of the shared folder (Fox, CesiumMan, RobotExpressive,
+ * RiggedFigure) and the open asset pack character (open/Zombie_Basic.glb);
+ * all surfaces merged, the caster rule auto applied to both methods (open
+ * shells two-sided, docs/CASTERS.md), so both build the exact volume.
+ * Lights: 16 point lights around the mesh (planes_bench.h), the next in
+ * each call; a range 1.5 times the farthest light-vertex distance for the
+ * seed's finite rows.
+ *
+ * Rows (ticks per call, median; per vertex or per triangle in the table):
+ *   extrude VARIANT range|inf   every variant; every call's output
+ *                               compared bit for bit with the C reference's
+ *   paper                       sv_shadow_volume_for_light; every call's
+ *                               index list compared with the C references'
+ * Counts: the seed's vertices and indices (static: 3F vertices, 3F + 6
+ * quads indices) against the paper's shadow vertices (2V) and its index
+ * list per light (mean); the quads that open (a silhouette: their two
+ * faces extrude differently) against the paper's silhouette quads; and the
+ * faces the seed splits (its three vertices disagree on facing: the
+ * per-vertex dp3 rounds differently at each corner of a face nearly
+ * edge-on to the light), summed over the lights.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "extrude_bench.h"
+#include "json_writer.h"
+#include "planes_bench.h"
+#include "shadowvol_casters.h"
+#include "shadowvol_extrude.h"
+#include "shadowvol_plan.h"
+
+#ifndef SV_MODELS_DIR
+#define SV_MODELS_DIR "models"
+#endif
+
+namespace svbench {
+
+namespace {
+
+constexpr int kLightsExtrude = 16;
+
+/* Rows: what is "extrude_range", "extrude_inf" or "paper". */
+using ExtrudeRow = VariantRow;
+
+struct ExtrudeResult {
+    std::string name;
+    sv::PreparedSurface caster; /* under the caster rule auto */
+    sv::ShadowMesh mesh;
+    std::vector<ExtrudeRow> rows;
+    double paperIndicesMean = 0, paperQuadsMean = 0, openQuadsMean = 0;
+    long long splitFaces = 0; /* over the lights */
+};
+
+/* The workload's welded mesh prepared again (no change: it is welded and
+ * has no degenerate triangle), then the caster rule auto. */
+sv::PreparedSurface caster_of(const SeedMesh &m) {
+    const Workload &w = m.w;
+    std::vector<float> pos(3 * (size_t)w.numVerts);
+    for (int v = 0; v < w.numVerts; v++) {
+        pos[3 * (size_t)v] = w.positions[v].x;
+        pos[3 * (size_t)v + 1] = w.positions[v].y;
+        pos[3 * (size_t)v + 2] = w.positions[v].z;
+    }
+    std::vector<uint32_t> idx(w.indices.data(), w.indices.data() + w.numIndices);
+    sv::PreparedSurface s = sv::prepare_surface(pos.data(), (size_t)w.numVerts, idx.data(),
+                                                idx.size());
+    const auto two = sv::two_sided_caster(s, sv::find_shells(s), sv::CasterRule::automatic);
+    return two ? *two : s;
+}
+
+std::string first_vec4_diff(const Vec4 *got, const std::vector<Vec4> &ref) {
+    // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Vec4 is four floats, no padding
+    if (std::memcmp(got, ref.data(), ref.size() * sizeof(Vec4)) == 0) return "";
+    for (size_t i = 0; i < ref.size(); i++) {
+        // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): as above
+        if (std::memcmp(&got[i], &ref[i], sizeof(Vec4)) != 0)
+            return "vertex " + std::to_string(i) + " differs from the C reference";
+    }
+    return "";
+}
+
+void measure(ExtrudeResult &res, const SeedTimer &timer, uint64_t seed, FILE *progress) {
+    const sv::PreparedSurface &c = res.caster;
+    const sv::ShadowMesh &m = res.mesh;
+    const int nv = m.num_vertices();
+    const std::vector<Vec4> lights = lights_around(c.positions.data(), c.num_vertices(),
+                                                   kLightsExtrude, seed);
+    float range = 0;
+    for (const Vec4 &l : lights) {
+        for (int v = 0; v < c.num_vertices(); v++) {
+            const float *p = c.positions.data() + 3 * (size_t)v;
+            range = std::max(range, std::hypot(p[0] - l.x, p[1] - l.y, p[2] - l.z));
+        }
+    }
+    range *= 1.5f;
+
+    /* The references: the seed's outputs per light, both kinds; the paper's
+     * index lists by the C reference kernels. */
+    std::vector<std::vector<Vec4>> refRange(kLightsExtrude), refInf(kLightsExtrude);
+    int numVariants = 0;
+    const sv_variant *cref = &sv_variants(&numVariants)[0]; /* c_ref */
+    const size_t cap = sv_shadow_volume_capacity(c.num_indices(), c.num_sil_edges());
+    std::vector<std::vector<int>> refPaper(kLightsExtrude);
+    std::vector<uint8_t> facing((size_t)c.num_triangles() + 1);
+    for (int l = 0; l < kLightsExtrude; l++) {
+        refRange[l].resize((size_t)nv);
+        refInf[l].resize((size_t)nv);
+        const sv_extrude_light lr{lights[l], range}, li{lights[l], 0.0f};
+        sv_extrude_c_ref(m.stream.data(), nv, &lr, refRange[l].data());
+        sv_extrude_c_ref(m.stream.data(), nv, &li, refInf[l].data());
+        std::vector<int> idx(cap);
+        sv_calculate_facing_c_ref(c.planes.data(), c.num_triangles(), &lights[l], facing.data());
+        const int n = sv_create_shadow_volume(cref, idx.data(), c.indices.data(), c.num_indices(),
+                                              c.sil_edges.data(), c.num_sil_edges(), facing.data(),
+                                              nullptr);
+        idx.resize((size_t)std::max(n, 0));
+        refPaper[l] = idx;
+        res.paperIndicesMean += n;
+        int sil = 0;
+        for (const SilEdge &e : c.sil_edges) sil += facing[(size_t)e.p1] != facing[(size_t)e.p2];
+        res.paperQuadsMean += sil;
+        /* The seed's opened quads and split faces (infinite extrusion: kept
+         * vertices have w = 1, extruded ones w = 0). */
+        const std::vector<Vec4> &o = refInf[l];
+        const int *q = m.indices.data();
+        for (size_t i = 0; i < m.indices.size();) {
+            /* A face is (3t, 3t+1, 3t+2); a quad's first triangle never is
+             * (its second vertex is on the other face). */
+            if (q[i] % 3 == 0 && q[i + 1] == q[i] + 1 && q[i + 2] == q[i] + 2) {
+                const float w0 = o[(size_t)q[i]].w, w1 = o[(size_t)q[i + 1]].w,
+                            w2 = o[(size_t)q[i + 2]].w;
+                res.splitFaces += !(w0 == w1 && w1 == w2);
+                i += 3;
+            } else {
+                /* (a1, b2, b1), (a1, a2, b2): open when a side moved. */
+                const int a1 = q[i], b2 = q[i + 1], b1 = q[i + 2], a2 = q[i + 4];
+                res.openQuadsMean += o[(size_t)a1].w != o[(size_t)a2].w ||
+                                     o[(size_t)b1].w != o[(size_t)b2].w;
+                i += 6;
+            }
+        }
+    }
+    res.paperIndicesMean /= kLightsExtrude;
+    res.paperQuadsMean /= kLightsExtrude;
+    res.openQuadsMean /= kLightsExtrude;
+
+    int count = 0;
+    const sv_extrude_variant *all = sv_extrude_variants(&count);
+    std::vector<Vec4> out((size_t)nv);
+    for (int i = 0; i < count; i++) {
+        const sv_extrude_variant *v = &all[i];
+        if ((v->isa & sv_cpu_isa()) != v->isa) continue;
+        for (int finite = 1; finite >= 0; finite--) {
+            if (progress)
+                std::fprintf(progress, "\r%s: extrude %s        ", res.name.c_str(), v->name);
+            const auto &ref = finite ? refRange : refInf;
+            ExtrudeRow r{finite ? "extrude_range" : "extrude_inf", v->name, {}};
+            r.t = time_seed_row(
+                timer,
+                [&](int k) {
+                    const sv_extrude_light el{lights[(size_t)(k % kLightsExtrude)],
+                                              finite ? range : 0.0f};
+                    v->extrude(m.stream.data(), nv, &el, out.data());
+                },
+                [&](int k) {
+                    return first_vec4_diff(out.data(), ref[(size_t)(k % kLightsExtrude)]);
+                });
+            res.rows.push_back(r);
+        }
+    }
+
+    if (progress) std::fprintf(progress, "\r%s: paper        ", res.name.c_str());
+    const std::vector<Vec4> positions = sv::positions_vec4(c);
+    sv_surface surf{};
+    surf.planes = c.planes.data();
+    surf.indices = c.indices.data();
+    surf.numIndices = c.num_indices();
+    surf.silEdges = c.sil_edges.data();
+    surf.numSilEdges = c.num_sil_edges();
+    surf.positions = positions.data();
+    surf.numVerts = c.num_vertices();
+    surf.bounds = sv::surface_bounds(c);
+    sv::AlignedVector<int> idx(cap);
+    sv::AlignedVector<uint8_t> facingScratch((size_t)c.num_triangles() + 1);
+    int written = 0;
+    ExtrudeRow r{"paper", sv_plan_for(c.num_triangles(), SV_PLAN_ESTIMATE)->kernels.name, {}};
+    r.t = time_seed_row(
+        timer,
+        [&](int k) {
+            written = sv_shadow_volume_for_light(nullptr, &surf,
+                                                 &lights[(size_t)(k % kLightsExtrude)], nullptr,
+                                                 idx.data(), cap, facingScratch.data(), nullptr);
+        },
+        [&](int k) {
+            const std::vector<int> &ref = refPaper[(size_t)(k % kLightsExtrude)];
+            if (written != (int)ref.size() ||
+                std::memcmp(idx.data(), ref.data(), ref.size() * sizeof(int)) != 0)
+                return std::string("index list differs from the C references'");
+            return std::string();
+        });
+    res.rows.push_back(r);
+    if (progress) std::fprintf(progress, "\r%60s\r", "");
+}
+
+void print_tables(FILE *out, const std::vector<ExtrudeResult> &results) {
+    std::vector<std::string> variants;
+    for (const ExtrudeRow &r : results.front().rows)
+        if (r.what == "extrude_range") variants.push_back(r.variant);
+    std::fprintf(out, "\nseed 002's vertex program on the CPU, ticks per vertex (median; every "
+                      "call bit-identical to c_ref, else FAIL), range | infinite\n");
+    std::fprintf(out, "%-26s %9s", "mesh", "vertices");
+    for (const std::string &v : variants) std::fprintf(out, " %15s", v.c_str());
+    std::fprintf(out, "\n");
+    for (const ExtrudeResult &r : results) {
+        const double nv = r.mesh.num_vertices();
+        std::fprintf(out, "%-26s %9d", r.name.c_str(), r.mesh.num_vertices());
+        for (const std::string &v : variants) {
+            const std::string c = ticks_cell(find_variant_row(r.rows, "extrude_range", v), nv) +
+                                  " | " +
+                                  ticks_cell(find_variant_row(r.rows, "extrude_inf", v), nv);
+            std::fprintf(out, " %15s", c.c_str());
+        }
+        std::fprintf(out, "\n");
+    }
+
+    const std::string best = sv_best_extrude_variant()->name;
+    std::fprintf(out,
+                 "\none light, ticks per call (median): the seed's extrusion (%s, infinite) "
+                 "against the paper's pipeline (sv_shadow_volume_for_light, every call's "
+                 "indices checked)\n",
+                 best.c_str());
+    std::fprintf(out, "%-26s %9s %12s %12s %8s\n", "mesh", "triangles", "seed", "paper", "ratio");
+    for (const ExtrudeResult &r : results) {
+        const ExtrudeRow *s = find_variant_row(r.rows, "extrude_inf", best),
+                         *p = find_variant_row(r.rows, "paper", "");
+        std::fprintf(out, "%-26s %9d %12s %12s %8.2f\n", r.name.c_str(), r.caster.num_triangles(),
+                     ticks_cell(s, 1).c_str(), ticks_cell(p, 1).c_str(),
+                     s && p ? s->t.median / std::max(1.0, p->t.median) : 0.0);
+    }
+
+    std::fprintf(out,
+                 "\ncounts: the seed's static buffers against the paper's per light (mean "
+                 "over %d lights)\n",
+                 kLightsExtrude);
+    std::fprintf(out, "%-26s %9s %10s %10s %10s %10s %10s %10s %7s\n", "mesh", "faces",
+                 "seed verts", "seed idx", "paper vts", "paper idx", "seed open", "paper sil",
+                 "split");
+    for (const ExtrudeResult &r : results) {
+        std::fprintf(out, "%-26s %9lld %10d %10d %10d %10.0f %10.1f %10.1f %7lld\n", r.name.c_str(),
+                     (long long)r.mesh.faces, r.mesh.num_vertices(), r.mesh.num_indices(),
+                     2 * r.caster.num_vertices(), r.paperIndicesMean, r.openQuadsMean,
+                     r.paperQuadsMean, r.splitFaces);
+    }
+    std::fprintf(out,
+                 "  seed open: quads whose two faces extrude differently (the volume's sides); "
+                 "paper sil: SilEdges whose faces differ in facing;\n"
+                 "  split: faces whose three vertices disagree on facing (summed over the "
+                 "lights)\n");
+}
+
+std::string extrude_json(const std::vector<ExtrudeResult> &results, const SeedTimer &t) {
+    JsonWriter j;
+    j.begin_object();
+    seed_json_header(j, "shadowvol-extrude/1", t);
+    j.key("lights");
+    j.value(kLightsExtrude);
+    j.key("meshes");
+    j.begin_array();
+    for (const ExtrudeResult &r : results) {
+        j.begin_object();
+        j.key("mesh");
+        j.value(r.name);
+        j.key("faces");
+        j.value((long long)r.mesh.faces);
+        j.key("seed_vertices");
+        j.value(r.mesh.num_vertices());
+        j.key("seed_indices");
+        j.value(r.mesh.num_indices());
+        j.key("paper_shadow_vertices");
+        j.value(2 * r.caster.num_vertices());
+        j.key("paper_indices_mean");
+        j.value(r.paperIndicesMean);
+        j.key("seed_open_quads_mean");
+        j.value(r.openQuadsMean);
+        j.key("paper_silhouette_mean");
+        j.value(r.paperQuadsMean);
+        j.key("split_faces");
+        j.value(r.splitFaces);
+        j.key("rows");
+        j.begin_array();
+        for (const ExtrudeRow &row : r.rows) {
+            j.begin_object(true);
+            seed_json_row(j, row.what.c_str(), row.variant, row.t);
+            j.key("ok");
+            j.value(row.t.ok);
+            if (!row.t.ok) {
+                j.key("failure");
+                j.value(row.t.failure);
+            }
+            j.end_object();
+        }
+        j.end_array();
+        j.end_object();
+    }
+    j.end_array();
+    j.end_object();
+    return j.str();
+}
+
+} // namespace
+
+int run_extrude_bench(const SeedCommand &cmd) {
+    return run_seed_frame(cmd, "extrude", [&](FILE *out, std::string *doc) {
+        const int cpu = pin_to_current_cpu();
+        const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
+        print_seed_header(out,
+                          "shadowvol bench --extrude: seed 002's vertex program on the CPU "
+                          "against the paper's pipeline",
+                          timer, cpu);
+        std::vector<std::string> paths = {SV_MODELS_DIR "/character_1344.glb"};
+        if (!cmd.quick) {
+            for (const char *name : {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb",
+                                     "RiggedFigure.glb", "open/Zombie_Basic.glb"}) {
+                const std::string p = cmd.sharedModels + "/" + name;
+                if (access(p.c_str(), R_OK) != 0) {
+                    std::fprintf(out, "note      %s not found: left out\n", p.c_str());
+                    continue;
+                }
+                paths.push_back(p);
+            }
+        }
+        std::vector<ExtrudeResult> results;
+        for (const std::string &p : paths) {
+            const SeedMesh sm = loaded_seed_mesh(p);
+            if (cmd.maxTriangles && sm.w.numTriangles > cmd.maxTriangles) continue;
+            ExtrudeResult r;
+            r.name = sm.name;
+            r.caster = caster_of(sm);
+            r.mesh = sv::build_shadow_mesh(r.caster);
+            results.push_back(std::move(r));
+        }
+        FILE *progress = isatty(fileno(stderr)) ? stderr : nullptr;
+        for (ExtrudeResult &r : results) measure(r, timer, cmd.seed, progress);
+        print_tables(out, results);
+        int failed = 0;
+        for (const ExtrudeResult &r : results) failed += print_failed_rows(out, r.name, r.rows);
+        *doc = extrude_json(results, timer);
+        return failed;
+    });
+}
+
+} // namespace svbench
