@@ -103,6 +103,20 @@ void sv_extrude_avx2(const float *stream, int numVertices, const sv_extrude_ligh
 void sv_extrude_avx512(const float *stream, int numVertices, const sv_extrude_light *light,
                        Vec4 *out);
 
+/* Not bit-identical, and not in the table: the AVX2 variant with rsqrtps
+ * refined by one Newton-Raphson step, y = y0 * (1.5 - (0.5*len2) * y0^2),
+ * in place of the correctly rounded 1/sqrt (the last < 8 vertices by
+ * rsqrtss and the same step), everything else as above. What a GPU's rsq
+ * may do. Its 1/sqrt is within a few 2^-23 of the exact one, so an
+ * extruded vertex (finite range) lies within 1e-6 * (range + |vLP|)
+ * of the reference's, the kept vertices and the infinite ones are the
+ * reference's bit for bit unless the facing flips: only where dot is within
+ * a few float ulps of 0 (a face nearly edge-on to the light), where u's
+ * rounding differs. tests/unit/test_extrude.cpp bounds both;
+ * `shadowvol bench --extrude` measures them on the real meshes. */
+void sv_extrude_avx2_rsqrt(const float *stream, int numVertices, const sv_extrude_light *light,
+                           Vec4 *out);
+
 /* ---- The table -------------------------------------------------------------
  * c_ref, avx2, avx512: the reference first, then from the slowest to the
  * fastest. Check isa against sv_cpu_isa() first. */

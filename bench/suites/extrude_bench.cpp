@@ -65,6 +65,10 @@ struct ExtrudeResult {
     std::vector<ExtrudeRow> rows;
     double paperIndicesMean = 0, paperQuadsMean = 0, openQuadsMean = 0;
     long long splitFaces = 0; /* over the lights */
+    /* avx2_rsqrt against c_ref over its checked calls: the largest distance
+     * of a vertex both extrude, per unit of range; facing that differs. */
+    double rsqrtMaxError = 0;
+    long long rsqrtFlips = 0, rsqrtCompared = 0;
 };
 
 /* The workload's welded mesh prepared again (no change: it is welded and
@@ -185,6 +189,43 @@ void measure(ExtrudeResult &res, const SeedTimer &timer, uint64_t seed, FILE *pr
         }
     }
 
+    /* The rsqrt variant, not bit-identical: each call's outputs against
+     * the reference's, the largest distance of a vertex that both extrude
+     * (relative to the range) and the vertices whose facing differs. */
+    if ((SV_ISA_SSE2 | SV_ISA_AVX2) == ((SV_ISA_SSE2 | SV_ISA_AVX2) & sv_cpu_isa())) {
+        for (int finite = 1; finite >= 0; finite--) {
+            const auto &ref = finite ? refRange : refInf;
+            ExtrudeRow r{finite ? "extrude_range" : "extrude_inf", "avx2_rsqrt", {}};
+            r.t = time_seed_row(
+                timer,
+                [&](int k) {
+                    const sv_extrude_light el{lights[(size_t)(k % kLightsExtrude)],
+                                              finite ? range : 0.0f};
+                    sv_extrude_avx2_rsqrt(m.stream.data(), nv, &el, out.data());
+                },
+                [&](int k) {
+                    const std::vector<Vec4> &rv = ref[(size_t)(k % kLightsExtrude)];
+                    for (int i = 0; i < nv; i++) {
+                        const Vec4 &a = out[(size_t)i], &b = rv[(size_t)i];
+                        const float *p = m.stream.data() + (size_t)i * SV_EXTRUDE_STREAM_FLOATS;
+                        const bool keptA = a.w == 1 && a.x == p[0] && a.y == p[1] && a.z == p[2];
+                        const bool keptB = b.w == 1 && b.x == p[0] && b.y == p[1] && b.z == p[2];
+                        if (keptA != keptB) {
+                            res.rsqrtFlips++;
+                        } else if (!keptA) {
+                            const double e = std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
+                            if (b.w == 0 && e != 0)
+                                return std::string("an infinite vertex differs from c_ref");
+                            res.rsqrtMaxError = std::max(res.rsqrtMaxError, e / range);
+                        }
+                    }
+                    res.rsqrtCompared += nv;
+                    return std::string();
+                });
+            res.rows.push_back(r);
+        }
+    }
+
     if (progress) std::fprintf(progress, "\r%s: paper        ", res.name.c_str());
     const std::vector<Vec4> positions = sv::positions_vec4(c);
     sv_surface surf{};
@@ -221,7 +262,7 @@ void measure(ExtrudeResult &res, const SeedTimer &timer, uint64_t seed, FILE *pr
 void print_tables(FILE *out, const std::vector<ExtrudeResult> &results) {
     std::vector<std::string> variants;
     for (const ExtrudeRow &r : results.front().rows)
-        if (r.what == "extrude_range") variants.push_back(r.variant);
+        if (r.what == "extrude_range" && r.variant != "avx2_rsqrt") variants.push_back(r.variant);
     std::fprintf(out, "\nseed 002's vertex program on the CPU, ticks per vertex (median; every "
                       "call bit-identical to c_ref, else FAIL), range | infinite\n");
     std::fprintf(out, "%-26s %9s", "mesh", "vertices");
@@ -252,6 +293,22 @@ void print_tables(FILE *out, const std::vector<ExtrudeResult> &results) {
         std::fprintf(out, "%-26s %9d %12s %12s %8.2f\n", r.name.c_str(), r.caster.num_triangles(),
                      ticks_cell(s, 1).c_str(), ticks_cell(p, 1).c_str(),
                      s && p ? s->t.median / std::max(1.0, p->t.median) : 0.0);
+    }
+
+    std::fprintf(out, "\navx2_rsqrt (rsqrtps and one Newton step; not bit-identical, not in the "
+                      "table): ticks per vertex, its largest distance from c_ref per unit of "
+                      "range, its facing decisions that differ\n");
+    std::fprintf(out, "%-26s %9s %15s %12s %14s\n", "mesh", "vertices", "range | inf", "max error",
+                 "facing differs");
+    for (const ExtrudeResult &r : results) {
+        const double nv = r.mesh.num_vertices();
+        const std::string c =
+            ticks_cell(find_variant_row(r.rows, "extrude_range", "avx2_rsqrt"), nv) + " | " +
+            ticks_cell(find_variant_row(r.rows, "extrude_inf", "avx2_rsqrt"), nv);
+        char flips[48];
+        std::snprintf(flips, sizeof flips, "%lld/%lld", r.rsqrtFlips, r.rsqrtCompared);
+        std::fprintf(out, "%-26s %9d %15s %12.2e %14s\n", r.name.c_str(), r.mesh.num_vertices(),
+                     c.c_str(), r.rsqrtMaxError, flips);
     }
 
     std::fprintf(out,
@@ -302,6 +359,12 @@ std::string extrude_json(const std::vector<ExtrudeResult> &results, const SeedTi
         j.value(r.paperQuadsMean);
         j.key("split_faces");
         j.value(r.splitFaces);
+        j.key("rsqrt_max_error_per_range");
+        j.value(r.rsqrtMaxError);
+        j.key("rsqrt_facing_differs");
+        j.value(r.rsqrtFlips);
+        j.key("rsqrt_compared");
+        j.value(r.rsqrtCompared);
         j.key("rows");
         j.begin_array();
         for (const ExtrudeRow &row : r.rows) {

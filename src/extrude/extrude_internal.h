@@ -25,14 +25,25 @@ static inline int sv_extrude_finite(const Vec4 *light, float range) {
     return light->w != 0.0f && range > 0.0f && range < INFINITY;
 }
 
-static inline Vec4 sv_extrude_one(const float *v, const Vec4 *l, float range, int finite) {
+/* rsqrtss refined by one Newton-Raphson step, in this order (the rsqrt
+ * variant's SIMD does the same lane by lane):
+ *   y0 = rsqrt(x);  y = y0 * (1.5f - (0.5f * x) * (y0 * y0)) */
+static inline float sv_extrude_rsqrt_nr(float x) {
+    const float y0 = _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(x)));
+    return y0 * (1.5f - (0.5f * x) * (y0 * y0));
+}
+
+/* One vertex; APPROX: the rsqrt variant's 1/sqrt (sv_extrude_rsqrt_nr)
+ * instead of the correctly rounded one. */
+static inline Vec4 sv_extrude_vertex(const float *v, const Vec4 *l, float range, int finite,
+                                     int approx) {
     const float px = v[0], py = v[1], pz = v[2];
     const float nx = v[3], ny = v[4], nz = v[5];
     const float dx = px * l->w - l->x;
     const float dy = py * l->w - l->y;
     const float dz = pz * l->w - l->z;
     const float len2 = (dx * dx + dy * dy) + dz * dz;
-    const float inv = 1.0f / sv_extrude_sqrt(len2);
+    const float inv = approx ? sv_extrude_rsqrt_nr(len2) : 1.0f / sv_extrude_sqrt(len2);
     const float ux = dx * inv, uy = dy * inv, uz = dz * inv;
     const float dot = (nx * ux + ny * uy) + nz * uz;
     Vec4 o;
@@ -47,6 +58,11 @@ static inline Vec4 sv_extrude_one(const float *v, const Vec4 *l, float range, in
         o.x = ux * ext + px, o.y = uy * ext + py, o.z = uz * ext + pz, o.w = 1.0f;
     }
     return o;
+}
+
+/* The reference expression. */
+static inline Vec4 sv_extrude_one(const float *v, const Vec4 *l, float range, int finite) {
+    return sv_extrude_vertex(v, l, range, finite, 0);
 }
 
 #endif /* SV_EXTRUDE_INTERNAL_H */

@@ -23,9 +23,11 @@
 
 /* ---- AVX2 ------------------------------------------------------------------ */
 
-SV_TARGET_AVX2
-void sv_extrude_avx2(const float *stream, int numVertices, const sv_extrude_light *light,
-                     Vec4 *out) {
+/* The AVX2 variants: APPROX (a constant) picks the rsqrt variant's
+ * 1/sqrt. */
+SV_TARGET_AVX2 static inline __attribute__((always_inline)) void
+extrude_avx2(const float *stream, int numVertices, const sv_extrude_light *light, Vec4 *out,
+             int approx) {
     const Vec4 l = light->position;
     const float range = light->range;
     const int finite = sv_extrude_finite(&l, range);
@@ -48,7 +50,16 @@ void sv_extrude_avx2(const float *stream, int numVertices, const sv_extrude_ligh
         const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx),
                                                         _mm256_mul_ps(dy, dy)),
                                           _mm256_mul_ps(dz, dz));
-        const __m256 inv = _mm256_div_ps(one, _mm256_sqrt_ps(len2));
+        __m256 inv;
+        if (approx) { /* y0 * (1.5 - (0.5 * len2) * (y0 * y0)), as sv_extrude_rsqrt_nr */
+            const __m256 y0 = _mm256_rsqrt_ps(len2);
+            inv = _mm256_mul_ps(y0, _mm256_sub_ps(_mm256_set1_ps(1.5f),
+                                                  _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f),
+                                                                              len2),
+                                                                _mm256_mul_ps(y0, y0))));
+        } else {
+            inv = _mm256_div_ps(one, _mm256_sqrt_ps(len2));
+        }
         const __m256 ux = _mm256_mul_ps(dx, inv);
         const __m256 uy = _mm256_mul_ps(dy, inv);
         const __m256 uz = _mm256_mul_ps(dz, inv);
@@ -85,8 +96,20 @@ void sv_extrude_avx2(const float *stream, int numVertices, const sv_extrude_ligh
         _mm256_storeu_ps(o + 24, _mm256_permute2f128_ps(r2, r3, 0x31));
     }
     for (; i < numVertices; i++)
-        out[i] = sv_extrude_one(stream + SV_EXTRUDE_STREAM_FLOATS * (ptrdiff_t)i, &l, range,
-                                finite);
+        out[i] = sv_extrude_vertex(stream + SV_EXTRUDE_STREAM_FLOATS * (ptrdiff_t)i, &l, range,
+                                   finite, approx);
+}
+
+SV_TARGET_AVX2
+void sv_extrude_avx2(const float *stream, int numVertices, const sv_extrude_light *light,
+                     Vec4 *out) {
+    extrude_avx2(stream, numVertices, light, out, 0);
+}
+
+SV_TARGET_AVX2
+void sv_extrude_avx2_rsqrt(const float *stream, int numVertices, const sv_extrude_light *light,
+                           Vec4 *out) {
+    extrude_avx2(stream, numVertices, light, out, 1);
 }
 
 /* ---- AVX-512 --------------------------------------------------------------- */

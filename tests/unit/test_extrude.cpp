@@ -180,6 +180,63 @@ Vec4 extrude_one(const float p[3], const float n[3], const Vec4 &light, float ra
     return o;
 }
 
+// The rsqrt variant (not bit-identical): against the reference, the
+// infinite outputs equal and the finite ones within 1e-6 * (range + |vLP|)
+// wherever both decide the same facing; a facing that differs only where
+// the exact dot is within 1e-5 of 0 (a face edge-on to the light).
+SV_TIERED_TEST(Extrude, RsqrtVariantWithinItsBound) {
+    if (!svtest::in_this_run(SV_ISA_SSE2 | SV_ISA_AVX2, "avx2_rsqrt")) return;
+    SCOPED_TRACE(svtest::seed_trace());
+    Rng rng = svtest::rng_for("RsqrtVariantWithinItsBound");
+    int64_t flips = 0, compared = 0;
+    for (const LightCase &lc : kLights) {
+        for (int n : {0, 1, 7, 8, 9, 31, 4099}) {
+            const auto s = random_stream(rng, n, false, lc.light);
+            const sv_extrude_light el{lc.light, lc.range};
+            std::vector<Vec4> ref((size_t)n + 1);
+            sv_extrude_c_ref(s.data(), n, &el, ref.data());
+            GuardedBuffer out((size_t)n * sizeof(Vec4), 4 * rng.below(16));
+            svtest::checked_call(rng, sv_extrude_avx2_rsqrt, s.data(), n, &el, out.as<Vec4>());
+            EXPECT_TRUE(out.guards_intact()) << lc.name << ", " << n;
+            for (int i = 0; i < n; i++) {
+                Vec4 got;
+                std::memcpy(&got, out.data() + (size_t)i * sizeof(Vec4), sizeof got);
+                const Vec4 &r = ref[(size_t)i];
+                const float *v = s.data() + (size_t)i * SV_EXTRUDE_STREAM_FLOATS;
+                const double dx = (double)v[0] * lc.light.w - lc.light.x,
+                             dy = (double)v[1] * lc.light.w - lc.light.y,
+                             dz = (double)v[2] * lc.light.w - lc.light.z;
+                const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
+                const bool keptRef = r.w == 1.0f && r.x == v[0] && r.y == v[1] && r.z == v[2];
+                const bool keptGot = got.w == 1.0f && got.x == v[0] && got.y == v[1] &&
+                                     got.z == v[2];
+                compared++;
+                if (keptRef != keptGot && (r.w == 0.0f || got.w == 0.0f || len > 0)) {
+                    const double dot = (v[3] * dx + v[4] * dy + v[5] * dz) / std::max(len, 1e-30);
+                    // A finite extrusion that does not move (at or beyond the
+                    // range) is no flip.
+                    if (std::fabs(dot) > 1e-5 && !(lc.range > 0 && len >= lc.range * (1 - 1e-5))) {
+                        ADD_FAILURE()
+                            << lc.name << ", vertex " << i << ": facing differs at dot " << dot;
+                    }
+                    flips++;
+                    continue;
+                }
+                if (r.w == 0.0f) {
+                    EXPECT_TRUE(same_vec4(got, r)) << lc.name << ", vertex " << i;
+                } else {
+                    const double e = std::sqrt(((double)got.x - r.x) * ((double)got.x - r.x) +
+                                               ((double)got.y - r.y) * ((double)got.y - r.y) +
+                                               ((double)got.z - r.z) * ((double)got.z - r.z));
+                    EXPECT_LE(e, 1e-6 * (lc.range + len)) << lc.name << ", vertex " << i;
+                }
+                if (svtest::stop_after_failures()) return;
+            }
+        }
+    }
+    EXPECT_LE(flips, compared / 1000) << "facing flips";
+}
+
 // The reference's documented results, case by case.
 TEST(Extrude, SpecialCases) {
     const float p[3] = {1.0f, 2.0f, 3.0f};
