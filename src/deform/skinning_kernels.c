@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "shadowvol_skin.h"
+#include "../core/simd_exit.h"
 
 #define SV_SKIN_ARGS                                                                               \
     const float *joint_matrices, const float *rest, const uint16_t *joints, const float *weights,  \
@@ -132,7 +133,10 @@ vertex_avx2(const float *joint_matrices, const float *p, const uint16_t *j, cons
     store3_sse(out, r);
 }
 
-__attribute__((target("avx2"))) void sv_skin_avx2(SV_SKIN_ARGS) { SV_SKIN_LOOP(vertex_avx2); }
+__attribute__((target("avx2"))) void sv_skin_avx2(SV_SKIN_ARGS) {
+    SV_SKIN_LOOP(vertex_avx2);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
+}
 
 static inline __attribute__((always_inline, target("avx512f,avx512vl"))) void
 vertex_avx512(const float *joint_matrices, const float *p, const uint16_t *j, const float *w, int n,
@@ -158,6 +162,7 @@ vertex_avx512(const float *joint_matrices, const float *p, const uint16_t *j, co
 
 __attribute__((target("avx512f,avx512vl"))) void sv_skin_avx512(SV_SKIN_ARGS) {
     SV_SKIN_LOOP(vertex_avx512);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 const sv_skin_variant *sv_skin_variants(int *count) {

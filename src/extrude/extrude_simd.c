@@ -17,6 +17,7 @@
 #include <immintrin.h>
 
 #include "extrude_internal.h"
+#include "../core/simd_exit.h"
 
 #define SV_TARGET_AVX2 __attribute__((target("avx2")))
 #define SV_TARGET_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2")))
@@ -104,12 +105,14 @@ SV_TARGET_AVX2
 void sv_extrude_avx2(const float *stream, int numVertices, const sv_extrude_light *light,
                      Vec4 *out) {
     extrude_avx2(stream, numVertices, light, out, 0);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 SV_TARGET_AVX2
 void sv_extrude_avx2_rsqrt(const float *stream, int numVertices, const sv_extrude_light *light,
                            Vec4 *out) {
     extrude_avx2(stream, numVertices, light, out, 1);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 /* ---- AVX-512 --------------------------------------------------------------- */
@@ -192,4 +195,5 @@ void sv_extrude_avx512(const float *stream, int numVertices, const sv_extrude_li
             }
         }
     }
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }

@@ -43,6 +43,7 @@
 
 #include "planes_internal.h"
 #include "../core/mask_bytes.h"
+#include "../core/simd_exit.h"
 
 /* The address of vertex I minus SHIFT floats (shift 1 for the odd rows),
  * through uintptr_t: for vertex 0 it points before the array, where the
@@ -382,6 +383,7 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *ind
         t += 8 * steps;
     }
     for (; t < numTriangles; t++) planes[t] = sv_plane_one(positions, indices + 3 * t);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 #define FACING_AVX2(m)                                                                             \
@@ -402,7 +404,10 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2(const float *positions, const int *ind
 SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const int *indices,
                                                   int numTriangles, const Vec4 *light,
                                                   uint8_t *facing) {
-    if (numTriangles < 0) return;
+    if (numTriangles < 0) {
+        SV_VZEROUPPER_IF_UNOPTIMISED();
+        return;
+    }
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
     int t = 0;
@@ -415,6 +420,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2(const float *positions, const 
     for (; t < numTriangles; t++)
         facing[t] = sv_facing_from_positions_one(positions, indices + 3 * t, light);
     facing[numTriangles] = 1;
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 /* ---- AVX2 with gathers ------------------------------------------------------ */
@@ -471,12 +477,16 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2_gather(const float *positions, const i
         }
     }
     for (; t < numTriangles; t++) planes[t] = sv_plane_one(positions, indices + 3 * t);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions, const int *indices,
                                                          int numTriangles, const Vec4 *light,
                                                          uint8_t *facing) {
-    if (numTriangles < 0) return;
+    if (numTriangles < 0) {
+        SV_VZEROUPPER_IF_UNOPTIMISED();
+        return;
+    }
     const __m256 lx = _mm256_set1_ps(light->x), ly = _mm256_set1_ps(light->y);
     const __m256 lz = _mm256_set1_ps(light->z), lw = _mm256_set1_ps(light->w);
     int t = 0;
@@ -489,6 +499,7 @@ SV_TARGET_AVX2 void sv_facing_from_positions_avx2_gather(const float *positions,
     for (; t < numTriangles; t++)
         facing[t] = sv_facing_from_positions_one(positions, indices + 3 * t, light);
     facing[numTriangles] = 1;
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 /* ---- AVX-512 ------------------------------------------------------------------ */
@@ -579,12 +590,16 @@ SV_TARGET_AVX512 void sv_derive_planes_avx512(const float *positions, const int 
     }
     if (t < numTriangles)
         sv_derive_planes_avx2(positions, indices + 3 * t, numTriangles - t, planes + t);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }
 
 SV_TARGET_AVX512 void sv_facing_from_positions_avx512(const float *positions, const int *indices,
                                                       int numTriangles, const Vec4 *light,
                                                       uint8_t *facing) {
-    if (numTriangles < 0) return;
+    if (numTriangles < 0) {
+        SV_VZEROUPPER_IF_UNOPTIMISED();
+        return;
+    }
     const __m512 lx = _mm512_set1_ps(light->x), ly = _mm512_set1_ps(light->y);
     const __m512 lz = _mm512_set1_ps(light->z), lw = _mm512_set1_ps(light->w);
     int t = 0;
@@ -603,4 +618,5 @@ SV_TARGET_AVX512 void sv_facing_from_positions_avx512(const float *positions, co
         _mm_storeu_si128((__m128i *)(void *)(facing + t), _mm_maskz_mov_epi8(m, _mm_set1_epi8(1)));
     }
     sv_facing_from_positions_avx2(positions, indices + 3 * t, numTriangles - t, light, facing + t);
+    SV_VZEROUPPER_IF_UNOPTIMISED();
 }

@@ -37,6 +37,7 @@
 #include "../facing_internal.h"
 #include "../mask_bytes.h"
 #include "shadowvol.h"
+#include "../simd_exit.h"
 
 /* The reference's expressions, for tails (the same operations). */
 static inline uint8_t facing_one(const Plane *p, const Vec4 *l) {
@@ -224,17 +225,6 @@ int sv_calculate_cull_bits_sse2(const Vec4 *positions, int numVerts, const Bound
 /* ---- AVX2 (x86-64-v3) ---------------------------------------------------- */
 
 #define SV_TARGET_AVX2 __attribute__((target("avx2")))
-
-/* GCC puts vzeroupper at the end of an AVX function only when optimising;
- * a -O0 build (the sanitizer build) would return with the upper YMM/ZMM
- * state dirty, making the caller's SSE code pay the transition, and the
- * ABI checker (`shadowvol check`) reports it. Written out there only, so
- * the optimised objects stay as they were. */
-#if defined(__OPTIMIZE__)
-#define SV_VZEROUPPER_IF_UNOPTIMISED() ((void)0)
-#else
-#define SV_VZEROUPPER_IF_UNOPTIMISED() _mm256_zeroupper()
-#endif
 
 /* Rows r0..r3 each hold two structures (low lane: s, high lane: s + 4);
  * an in-lane transpose gives 8 lanes of a, b, c, d in the order

@@ -49,19 +49,12 @@
 #include <string.h>
 
 #include "shadowvol.h"
+#include "../simd_exit.h"
 
 #if defined(SV_HAVE_ASM_AVX2)
 
 /* Pairs per list chunk: two lists of this many ints on the stack (4 KiB). */
 #define CHUNK 512
-
-/* GCC puts vzeroupper at the end of an AVX function only when optimising
- * (see facing_simd.c); the sanitizer build's -O0 needs it written. */
-#if defined(__OPTIMIZE__)
-#define SV_VZEROUPPER_IF_UNOPTIMISED() ((void)0)
-#else
-#define SV_VZEROUPPER_IF_UNOPTIMISED() _mm256_zeroupper()
-#endif
 
 /* The paper's quad of the edge a -> b (section 6), branch-free: F = 0
  * gives (a, b, b+1, a+1, a, b+1), F = 1 (a, b+1, b, a, a+1, b+1); a and b
