@@ -400,15 +400,7 @@ int run_planes_bench(const SeedCommand &cmd) {
                                                                           cmd.quick, out, progress);
         print_skin_planes(out, skinned);
         int failed = 0;
-        for (const SkinPlanesResult &r : skinned) {
-            for (const SkinPlanesRow &row : r.rows) {
-                if (!row.t.ok) {
-                    failed++;
-                    std::fprintf(out, "FAILED %s %s %s: %s\n", r.name.c_str(), row.what.c_str(),
-                                 row.variant.c_str(), row.t.failure.c_str());
-                }
-            }
-        }
+        for (const SkinPlanesResult &r : skinned) failed += print_failed_rows(out, r.name, r.rows);
         for (const PlanesResult &r : results) failed += print_failed_rows(out, r.mesh.name, r.rows);
         *doc = planes_json(results, skinned, timer);
         return failed;

@@ -324,22 +324,6 @@ SkinPlanesResult measure_character(const std::string &path, const SeedTimer &tim
     return r;
 }
 
-const SkinPlanesRow *find(const SkinPlanesResult &r, const std::string &what,
-                          const std::string &variant) {
-    for (const SkinPlanesRow &row : r.rows) {
-        if (row.what == what && row.variant == variant) return &row;
-    }
-    return nullptr;
-}
-
-std::string per_triangle(const SkinPlanesRow *row, int triangles) {
-    if (!row) return "-";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f%s", row->t.median / std::max(1, triangles),
-                  row->t.ok ? "" : " FAIL");
-    return buf;
-}
-
 } // namespace
 
 std::vector<SkinPlanesResult> measure_skin_planes(const SeedTimer &timer, const std::string &shared,
@@ -384,18 +368,18 @@ void print_skin_planes(FILE *out, const std::vector<SkinPlanesResult> &results) 
         for (const SkinPlanesRow &one : r.rows) {
             if (one.what != "one_pass") continue;
             const sv::SkinPlanesKernel *f = sv::skin_planes_kernel_by_name(one.variant.c_str());
-            const SkinPlanesRow *sk = find(r, "skin", f->skinning);
-            const SkinPlanesRow *two = find(r, "two_passes",
-                                            std::string(f->skinning) + "+" + f->planes);
+            const SkinPlanesRow *sk = find_variant_row(r.rows, "skin", f->skinning);
+            const SkinPlanesRow *two = find_variant_row(r.rows, "two_passes",
+                                                        std::string(f->skinning) + "+" + f->planes);
             char beyond[32] = "-";
             if (sk) {
                 std::snprintf(beyond, sizeof beyond, "%.2f",
                               (one.t.median - sk->t.median) / std::max(1, r.triangles));
             }
             std::fprintf(out, "%-22s %9d %8d %-12s %8s %9s %9s %7s\n", r.name.c_str(), r.triangles,
-                         r.vertices, one.variant.c_str(), per_triangle(sk, r.triangles).c_str(),
-                         per_triangle(two, r.triangles).c_str(),
-                         per_triangle(&one, r.triangles).c_str(), beyond);
+                         r.vertices, one.variant.c_str(), ticks_cell(sk, r.triangles).c_str(),
+                         ticks_cell(two, r.triangles).c_str(),
+                         ticks_cell(&one, r.triangles).c_str(), beyond);
         }
     }
     print_jobs(out, results);
@@ -410,12 +394,7 @@ void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results) {
     std::fprintf(out, "%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s\n", "character", "triangles",
                  "stored 1", "derived", "ratio", "bfg 1", "stored 4", "derived", "ratio", "bfg 4");
     for (const SkinPlanesResult &r : results) {
-        auto row = [&](const char *what) -> const SkinPlanesRow * {
-            for (const SkinPlanesRow &x : r.rows) {
-                if (x.what == what) return &x;
-            }
-            return nullptr;
-        };
+        auto row = [&](const char *what) { return find_variant_row(r.rows, what, ""); };
         auto ratio = [&](const char *a, const char *b) {
             char buf[16] = "-";
             const SkinPlanesRow *x = row(a), *y = row(b);
@@ -425,14 +404,14 @@ void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results) {
             return std::string(buf);
         };
         std::fprintf(out, "%-22s %9d %8s %8s %8s %8s %8s %8s %8s %8s\n", r.name.c_str(),
-                     r.triangles, per_triangle(row("job_stored_1"), r.triangles).c_str(),
-                     per_triangle(row("job_derived_1"), r.triangles).c_str(),
+                     r.triangles, ticks_cell(row("job_stored_1"), r.triangles).c_str(),
+                     ticks_cell(row("job_derived_1"), r.triangles).c_str(),
                      ratio("job_derived_1", "job_stored_1").c_str(),
-                     per_triangle(row("job_bfg_1"), r.triangles).c_str(),
-                     per_triangle(row("job_stored_4"), r.triangles).c_str(),
-                     per_triangle(row("job_derived_4"), r.triangles).c_str(),
+                     ticks_cell(row("job_bfg_1"), r.triangles).c_str(),
+                     ticks_cell(row("job_stored_4"), r.triangles).c_str(),
+                     ticks_cell(row("job_derived_4"), r.triangles).c_str(),
                      ratio("job_derived_4", "job_stored_4").c_str(),
-                     per_triangle(row("job_bfg_4"), r.triangles).c_str());
+                     ticks_cell(row("job_bfg_4"), r.triangles).c_str());
     }
     std::fprintf(out, "  ratio: derived / stored, same run\n");
 }

@@ -13,15 +13,14 @@
 #include <string>
 #include <vector>
 
-#include "seed_bench.h"
+#include "planes_bench.h"
 
 namespace svbench {
 
-struct SkinPlanesRow {
-    std::string what;    /* "skin", "two_passes", "one_pass" */
-    std::string variant; /* a skinning kernel; "K+P" (skinning, planes); a one-pass kernel */
-    SeedTiming t;
-};
+/* what: "skin", "two_passes", "one_pass", "job_stored_N", "job_derived_N",
+ * "job_bfg_N"; variant: a skinning kernel, "K+P", a one-pass kernel, a
+ * planes variant. */
+using SkinPlanesRow = VariantRow;
 
 struct SkinPlanesResult {
     std::string name;
