@@ -10,6 +10,7 @@
 //
 // Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -1102,6 +1103,116 @@ void run_skin_planes(std::vector<Row> &rows, Rng &rng) {
                 }
             }
             check_guards(row, at, {"around the positions", "around the planes"}, {&out, &planes});
+        }
+    });
+}
+
+} // namespace svcheck
+
+// ---- Seed 002's vertex program (shadowvol_extrude.h, issue 31) --------------
+
+namespace svcheck {
+
+namespace {
+
+// What a case's stream is like: the program's contract holds for every
+// input (bit-identical to c_ref, a NaN's sign and payload aside).
+enum class ExtrudeShape { ordinary, specials, extreme_scales, light_on_vertices };
+constexpr ExtrudeShape kExtrudeShapes[] = {ExtrudeShape::ordinary, ExtrudeShape::specials,
+                                           ExtrudeShape::extreme_scales,
+                                           ExtrudeShape::light_on_vertices};
+
+const char *extrude_shape_name(ExtrudeShape s) {
+    switch (s) {
+    case ExtrudeShape::ordinary: return "ordinary";
+    case ExtrudeShape::specials: return "some 0, -0, NaN, infinity, FLT_MAX, zero normals";
+    case ExtrudeShape::extreme_scales: return "huge and tiny coordinates";
+    default: return "the light on a fifth of the vertices";
+    }
+}
+
+// The light kinds the program tells apart: a finite range (the seed's
+// clamp0(range - |vLP|)), no range (0: to infinity), an infinite range, a
+// directional light (w = 0).
+sv_extrude_light extrude_light(Rng &rng, size_t caseno) {
+    sv_extrude_light l{};
+    l.position = {rng.uniform(-60, 60), rng.uniform(-60, 60), rng.uniform(-60, 60), 1.0f};
+    switch (caseno % 4) {
+    case 0: l.range = rng.uniform(1, 150); break;
+    case 1: l.range = 0.0f; break;
+    case 2: l.range = std::numeric_limits<float>::infinity(); break;
+    default: l.position.w = 0.0f; l.range = rng.uniform(1, 150);
+    }
+    return l;
+}
+
+// N vertices of SHAPE: positions as deform_positions makes them, unit face
+// normals (some zero: a zero-area face), the light's own position on some
+// vertices for LIGHT_ON_VERTICES.
+std::vector<float> extrude_stream(Rng &rng, int n, ExtrudeShape shape, const Vec4 &light) {
+    const Shape positions = shape == ExtrudeShape::specials         ? Shape::specials
+                            : shape == ExtrudeShape::extreme_scales ? Shape::extreme_scales
+                                                                    : Shape::ordinary;
+    const std::vector<float> p = deform_positions(rng, std::max(n, 0), positions);
+    std::vector<float> s((size_t)std::max(n, 0) * SV_EXTRUDE_STREAM_FLOATS);
+    for (size_t i = 0; i < (size_t)std::max(n, 0); i++) {
+        float *v = &s[i * SV_EXTRUDE_STREAM_FLOATS];
+        for (int c = 0; c < 3; c++) v[c] = p[3 * i + (size_t)c];
+        if (shape == ExtrudeShape::light_on_vertices && rng.chance(0.2)) {
+            v[0] = light.x, v[1] = light.y, v[2] = light.z;
+        }
+        float nx = rng.uniform(-1, 1), ny = rng.uniform(-1, 1), nz = rng.uniform(-1, 1);
+        const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
+        if (len > 0) nx /= len, ny /= len, nz /= len;
+        if (rng.chance(0.05)) nx = ny = nz = 0.0f;
+        v[3] = nx, v[4] = ny, v[5] = nz;
+        if (shape == ExtrudeShape::specials && rng.chance(0.05)) {
+            v[3 + rng.below(3)] = rng.chance(0.5) ? special_float(rng) : FLT_MAX;
+        }
+    }
+    return s;
+}
+
+// Equal bits, or both NaN: the contract leaves a NaN's sign and payload to
+// the operand order of a commutative operation.
+bool same_float_or_nan(float a, float b) {
+    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+} // namespace
+
+void run_extrude(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(true, kExtrudeShapes, [&](int n, ExtrudeShape shape, size_t caseno) {
+        const sv_extrude_light light = extrude_light(rng, caseno);
+        const std::vector<float> stream = extrude_stream(rng, n, shape, light.position);
+        const uint8_t pat = guard_pattern(rng);
+        std::vector<Vec4> want((size_t)std::max(n, 0));
+        sv_extrude_c_ref(stream.data(), n, &light, want.data());
+        const size_t so = pick(kIntOffsets, caseno), oo = pick(kIntOffsets, caseno + 5);
+        const std::string at = "vertices=" + std::to_string(n) + ", " + extrude_shape_name(shape) +
+                               ", range " + std::to_string(light.range) + ", w " +
+                               std::to_string(light.position.w) + ", offset " + std::to_string(oo);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(std::max(n, 0) / 3);
+            GuardedBuffer sbuf = guarded_copy(stream, so, pat);
+            GuardedBuffer out(want.size() * sizeof(Vec4), oo, pat);
+            const sv_extrude_light l = light;
+            uint32_t failed = 0;
+            abi_call(row.abi, &failed, k.extrude->extrude, sbuf.as<const float>(), n, &l,
+                     out.as<Vec4>());
+            count_case(row);
+            record_abi(row, failed, at);
+            const float *got = out.as<const float>();
+            const float *ref = reinterpret_cast<const float *>(want.data());
+            for (size_t i = 0; i < 4 * want.size(); i++) {
+                if (!same_float_or_nan(got[i], ref[i])) {
+                    record_failure(row, at,
+                                   "vertex " + std::to_string(i / 4) + " differs from c_ref's");
+                    break;
+                }
+            }
+            if (!unchanged(sbuf, stream)) record_failure(row, at, "modified its const stream");
+            check_guards(row, at, {"around the positions", "around the stream"}, {&out, &sbuf});
         }
     });
 }

@@ -78,5 +78,6 @@ void run_derive_planes(std::vector<Row> &rows, Rng &rng);
 void run_facing_from_positions(std::vector<Row> &rows, Rng &rng);
 void run_skinning(std::vector<Row> &rows, Rng &rng);
 void run_skin_planes(std::vector<Row> &rows, Rng &rng);
+void run_extrude(std::vector<Row> &rows, Rng &rng);
 
 } // namespace svcheck

@@ -50,6 +50,11 @@ struct BenchWorkload::Data {
     std::vector<Plane> plane_out;
     std::vector<size_t> vertex_end;
     std::vector<int> triangle_end;
+    // Seed 002's shadow mesh of the same triangles: three vertices a face
+    // with its plane's normal, a point light with a range.
+    std::vector<float> extrude_stream;
+    std::vector<Vec4> extrude_out;
+    sv_extrude_light extrude_light{};
     // Every array a kernel reads or writes, on a 64-byte boundary.
     GuardedBuffer facing_buf, scratch_facing, indices_buf, out, cull_out;
     double overhead = 0;
@@ -105,6 +110,15 @@ struct BenchWorkload::Data {
         triangle_end.resize((size_t)segs);
         sv_skin_planes_schedule(indices.data(), kTriangles, (size_t)numVerts, 256,
                                 vertex_end.data(), triangle_end.data(), segs);
+        for (int t = 0; t < kTriangles; t++) {
+            for (int c = 0; c < 3; c++) {
+                const float *p = &pos3[3 * (size_t)indices[3 * (size_t)t + (size_t)c]];
+                const Plane &f = planes[(size_t)t];
+                extrude_stream.insert(extrude_stream.end(), {p[0], p[1], p[2], f.a, f.b, f.c});
+            }
+        }
+        extrude_out.resize((size_t)3 * kTriangles);
+        extrude_light = {light, 20.0f};
         // The fences' cost: an empty region, timed the same way.
         std::vector<double> t(kCalls);
         for (double &x : t) {
@@ -235,6 +249,11 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
         a.planes = d.plane_out.data();
         return d.time_calls([&] { k.skin_planes->fn(&a); });
     }
+    case Routine::extrude:
+        return d.time_calls([&] {
+            k.extrude->extrude(d.extrude_stream.data(), 3 * n, &d.extrude_light,
+                               d.extrude_out.data());
+        });
     case Routine::shadow_volume:
     case Routine::shadow_volume_cull: {
         const uint8_t *cull = routine == Routine::shadow_volume_cull ? d.cull.data() : nullptr;

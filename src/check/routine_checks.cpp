@@ -30,6 +30,7 @@ const char *const kRoutineNames[kNumRoutines] = {
     "facing_from_positions",
     "skinning",
     "skin_planes",
+    "extrude",
 };
 
 // The library's own contract check decides whether bit 7 is in
@@ -117,6 +118,7 @@ bool Variant::has(Routine r) const {
     case Routine::facing_from_positions: return k.planes != nullptr;
     case Routine::skinning: return k.skin != nullptr;
     case Routine::skin_planes: return k.skin_planes != nullptr;
+    case Routine::extrude: return k.extrude != nullptr;
     default: return k.kernels.count_facing != nullptr;
     }
 }
@@ -143,6 +145,7 @@ Variant make_variant(const std::string &name, const sv_facing_variant *facing,
     if ((k.skin_planes = sv_skin_planes_variant_by_name(name.c_str()))) {
         v.isa |= k.skin_planes->isa;
     }
+    if ((k.extrude = sv_extrude_variant_by_name(name.c_str()))) v.isa |= k.extrude->isa;
     for (Kernels &c : v.by_class) c = k;
     return v;
 }
@@ -178,6 +181,8 @@ std::vector<Variant> library_variants() {
     for (int i = 0; i < n; i++) add_new(sk[i].name);
     const sv_skin_planes_variant *sp = sv_skin_planes_variants(&n);
     for (int i = 0; i < n; i++) add_new(sp[i].name);
+    const sv_extrude_variant *ev = sv_extrude_variants(&n);
+    for (int i = 0; i < n; i++) add_new(ev[i].name);
     // The plans this process would use now (SV_PLAN_ESTIMATE: the wisdom
     // file's or the built-in ones; nothing is measured here).
     Variant planned;
@@ -199,6 +204,10 @@ std::vector<Variant> library_variants() {
         }
         planned_deform(c, k);
         planned.isa |= k.planes->isa | k.skin->isa | (k.skin_planes ? k.skin_planes->isa : 0u);
+        // No planner choice for the extrusion: the static one, as the
+        // renderer's (the widest this CPU runs).
+        k.extrude = sv_best_extrude_variant();
+        planned.isa |= k.extrude->isa;
     }
     out.push_back(planned);
     return out;
@@ -282,6 +291,7 @@ std::vector<Result> check_routine(Routine routine, const std::vector<Variant> &t
     case Routine::facing_from_positions: run_facing_from_positions(rows, input); break;
     case Routine::skinning: run_skinning(rows, input); break;
     case Routine::skin_planes: run_skin_planes(rows, input); break;
+    case Routine::extrude: run_extrude(rows, input); break;
     }
     // Back in table order, each run row in its place.
     size_t next = 0;

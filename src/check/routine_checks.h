@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "shadowvol.h"
+#include "shadowvol_extrude.h"
 #include "shadowvol_plan.h"
 #include "shadowvol_planes.h"
 #include "shadowvol_skin.h"
@@ -44,8 +45,9 @@ enum class Routine {
     facing_from_positions,
     skinning,
     skin_planes,
+    extrude, /* seed 002's vertex program (shadowvol_extrude.h, issue 31) */
 };
-constexpr int kNumRoutines = 16;
+constexpr int kNumRoutines = 17;
 const char *routine_name(Routine r);
 // false when NAME is none of routine_name()'s.
 bool routine_by_name(const std::string &name, Routine *out);
@@ -68,6 +70,8 @@ struct Kernels {
     const sv_planes_variant *planes = nullptr;
     const sv_skin_variant *skin = nullptr;
     const sv_skin_planes_variant *skin_planes = nullptr;
+    // Seed 002's vertex program of the variant's name (null: none).
+    const sv_extrude_variant *extrude = nullptr;
     // Whether the contract lets CountFacingCull see cull bit 7
     // (sse2_paper's does not, erratum D-5): asked of the library's own
     // contract check (sv_count_facing_cull_checked), not known by name.
@@ -88,9 +92,11 @@ struct Variant {
 // The library's variants: the union of sv_variants() and
 // sv_facing_variants() by name (avx2's facing and its kernels are one
 // row), with the planes, skinning and one-pass kernels of the same name
-// (and rows of their own for names only they have), then "planned"
+// and the extrusion of the same name (and rows of their own for names only
+// they have), then "planned"
 // (sv_plan_for, SV_PLAN_ESTIMATE, per size class, and the deform choices:
-// sv_deform_choice_for, else the static ones).
+// sv_deform_choice_for, else the static ones; the extrusion: the widest,
+// sv_best_extrude_variant, which the renderer runs).
 std::vector<Variant> library_variants();
 // A plain variant from the library's tables; FACING or KERNELS may be null.
 Variant make_variant(const std::string &name, const sv_facing_variant *facing,

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -233,6 +234,33 @@ TEST(RoutineChecks, ReportsAOnePassKernelThatDerivesBeforeSkinning) {
     const Result bad = expect_reported(Routine::skin_planes, with_good({v}), "early",
                                        "differs from c_ref's");
     EXPECT_GT(bad.failures, 0);
+}
+
+// Seed 002's program as the seed writes it: rsq(0) = +inf for a light on
+// the vertex, so that vertex comes out NaN (the contract keeps it in place).
+// Right everywhere else: only the cases with the light on a vertex meet it.
+void extrude_nan_on_the_light(const float *stream, int n, const sv_extrude_light *light,
+                              Vec4 *out) {
+    sv_extrude_c_ref(stream, n, light, out);
+    const Vec4 &l = light->position;
+    for (int i = 0; i < n; i++) {
+        const float *p = stream + (size_t)SV_EXTRUDE_STREAM_FLOATS * (size_t)i;
+        if (l.w == 1.0f && p[0] == l.x && p[1] == l.y && p[2] == l.z) {
+            const float nan = std::numeric_limits<float>::quiet_NaN();
+            out[i] = {nan, nan, nan, out[i].w};
+        }
+    }
+}
+
+TEST(RoutineChecks, ReportsAnExtrusionThatGivesNaNForALightOnAVertex) {
+    static const sv_extrude_variant broken = {"seed_rsq", SV_ISA_NONE, extrude_nan_on_the_light};
+    Variant v = svcheck::make_variant("seed_rsq", nullptr, nullptr);
+    for (auto &k : v.by_class) k.extrude = &broken;
+    const Result bad = expect_reported(Routine::extrude, with_good({v}), "seed_rsq",
+                                       "differs from c_ref's");
+    EXPECT_NE(bad.detail.find("the light on"), std::string::npos) << bad.detail;
+    EXPECT_GT(bad.failures, 0);
+    EXPECT_LT(bad.failures, bad.cases); // the other shapes are c_ref's
 }
 
 TEST(RoutineChecks, SkipsAVariantAboveTheIsaLimitWithTheReason) {

@@ -25,15 +25,16 @@ grep -q '^seed      42 ' "$tmp/a" || err "the seed line does not name seed 42"
 
 routines="calculate_facing calculate_cull_bits calculate_facing_count count_facing count_facing_cull
           create_sil_triangles create_cap_triangles shadow_volume shadow_volume_cull
-          shadow_volume_for_light derive_planes facing_from_positions skinning skin_planes"
+          shadow_volume_for_light derive_planes facing_from_positions skinning skin_planes
+          extrude"
 variants=$("$sv" check --help | sed -n '/^  --variant V/{n;p}')
 [ -n "$variants" ] || err "--help lists no variants"
 # One line per routine and variant that has it: every variant has C-F and
 # the volume except the facing-only ones; every line ok here but those of
 # variants this CPU lacks or SV_ISA holds back (skipped, with that reason),
 # no line twice.
-lines=$(grep -cE '^(calc|count|create|shadow|derive|facing|skin)' "$tmp/a")
-skips=$(grep -cE '^(calc|count|create|shadow|derive|facing|skin)[a-z_]* +[a-z0-9_]+ +skipped \((this CPU lacks [a-z0-9 ]+|SV_ISA=[a-z0-9]+ holds dispatch at [a-z0-9]+)\)$' "$tmp/a")
+lines=$(grep -cE '^(calc|count|create|shadow|derive|facing|skin|extrude)' "$tmp/a")
+skips=$(grep -cE '^(calc|count|create|shadow|derive|facing|skin|extrude)[a-z_]* +[a-z0-9_]+ +skipped \((this CPU lacks [a-z0-9 ]+|SV_ISA=[a-z0-9]+ holds dispatch at [a-z0-9]+)\)$' "$tmp/a")
 for r in $routines; do
   for v in $variants; do
     n=$(grep -cE "^$r +$v +ok \([0-9]+ cases\)$" "$tmp/a")
@@ -61,6 +62,9 @@ done
 # The deforming surfaces' planes and facing from positions: one table.
 [ "$(set_of derive_planes)" = "$(set_of facing_from_positions)" ] \
   || err "derive_planes' variants are not facing_from_positions'"
+# Seed 002's program: its own table (c_ref, avx2, avx512) and planned.
+[ "$(set_of extrude)" = "c_ref avx2 avx512 planned " ] \
+  || err "extrude's variants ($(set_of extrude)) are not c_ref avx2 avx512 planned"
 # The per-light call takes a plan: planned only.
 [ "$(set_of shadow_volume_for_light)" = "planned " ] || err "shadow_volume_for_light is not planned's alone"
 oks=$(grep -cE '^[a-z_]+ +[a-z0-9_]+ +ok \(' "$tmp/a")
@@ -108,6 +112,10 @@ grep -qE '^count_facing_cull +c_ref +ok ' "$tmp/e" || err "the narrowed line is 
 grep -qE '^count_facing +c_ref +[0-9]+ ticks +1\.00x +ok ' "$tmp/f" || err "--bench: no c_ref timing at 1.00x"
 [ "$(grep -cE '^count_facing +[a-z0-9_]+ +[0-9]+ ticks +[0-9.]+x +ok ' "$tmp/f")" -eq \
   "$(grep -cE '^count_facing +[a-z0-9_]+ +ok ' "$tmp/a")" ] || err "--bench: not every count_facing line timed"
+
+"$sv" check --seed 5 --function extrude --bench >"$tmp/x" 2>&1 || err "--bench --function extrude failed"
+[ "$(grep -cE '^extrude +[a-z0-9_]+ +[0-9]+ ticks +[0-9.]+x +ok ' "$tmp/x")" -eq \
+  "$(grep -cE '^extrude +[a-z0-9_]+ +ok ' "$tmp/a")" ] || err "--bench: not every extrude line timed"
 
 # expect STATUS ARGS...: the status and a message naming the trouble.
 expect() {
