@@ -417,6 +417,23 @@ void Rasterizer::walk_stencil_bounded(const SetupTriangle &tri, const float *dep
     });
 }
 
+void Rasterizer::walk_stencil_saturating(const SetupTriangle &tri, const float *depth,
+                                         uint8_t *count, int width, RowBand band, StencilMode mode,
+                                         DepthBounds bounds, RowCounts &r) const {
+    detail::walk_rows(tri, band, [&](const RowSpan &span, int y) {
+        const std::size_t row = (std::size_t)y * (std::size_t)width;
+        const RowBuffers b{const_cast<float *>(depth) + row, nullptr, count + row};
+        r.rows++;
+        if (mode == StencilMode::zpass) {
+            c_rows::stencil_bounded_c<false, true>(span, b, 1, bounds.skip_at_or_below,
+                                                   bounds.skip_above, r);
+        } else {
+            c_rows::stencil_bounded_c<true, true>(span, b, 1, bounds.skip_at_or_below,
+                                                  bounds.skip_above, r);
+        }
+    });
+}
+
 void Rasterizer::add_depth_counts(const RowCounts &r, PassCounters &c) {
     c.rows += r.rows;
     c.pixels_tested += r.tested;

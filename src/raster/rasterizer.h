@@ -218,6 +218,15 @@ public:
     void walk_stencil_bounded(const SetupTriangle &tri, const float *depth, uint8_t *stencil,
                               int width, RowBand band, StencilMode mode, DepthBounds bounds,
                               RowCounts &r) const;
+    /* The seed's saturating stencil operation (IncrSat; seed 002, issue
+     * 31): where TRI passes MODE's test (and BOUNDS, as
+     * walk_stencil_bounded's; infinite bounds test every pixel), COUNT =
+     * min(255, COUNT + 1), whichever way TRI faces. A saturating stencil
+     * keeps its increments and decrements in two such counts
+     * (stencil_pass.h). The C rows: the same pixels as walk_stencil's. */
+    void walk_stencil_saturating(const SetupTriangle &tri, const float *depth, uint8_t *count,
+                                 int width, RowBand band, StencilMode mode, DepthBounds bounds,
+                                 RowCounts &r) const;
     /* Adds a pass's pixel counts R to C (bytes as the draw_* functions
      * count them). */
     static void add_depth_counts(const RowCounts &r, PassCounters &c);

@@ -61,8 +61,10 @@ inline void stencil_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, RowC
 
 /* stencil_c behind a depth-bounds test on the STORED depth d (as
  * EXT_depth_bounds_test): pixels with !(d > lo) or d > hi are neither
- * tested nor counted. */
-template <bool kFail>
+ * tested nor counted. kSaturate: the seed's IncrSat in place of the
+ * addition, stencil = min(255, stencil + 1) (DELTA unused: the caller
+ * keeps the decrements in a count of their own, stencil_pass.h). */
+template <bool kFail, bool kSaturate = false>
 inline void stencil_bounded_c(const RowSpan &s, const RowBuffers &b, uint8_t delta, float lo,
                               float hi, RowCounts &n) {
     uint64_t tested = 0, written = 0;
@@ -73,7 +75,11 @@ inline void stencil_bounded_c(const RowSpan &s, const RowBuffers &b, uint8_t del
             tested++;
             const bool less = depth_at(s, x) < d;
             if (less != kFail) {
-                b.stencil[x] = (uint8_t)(b.stencil[x] + delta);
+                if constexpr (kSaturate) {
+                    b.stencil[x] = (uint8_t)(b.stencil[x] + (b.stencil[x] != 255));
+                } else {
+                    b.stencil[x] = (uint8_t)(b.stencil[x] + delta);
+                }
                 written++;
             }
         }

@@ -200,6 +200,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             sin.target = &f.target;
             sin.tile = opt.stencil_tile;
             sin.faults = opt.stencil_faults;
+            sin.saturate = opt.stencil_saturate;
             if (share_grid) sin.tile_grid = &tile_grid;
             sin.surface_triangles = &scratch.surface_triangles;
             StencilPassResult st = stencil_pass(opt.stencil, sin);

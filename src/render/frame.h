@@ -152,6 +152,9 @@ struct RenderOptions {
     StencilMethod stencil = StencilMethod::brute_force; /* how the stencil pass fills */
     int stencil_tile = kDefaultStencilTile;             /* hier's tile side: 4, 8, 16, 32 */
     StencilFaults stencil_faults;                       /* tests only */
+    /* Seed 002's IncrSat/DecrSat in place of additions modulo 256
+     * (StencilPassInputs::saturate): the seed's stencil state. */
+    bool stencil_saturate = false;
     /* Which volume each shell casts: auto (closed shells the paper's
      * rule, the others the general rule: exact for any caster), closed
      * (the paper's everywhere) or general (docs/CASTERS.md). */

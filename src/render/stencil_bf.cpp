@@ -8,6 +8,7 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include <algorithm>
+#include <memory>
 
 #include "frame_math.h"
 #include "pass_bins.h"
@@ -50,13 +51,23 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     }
     const int num_bands = band_count(height);
     std::vector<raster::RowCounts> rc((std::size_t)num_bands);
+    std::unique_ptr<SaturatingCounts> sat;
+    if (in.saturate) sat = std::make_unique<SaturatingCounts>(width, height);
     parallel(num_bands, [&](int b) {
         const raster::RowBand band = band_rows(b, height);
         bt.for_each_in_band(b, [&](std::size_t c, const raster::SetupTriangle &t) {
-            rast.walk_stencil(t, in.target->depth.data(), result.stencil.data(), width, height,
-                              band, bt.chunk_mode[c], rc[(std::size_t)b]);
+            if (sat) {
+                rast.walk_stencil_saturating(t, in.target->depth.data(),
+                                             sat->count_for(bt.chunk_mode[c], t.front), width, band,
+                                             bt.chunk_mode[c], no_depth_bounds(),
+                                             rc[(std::size_t)b]);
+            } else {
+                rast.walk_stencil(t, in.target->depth.data(), result.stencil.data(), width, height,
+                                  band, bt.chunk_mode[c], rc[(std::size_t)b]);
+            }
         });
     });
+    if (sat) sat->resolve(result.stencil);
     for (const auto &r : rc) raster::Rasterizer::add_stencil_counts(r, result.counters);
     result.ticks = ticks() - k0;
     result.seconds = now_seconds() - t0;

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "frame_math.h"
 #include "pass_bins.h"
@@ -69,8 +70,12 @@ StencilPassResult stencil_pass_depth_bounds(const StencilPassInputs &in) {
         /* Skipped at or below: (float)z >= (float)lo >= d, so every test
          * fails; skipped above: (float)z <= (float)hi < d, every one passes
          * (rounding to float is monotonic). */
-        const bool nothing_below = !vp.zfail[v] || vp.closed[v];
-        const bool nothing_above = vp.zfail[v] || vp.closed[v];
+        /* A closed volume's increments and decrements cancel only in a
+         * sum: under saturation (StencilPassInputs::saturate) a pixel's
+         * count may be at 255 before them, so its side is walked. */
+        const bool cancels = vp.closed[v] && !in.saturate;
+        const bool nothing_below = !vp.zfail[v] || cancels;
+        const bool nothing_above = vp.zfail[v] || cancels;
         bounds[v].skip_at_or_below = nothing_below && std::isfinite(lo[v]) ? (float)lo[v] : -inf;
         bounds[v].skip_above = nothing_above && std::isfinite(hi[v]) ? (float)hi[v] : inf;
     }
@@ -84,17 +89,26 @@ StencilPassResult stencil_pass_depth_bounds(const StencilPassInputs &in) {
         }
     }
     std::vector<raster::RowCounts> rc((std::size_t)num_bands);
+    std::unique_ptr<SaturatingCounts> sat;
+    if (in.saturate) sat = std::make_unique<SaturatingCounts>(width, height);
     parallel(num_bands, [&](int b) {
         const raster::RowBand band = band_rows(b, height);
         for (int q : bands[(std::size_t)b]) {
             const std::size_t v = (std::size_t)vp.volume[(std::size_t)q];
-            rast.walk_stencil_bounded(vp.pieces[(std::size_t)q], in.target->depth.data(),
-                                      result.stencil.data(), width, band,
-                                      vp.zfail[v] ? raster::StencilMode::zfail
-                                                  : raster::StencilMode::zpass,
-                                      bounds[v], rc[(std::size_t)b]);
+            const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
+            const raster::StencilMode mode = vp.zfail[v] ? raster::StencilMode::zfail
+                                                         : raster::StencilMode::zpass;
+            if (sat) {
+                rast.walk_stencil_saturating(p, in.target->depth.data(),
+                                             sat->count_for(mode, p.front), width, band, mode,
+                                             bounds[v], rc[(std::size_t)b]);
+            } else {
+                rast.walk_stencil_bounded(p, in.target->depth.data(), result.stencil.data(), width,
+                                          band, mode, bounds[v], rc[(std::size_t)b]);
+            }
         }
     });
+    if (sat) sat->resolve(result.stencil);
     for (const auto &r : rc) raster::Rasterizer::add_stencil_counts(r, result.counters);
     result.ticks = ticks() - k0;
     result.seconds = now_seconds() - t0;

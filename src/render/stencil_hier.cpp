@@ -44,6 +44,19 @@
  * back faces -1) where they cover the sample point, and those behind it
  * do not; z-fail counts those behind (back +1, front -1), appendix A.
  *
+ * Under seed 002's saturating operations (StencilPassInputs::saturate)
+ * no tile is updated wholesale: a saturating count is no sum modulo 256,
+ * and its two halves, the increments and the decrements, are not constant
+ * over a tile that no piece crosses (only their difference is: a closed
+ * edge between a back and a front piece moves both), so a tile where a
+ * piece counts is walked per pixel into both. Tiles where no piece counts
+ * (missed, or every piece on the side where its test never changes the
+ * count) are still skipped: exact for any operation. So hier stays equal
+ * to bf, and its saving under saturation is the tiles no piece counts in.
+ * The seed's S_min/S_max would need the same care: a saturating update of
+ * a tile's range is [min(255, S_min + k), min(255, S_max + k)] for its
+ * increments, not a sum.
+ *
  * The seed's S_min/S_max, FS buffer and PSV cache are its bandwidth model
  * (Table 1, counted later); the stencil the frame keeps is the per-pixel
  * one, byte for byte brute force's (additions mod 256 commute, so tiles
@@ -53,6 +66,7 @@
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -167,6 +181,8 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
      * out of their way. */
     const bool use_coarse = !in.faults.tile_box_test_too_tight && !in.faults.sample_outside_tile;
     std::vector<RowTotals> totals((std::size_t)coarse.tiles_y);
+    std::unique_ptr<SaturatingCounts> sat;
+    if (in.saturate) sat = std::make_unique<SaturatingCounts>(width, height);
     result.boundary_tile_mask.assign((std::size_t)grid.tiles_x * (std::size_t)grid.tiles_y, 0);
     parallel(coarse.tiles_y, [&](int cy) {
         const std::vector<int> &bin = bands[(std::size_t)cy];
@@ -275,7 +291,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                         return;
                     }
                     if ((side == TileSide::behind) != zfail) return; /* does not count */
-                    if (f.open_whole || f.open.meet(tx)) {
+                    if (in.saturate || f.open_whole || f.open.meet(tx)) {
                         state[t] = 2;
                         return;
                     }
@@ -314,7 +330,8 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                                                        : classify_in_row(p, e, coarse, cx, cy,
                                                                          cextent, in.faults, false);
                         if (side == TileSide::misses) continue;
-                        if (side != TileSide::crosses) {
+                        if (side != TileSide::crosses &&
+                            ((side == TileSide::behind) != zfail || !in.saturate)) {
                             if ((side == TileSide::behind) != zfail) continue; /* no count */
                             /* It counts where it covers a tile's sample (the
                              * tile's first pixel): none when one edge leaves
@@ -410,8 +427,16 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
                         raster::SetupTriangle clamped = p;
                         clamped.x_first = std::max(p.x_first, grid.x0(tx));
                         clamped.x_last = std::min(p.x_last, grid.x1(run_end) - 1);
-                        rast.walk_stencil(clamped, in.target->depth.data(), result.stencil.data(),
-                                          width, height, {Y0, Y1}, mode, tot.walked);
+                        if (sat) {
+                            rast.walk_stencil_saturating(clamped, in.target->depth.data(),
+                                                         sat->count_for(mode, p.front), width,
+                                                         {Y0, Y1}, mode, no_depth_bounds(),
+                                                         tot.walked);
+                        } else {
+                            rast.walk_stencil(clamped, in.target->depth.data(),
+                                              result.stencil.data(), width, height, {Y0, Y1}, mode,
+                                              tot.walked);
+                        }
                         tx = run_end + 1; /* run_end + 1 does not walk (or is past LAST) */
                     }
                 }
@@ -437,6 +462,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
             }
         }
     });
+    if (sat) sat->resolve(result.stencil);
     for (const RowTotals &t : totals) {
         raster::Rasterizer::add_stencil_counts(t.walked, result.counters);
         /* A tile updated wholesale reads and writes its stencil once. */

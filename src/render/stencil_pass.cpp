@@ -7,6 +7,7 @@
 #include "stencil_pass.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "pass_bins.h"
 
@@ -85,6 +86,27 @@ std::vector<ShadowVertexBuffer> shadow_vertex_buffers(const StencilPassInputs &i
         }
     });
     return sv_clip;
+}
+
+SaturatingCounts::SaturatingCounts(int width, int height)
+    : increments((std::size_t)width * (std::size_t)height, 0),
+      decrements((std::size_t)width * (std::size_t)height, 0) {}
+
+void SaturatingCounts::resolve(std::vector<uint8_t> &stencil) const {
+    const std::size_t n = increments.size();
+    stencil.resize(n);
+    constexpr std::size_t kBlock = 1 << 16;
+    detail::parallel((int)((n + kBlock - 1) / kBlock), [&](int b) {
+        const std::size_t lo = (std::size_t)b * kBlock, hi = std::min(n, lo + kBlock);
+        for (std::size_t i = lo; i < hi; i++) {
+            const int d = (int)increments[i] - (int)decrements[i];
+            stencil[i] = (uint8_t)(d > 0 ? d : 0);
+        }
+    });
+}
+
+raster::DepthBounds no_depth_bounds() {
+    return {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
 }
 
 StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in) {

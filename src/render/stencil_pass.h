@@ -42,7 +42,40 @@ struct StencilPassInputs {
      * frames (nullptr: grouped by the pass for itself). */
     detail::SurfaceTrianglesCache *surface_triangles = nullptr;
     StencilFaults faults; /* tests only */
+    /* The seed's saturating operations (seed 002, issue 31: IncrSat on
+     * one pass, then DecrSat on the other) in place of additions modulo
+     * 256. A saturating count depends on the order of its operations, so
+     * it is the seed's order: every increment first (a pixel's count
+     * min(255, I), I its increments), then every decrement (max(0, that
+     * - D)). That equals max(0, min(255, I) - min(255, D)), so each
+     * method keeps I and D in two counts of their own, each saturating at
+     * 255 (the same bytes in any order, at any thread count), and the
+     * stencil is their difference clamped at 0. Where no pixel sees more
+     * than 255 of either and I >= D (closed volumes), it equals the
+     * wrap-around stencil; docs/RENDERING.md says where it differs. */
+    bool saturate = false;
 };
+
+/* Whether a triangle facing FRONT increments the stencil in MODE (z-pass:
+ * front faces; z-fail: back faces), else it decrements it. */
+inline bool stencil_increments(raster::StencilMode mode, bool front) {
+    return (mode == raster::StencilMode::zpass) == front;
+}
+
+/* StencilPassInputs::saturate's two counts, target-sized, and the
+ * stencil they give. */
+struct SaturatingCounts {
+    std::vector<uint8_t> increments, decrements;
+    SaturatingCounts(int width, int height);
+    /* The count a triangle facing FRONT in MODE adds 1 to. */
+    uint8_t *count_for(raster::StencilMode mode, bool front) {
+        return stencil_increments(mode, front) ? increments.data() : decrements.data();
+    }
+    /* STENCIL = max(0, increments - decrements), pixel by pixel. */
+    void resolve(std::vector<uint8_t> &stencil) const;
+};
+/* Depth bounds that test every pixel. */
+raster::DepthBounds no_depth_bounds();
 
 struct StencilPassResult {
     std::vector<uint8_t> stencil; /* target-sized, row 0 = top */
