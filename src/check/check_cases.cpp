@@ -1176,7 +1176,10 @@ std::vector<float> extrude_stream(Rng &rng, int n, ExtrudeShape shape, const Vec
 // Equal bits, or both NaN: the contract leaves a NaN's sign and payload to
 // the operand order of a commutative operation.
 bool same_float_or_nan(float a, float b) {
-    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+    uint32_t x = 0, y = 0;
+    std::memcpy(&x, &a, sizeof x);
+    std::memcpy(&y, &b, sizeof y);
+    return (std::isnan(a) && std::isnan(b)) || x == y;
 }
 
 } // namespace

@@ -13,6 +13,7 @@
 
 #include "frame.h"
 #include "scene_options.h"
+#include "volume_args.h"
 #include "shadowvol_scene.h"
 
 namespace svcli {
@@ -29,6 +30,7 @@ struct RenderArgs {
     int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     bool ground_hints = true;
+    VolumeArgs volume; /* --volume, --stencil-op, --extrude-to */
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     std::string out_dir = "shadowvol-render";
     std::string json_path;

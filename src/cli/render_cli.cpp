@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "extruded_volumes.h"
 #include "frame.h"
 #include "fnv1a.h"
 #include "gl_compare.h"
@@ -88,6 +89,8 @@ void render_usage(FILE *out) {
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
         "                        [--stencil bf|db|hier] [--stencil-tile N]\n"
         "                        [--caster-rule auto|closed|general] [--ground-hints use|ignore]\n"
+        "                        [--volume silhouette|extrude] [--stencil-op saturate|wrap]\n"
+        "                        [--extrude-to range|infinity]\n"
         "                        [--out DIR] [--json FILE] [--no-truth] [--no-gl]\n"
         "\n"
         "Renders a scene with the paper's shadow volumes in the project's own stencil\n"
@@ -131,6 +134,7 @@ void render_usage(FILE *out) {
         "  --general-build B how the general rule's volumes are built: direct (default:\n"
         "                    the general kernels) or two-sided (the paper's kernels on\n"
         "                    the shells and their reverses); the same stencil\n"
+        "%s"
         "  --kernels K       the rasteriser's row kernels: c, avx2, avx512 (default: best)\n"
         "  --variant NAME    the library's volume kernels (default: best)\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -143,7 +147,7 @@ void render_usage(FILE *out) {
         "Exit status: 0 done; 1 a mismatch against the truth off a shadow boundary, or a\n"
         "difference from Mesa off every volume edge and depth tie; 2 bad arguments;\n"
         "3 a model could not be loaded.\n",
-        sv::render::kMaxFrameSide);
+        sv::render::kMaxFrameSide, volume_options_help());
 }
 
 int render_main(int argc, char **argv) {
@@ -246,6 +250,7 @@ int render_main(int argc, char **argv) {
     opt.caster_rule = args.caster_rule;
     opt.ground_hints = args.ground_hints;
     opt.general_build = args.general_build;
+    apply_volume_args(args.volume, opt);
     opt.kernels = kernels;
     opt.variant = variant;
     opt.threads = args.threads; /* 0: every core; the same bytes at any count */
@@ -407,6 +412,21 @@ int render_main(int argc, char **argv) {
                     (unsigned long long)lf.ticks_stencil, (unsigned long long)frame.ticks_depth,
                     (unsigned long long)frame.ticks_shading);
     }
+    for (std::size_t li = 0; li < frame.lights.size(); li++) {
+        /* What the volume triangles cost set-up (seed 002's degenerate
+         * quads are submitted and rejected there as zero-area). */
+        const sv::render::LightFrame &lf = frame.lights[li];
+        const sv::raster::PassCounters &c = lf.stencil_counters;
+        std::printf("volume set-up %zu (%s volumes, stencil %s): %llu triangles submitted, %llu "
+                    "zero-area after snapping, %llu clipped, %llu outside the view; %llu pixels "
+                    "tested, %llu written; seed 002's extrusion %llu ticks\n",
+                    li, sv::render::volume_source_name(opt.volume),
+                    opt.stencil_saturate ? "saturating" : "wrap-around",
+                    (unsigned long long)c.triangles, (unsigned long long)c.triangles_degenerate,
+                    (unsigned long long)c.triangles_clipped,
+                    (unsigned long long)c.triangles_outside, (unsigned long long)c.pixels_tested,
+                    (unsigned long long)c.pixels_written, (unsigned long long)lf.ticks_extrude);
+    }
     for (std::size_t li = 0; li < truths.size(); li++) {
         std::printf(
             "truth %zu: %llu rays in %.2f s (%.2f M rays/s, %d threads, BVH of src/verify)\n", li,
@@ -455,6 +475,9 @@ int render_main(int argc, char **argv) {
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
         j.key("ground_hints"), j.value(args.ground_hints);
+        j.key("volume"), j.value(sv::render::volume_source_name(opt.volume));
+        j.key("stencil_saturate"), j.value(opt.stencil_saturate);
+        j.key("extrude_to_infinity"), j.value(opt.extrude_to_infinity);
         j.key("general_build"), j.value(sv::general_build_name(args.general_build));
         j.key("stencil"), j.value(frame.stencil_method);
         j.key("row_kernels"), j.value(frame.kernels);
@@ -466,6 +489,7 @@ int render_main(int argc, char **argv) {
             j.begin_object(true);
             j.key("name"), j.value(s.name);
             j.key("triangles"), j.value(s.prepared.num_triangles());
+            j.key("vertices"), j.value(s.prepared.num_vertices());
             j.key("ground"), j.value(s.ground);
             j.key("declared_ground"), j.value(s.declared_ground);
             j.end_object();
@@ -493,6 +517,7 @@ int render_main(int argc, char **argv) {
             j.key("facing"), j.value((unsigned long long)lf.ticks_facing);
             j.key("volume"), j.value((unsigned long long)lf.ticks_volume);
             j.key("stencil"), j.value((unsigned long long)lf.ticks_stencil);
+            j.key("extrude"), j.value((unsigned long long)lf.ticks_extrude);
             j.end_object();
             j.key("stencil_counters");
             counters_json(j, lf.stencil_counters);

@@ -27,7 +27,8 @@ bool SharedSceneOptions::read(ArgReader &a, SceneArgs &r) {
         parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
         parse_caster_rule_option(a, r.caster_rule) ||
         parse_ground_hints_option(a, r.ground_hints) ||
-        parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode)) {
+        parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode) ||
+        parse_volume_option(a, r.volume)) {
         /* the options render shares too: --add, --ground, --light, --camera; --stencil;
          * --caster-rule; --ground-hints; --general-build; --mode */
     } else if (a.is("--animation")) {

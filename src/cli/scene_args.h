@@ -14,6 +14,7 @@
 #include "frame.h"
 #include "sequence.h"
 #include "stencil_method.h"
+#include "volume_args.h"
 
 namespace svcli {
 
@@ -30,6 +31,7 @@ struct SceneArgs {
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     bool ground_hints = true;
+    VolumeArgs volume; /* --volume, --stencil-op, --extrude-to */
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     bool check = true; /* render the full frame beside and compare */
     bool truth = true;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "extruded_volumes.h"
 #include "frame.h"
 #include "images.h"
 #include "json_writer.h"
@@ -189,7 +190,9 @@ void scene_usage(FILE *out) {
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
         "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
         "                       [--stencil-tile N] [--caster-rule auto|closed|general]\n"
-        "                       [--ground-hints use|ignore] [--out DIR] [--json FILE]\n"
+        "                       [--ground-hints use|ignore] [--volume silhouette|extrude]\n"
+        "                       [--stencil-op saturate|wrap] [--extrude-to range|infinity]\n"
+        "                       [--out DIR] [--json FILE]\n"
         "                       [--webp FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
@@ -238,6 +241,7 @@ void scene_usage(FILE *out) {
         "                    the paper's rule) or ignore (its shells decide)\n"
         "  --general-build B direct (default) or two-sided: how the general rule's\n"
         "                    volumes are built; the same stencil\n"
+        "%s"
         "  --full            render with no shortcut at all (what the check compares with)\n"
         "  --no-check        skip the full frame beside each frame\n"
         "  --no-truth        skip the ray-cast truth\n"
@@ -250,7 +254,7 @@ void scene_usage(FILE *out) {
         "Exit status: 0 done; 1 a frame differs from the full frame where the light reaches,\n"
         "or disagrees with the truth off a shadow boundary; 2 bad arguments; 3 a file\n"
         "that cannot be loaded.\n",
-        SV_DEMO_SCENE,
+        SV_DEMO_SCENE, volume_options_help(),
         webp_available() ? "" : "\n                    (not in this build: no libwebp)");
 }
 
@@ -335,6 +339,7 @@ int scene_main(int argc, char **argv) {
     fast.caster_rule = args.caster_rule;
     fast.ground_hints = args.ground_hints;
     fast.general_build = args.general_build;
+    apply_volume_args(args.volume, fast);
     sv::render::VolumeCache cache;
     fast.cache = &cache;
     sv::render::FrameScratch scratch; /* the frames' buffers, kept from frame to frame */
@@ -572,6 +577,9 @@ int scene_main(int argc, char **argv) {
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
         j.key("ground_hints"), j.value(args.ground_hints);
         j.key("general_build"), j.value(sv::general_build_name(args.general_build));
+        j.key("volume"), j.value(sv::render::volume_source_name(fast.volume));
+        j.key("stencil_saturate"), j.value(fast.stencil_saturate);
+        j.key("extrude_to_infinity"), j.value(fast.extrude_to_infinity);
         j.key("tsc_hz"), j.value(hz);
         j.key("surfaces"), j.value((long long)scene.surfaces.size());
         j.key("triangles"), j.value((long long)scene.triangles());

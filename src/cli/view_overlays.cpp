@@ -117,7 +117,7 @@ int64_t overlay_volume_wireframe(sv::render::Image &image, const sv::render::Fra
         for (int i = 0; i + 2 < drawn && edges < max_edges; i += 3) {
             sv::raster::ClipVertex c[3];
             for (int k = 0; k < 3; k++) {
-                c[k] = sv::render::shadow_vertex_to_clip(frame.view_proj, p,
+                c[k] = sv::render::volume_vertex_to_clip(frame.view_proj, p, v,
                                                          v.indices[(std::size_t)i + k],
                                                          lf.shadow_light);
             }

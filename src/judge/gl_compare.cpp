@@ -6,6 +6,7 @@
 #include "gl_compare.h"
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -67,6 +68,18 @@ std::vector<gl::MesaVolume> mesa_volumes(const LightFrame &lf,
         gl::MesaVolume v;
         v.shadow_vertices = buffers[(std::size_t)vol.surface].data();
         v.num_shadow_vertices = (int)buffers[(std::size_t)vol.surface].size();
+        if (!vol.extruded.empty()) {
+            /* Seed 002's volume: an extruded vertex at a finite point (the
+             * seed's range) is drawn as it is (w = 1); one at infinity
+             * (w = 0) is the buffer's (x, y, z, 0), which the program
+             * extrudes from the light as the seed's program did. */
+            auto own = std::make_shared<AlignedVector<Vec4>>(buffers[(std::size_t)vol.surface]);
+            for (std::size_t k = 0; k < vol.extruded.size() && 2 * k + 1 < own->size(); k++) {
+                if (vol.extruded[k].w == 1.0f) (*own)[2 * k + 1] = vol.extruded[k];
+            }
+            v.shadow_vertices = own->data();
+            v.own_vertices = std::move(own);
+        }
         v.indices = vol.indices.data();
         v.num_indices = vol.drawn_indices();
         v.zfail = vol.zfail;

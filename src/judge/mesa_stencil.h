@@ -54,6 +54,10 @@ struct MesaVolume {
     const int *indices = nullptr;
     int num_indices = 0;
     bool zfail = false;
+    /* Where SHADOW_VERTICES is the volume's own (seed 002's finite
+     * extrusion: odd vertices (x, y, z, 1), drawn as they are): kept alive
+     * with the draw. */
+    std::shared_ptr<const void> own_vertices;
 };
 
 struct MesaStencilJob {

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "depth_pass.h"
+#include "extruded_volumes.h"
 #include "frame_math.h"
 #include "frame_scratch.h"
 #include "pass_bins.h"
@@ -66,6 +67,15 @@ raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedS
     return (sv_index & 1)
                ? to_clip(view_proj, q.x * L.w - L.x, q.y * L.w - L.y, q.z * L.w - L.z, 0.0)
                : to_clip(view_proj, q.x, q.y, q.z, 1.0);
+}
+
+raster::ClipVertex volume_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p,
+                                         const Volume &vol, int sv_index, const Vec4 &L) {
+    if ((sv_index & 1) && !vol.extruded.empty()) {
+        const Vec4 &e = vol.extruded[(std::size_t)(sv_index >> 1)];
+        return to_clip(view_proj, e.x, e.y, e.z, e.w);
+    }
+    return shadow_vertex_to_clip(view_proj, p, sv_index, L);
 }
 
 Vec3d camera_ray(const Frame &f, double x, double y) {
@@ -173,6 +183,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         vin.variant = variant;
         vin.facing = facing_v;
         f.ticks_jobs = volume_pass(vin, cache, f.lights);
+        if (opt.volume == VolumeSource::extrude) use_extruded_volumes(scene, opt, f.lights);
 
         /* hier's tile depth ranges: the same depth for every light. Their
          * time counts in the first light's stencil pass. */

@@ -28,6 +28,12 @@ namespace sv::render {
 enum class ModeChoice { zpass, zfail, automatic };
 const char *mode_name(ModeChoice m);
 
+/* Which shadow volumes a frame draws: the paper's (silhouette quads and
+ * caps from the facing routines) or seed 002's (issue 31: every surface's
+ * shadow mesh through the vertex program emulated on the CPU, drawn whole
+ * in z-fail; extruded_volumes.h). */
+enum class VolumeSource { silhouette, extrude };
+
 /* Only what the scene requires (DESIGN.md section 9; issue 13): each
  * shortcut is a conservative test made per frame, light and surface,
  * counted in the frame's decisions, and switchable off. With all of them
@@ -155,6 +161,11 @@ struct RenderOptions {
     /* Seed 002's IncrSat/DecrSat in place of additions modulo 256
      * (StencilPassInputs::saturate): the seed's stencil state. */
     bool stencil_saturate = false;
+    VolumeSource volume = VolumeSource::silhouette;
+    /* --volume extrude: every extruded vertex to infinity (w = 0), as the
+     * paper's, in place of the seed's clamp0(range - |vLP|) for a light
+     * with a range. */
+    bool extrude_to_infinity = false;
     /* Which volume each shell casts: auto (closed shells the paper's
      * rule, the others the general rule: exact for any caster), closed
      * (the paper's everywhere) or general (docs/CASTERS.md). */
@@ -196,6 +207,10 @@ struct Volume {
     AlignedVector<int> indices; /* sv_create_shadow_volume's list, whole */
     int silhouette_indices = 0; /* its first part: the silhouette quads */
     bool zfail = false;         /* drawn in z-fail (all of it) or z-pass (the silhouette part) */
+    /* Seed 002's volume (extruded_volumes.h; empty: the paper's): odd
+     * vertex 2v + 1 of INDICES is extruded[v] (x, y, z, w), the vertex
+     * program's output, in place of the paper's point at infinity. */
+    std::vector<Vec4> extruded;
     int drawn_indices() const { return zfail ? (int)indices.size() : silhouette_indices; }
 };
 
@@ -212,6 +227,10 @@ struct LightFrame {
     /* Work (summed over threads) in the facing, culling and volume
      * routines; wall ticks of the stencil pass. */
     uint64_t ticks_facing = 0, ticks_culling = 0, ticks_volume = 0, ticks_stencil = 0;
+    /* --volume extrude: seed 002's vertex program over every volume's
+     * shadow mesh (its calls alone, summed over threads: not the shadow
+     * meshes' building nor the renumbering, extruded_volumes.h). */
+    uint64_t ticks_extrude = 0;
     double seconds_stencil = 0;
     raster::PassCounters stencil_counters;
     std::vector<uint8_t> stencil; /* the stencil after this light's pass */
@@ -279,6 +298,10 @@ raster::ClipVertex to_clip(const Mat4d &view_proj, double x, double y, double z,
  * computed (its GLSL twin is in src/judge). */
 raster::ClipVertex shadow_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p,
                                          int sv_index, const Vec4 &L);
+/* Vertex SV_INDEX of VOL (of surface P) in clip space: Volume::extruded's
+ * where it has it, else shadow_vertex_to_clip's. */
+raster::ClipVertex volume_vertex_to_clip(const Mat4d &view_proj, const PreparedSurface &p,
+                                         const Volume &vol, int sv_index, const Vec4 &L);
 
 /* The camera ray through window point (x, y) (pixels, y down; a pixel's
  * centre is at + 0.5): unit length along the view axis. */

@@ -82,7 +82,7 @@ std::vector<ShadowVertexBuffer> shadow_vertex_buffers(const StencilPassInputs &i
             if (done[(std::size_t)i]) continue;
             done[(std::size_t)i] = 1;
             out[i] = (i & 1) == 0 ? receiver[(std::size_t)(i / 2)]
-                                  : shadow_vertex_to_clip(in.view_proj, p, i, in.light);
+                                  : volume_vertex_to_clip(in.view_proj, p, vol, i, in.light);
         }
     });
     return sv_clip;

@@ -37,7 +37,7 @@ std::vector<raster::Rasterizer::WindowTriangle> drawn_volume_triangles(const Sce
     for (const Volume &vol : lf.volumes) {
         const PreparedSurface &p = scene.surfaces[(std::size_t)vol.surface].prepared;
         auto clip_of = [&](int sv_index) {
-            return shadow_vertex_to_clip(f.view_proj, p, sv_index, L);
+            return volume_vertex_to_clip(f.view_proj, p, vol, sv_index, L);
         };
         for (int i = 0; i + 2 < vol.drawn_indices(); i += 3) {
             const raster::ClipVertex v[3] = {clip_of(vol.indices[(std::size_t)i]),

@@ -83,7 +83,7 @@ struct Scene {
                                    static_cast<int>(r.i.size())});
         for (const Vol &v : volumes)
             j.volumes.push_back({v.v.data(), static_cast<int>(v.v.size()), v.i.data(),
-                                 static_cast<int>(v.i.size()), v.zfail});
+                                 static_cast<int>(v.i.size()), v.zfail, nullptr});
         return j;
     }
 };
