@@ -23,8 +23,6 @@
  */
 #include <gtest/gtest.h>
 
-#include <dirent.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +34,7 @@
 #include "frame.h"
 #include "gl_compare.h"
 #include "mesa_stencil.h"
+#include "model_surfaces.h"
 #include "sequence.h"
 #include "shadowvol_scene.h"
 #include "test_conditions.h"
@@ -255,25 +254,6 @@ std::vector<SceneLight> seed_lights(const Scene &s) {
     return {ranged, unranged, auto_light(s, LightKind::directional)};
 }
 
-std::vector<std::string> shared_models() {
-    std::vector<std::string> out;
-    for (const std::string &dir :
-         {svtest::shared_models_dir(), svtest::shared_models_dir() + "/open"}) {
-        DIR *d = opendir(dir.c_str());
-        if (!d) {
-            ADD_FAILURE() << dir << " cannot be read";
-            continue;
-        }
-        while (dirent *e = readdir(d)) {
-            const std::string n = e->d_name;
-            if (n.size() > 4 && n.substr(n.size() - 4) == ".glb") out.push_back(dir + "/" + n);
-        }
-        closedir(d);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 TEST(ExtrudeRender, DegenerateQuadsAreSetUpAndRejectedAndCostNoFill) {
     Scene scene = model_on_ground(SV_MODELS_DIR "/character_1344.glb");
     scene.lights = seed_lights(scene);
@@ -310,7 +290,7 @@ TEST(ExtrudeRender, BundledCharacterEqualsThePapersVolumeAndTheJudges) {
 }
 
 TEST(ExtrudeRenderSharedModels, EveryModelEqualsThePapersVolumeAndTheJudges) {
-    const std::vector<std::string> models = shared_models();
+    const std::vector<std::string> models = svtest::seed_model_paths("SharedModels");
     EXPECT_FALSE(models.empty()) << "no .glb in " << svtest::shared_models_dir();
     for (const std::string &path : models) {
         Scene scene = model_on_ground(path);
