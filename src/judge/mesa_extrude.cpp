@@ -132,25 +132,12 @@ public:
     }
 
     void run(const float *stream, int n, const sv_extrude_light &light, std::vector<Vec4> &out) {
-        const GLuint vs = compile_shader(gl_, GL_VERTEX_SHADER, kExtrudeShader, "extrusion vertex");
-        const GLuint fs = compile_shader(gl_, GL_FRAGMENT_SHADER, kEmptyFragment, "fragment");
-        const GLuint program = gl_.glCreateProgram();
-        check("glCreateProgram");
-        SV_GL(glAttachShader(program, vs));
-        SV_GL(glAttachShader(program, fs));
-        const char *varyings[] = {"extruded"};
-        tf_.glTransformFeedbackVaryings(program, 1, varyings, GL_INTERLEAVED_ATTRIBS);
-        check("glTransformFeedbackVaryings");
-        SV_GL(glLinkProgram(program));
-        SV_GL(glDeleteShader(vs));
-        SV_GL(glDeleteShader(fs));
-        GLint linked = 0;
-        SV_GL(glGetProgramiv(program, GL_LINK_STATUS, &linked));
-        if (!linked) {
-            char log[2048] = {};
-            gl_.glGetProgramInfoLog(program, sizeof log, nullptr, log);
-            throw std::runtime_error(std::string("GLSL judge: linking the extrusion: ") + log);
-        }
+        const GLuint program = link_program(
+            gl_, kExtrudeShader, kEmptyFragment, "GLSL judge", "extrusion", [&](GLuint p) {
+                const char *varyings[] = {"extruded"};
+                tf_.glTransformFeedbackVaryings(p, 1, varyings, GL_INTERLEAVED_ATTRIBS);
+                check("glTransformFeedbackVaryings");
+            });
         SV_GL(glUseProgram(program));
         const Vec4 &l = light.position;
         SV_GL(glUniform4f(gl_.glGetUniformLocation(program, "light"), l.x, l.y, l.z, l.w));

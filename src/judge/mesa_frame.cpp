@@ -148,25 +148,7 @@ private:
 };
 
 GLuint FrameDrawer::link(const char *fragment, const char *what) {
-    const GLuint vs = compile_shader(gl_, GL_VERTEX_SHADER, kReceiverVertex, "receiver vertex");
-    const GLuint fs = compile_shader(gl_, GL_FRAGMENT_SHADER, fragment, what);
-    const GLuint p = gl_.glCreateProgram();
-    check("glCreateProgram");
-    SV_GL(glAttachShader(p, vs));
-    SV_GL(glAttachShader(p, fs));
-    SV_GL(glLinkProgram(p));
-    SV_GL(glDeleteShader(vs));
-    SV_GL(glDeleteShader(fs));
-    GLint linked = 0;
-    SV_GL(glGetProgramiv(p, GL_LINK_STATUS, &linked));
-    if (!linked) {
-        char log[2048] = {};
-        gl_.glGetProgramInfoLog(p, sizeof log, nullptr, log);
-        gl_.glDeleteProgram(p);
-        throw std::runtime_error(std::string("Mesa frame: linking the ") + what +
-                                 " program: " + log);
-    }
-    return p;
+    return link_program(gl_, kReceiverVertex, fragment, "Mesa frame", what);
 }
 
 void FrameDrawer::validate(const MesaFrameJob &job) const {

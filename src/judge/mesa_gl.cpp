@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace sv::gl::detail {
@@ -177,6 +178,32 @@ void draw_volumes(const GlApi &gl, const std::vector<GlDraw> &draws) {
         SV_GL(glDrawElements(GL_TRIANGLES, d.count, GL_UNSIGNED_INT,
                              reinterpret_cast<const void *>(d.offset_bytes)));
     }
+}
+
+GLuint link_program(const GlApi &gl, const char *vertex, const char *fragment, const char *judge,
+                    const char *what, const std::function<void(GLuint)> &before_link) {
+    const GlApi &gl_ = gl; /* SV_GL's names */
+    auto check = [&](const char *call) { check_gl(gl_, call); };
+    const std::string w(what);
+    const GLuint vs = compile_shader(gl, GL_VERTEX_SHADER, vertex, (w + " vertex").c_str());
+    const GLuint fs = compile_shader(gl, GL_FRAGMENT_SHADER, fragment, (w + " fragment").c_str());
+    const GLuint p = gl.glCreateProgram();
+    check("glCreateProgram");
+    SV_GL(glAttachShader(p, vs));
+    SV_GL(glAttachShader(p, fs));
+    if (before_link) before_link(p);
+    SV_GL(glLinkProgram(p));
+    SV_GL(glDeleteShader(vs));
+    SV_GL(glDeleteShader(fs));
+    GLint linked = 0;
+    SV_GL(glGetProgramiv(p, GL_LINK_STATUS, &linked));
+    if (!linked) {
+        char log[2048] = {};
+        gl.glGetProgramInfoLog(p, sizeof log, nullptr, log);
+        gl.glDeleteProgram(p);
+        throw std::runtime_error(std::string(judge) + ": linking the " + w + " program: " + log);
+    }
+    return p;
 }
 
 GLuint compile_shader(const GlApi &gl, GLenum type, const char *source, const char *what) {

@@ -17,6 +17,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -168,6 +169,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0);
 /* A compiled shader, or std::runtime_error with its log ("... the WHAT
  * shader: ..."). */
 GLuint compile_shader(const GlApi &gl, GLenum type, const char *source, const char *what);
+/* A program of the two shaders' SOURCES, linked (the shaders deleted once
+ * attached), or std::runtime_error with its log ("JUDGE: linking the WHAT
+ * program: ..."). BEFORE_LINK, where given, runs between attaching and
+ * linking (transform feedback's varyings are named then). */
+GLuint link_program(const GlApi &gl, const char *vertex, const char *fragment, const char *judge,
+                    const char *what, const std::function<void(GLuint)> &before_link = {});
 
 /* The whole frame (mesa_frame.cpp): its colour buffer, programs and
  * passes, made on a context's first run_frame and kept with it. */

@@ -111,7 +111,6 @@ public:
 private:
     void check(const char *call) const;
     void make_current() const;
-    GLuint compile(GLenum type, const char *source, const char *what);
     void read_back(MesaStencilResult &out);
     void destroy();
 
@@ -133,10 +132,6 @@ void OsMesaContext::make_current() const {
      * to the FBO, so a 1x1 one is enough. */
     if (!OSMesaMakeCurrent(ctx_, const_cast<uint8_t *>(colour_.data()), GL_UNSIGNED_BYTE, 1, 1))
         throw std::runtime_error("OSMesaMakeCurrent failed");
-}
-
-GLuint OsMesaContext::compile(GLenum type, const char *source, const char *what) {
-    return compile_shader(gl_, type, source, what);
 }
 
 bool OsMesaContext::init(int width, int height, std::string *why_not) {
@@ -225,22 +220,7 @@ bool OsMesaContext::init(int width, int height, std::string *why_not) {
             throw std::runtime_error(os.str());
         }
 
-        GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, "vertex");
-        GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, "fragment");
-        program_ = gl_.glCreateProgram();
-        check("glCreateProgram");
-        SV_GL(glAttachShader(program_, vs));
-        SV_GL(glAttachShader(program_, fs));
-        SV_GL(glLinkProgram(program_));
-        SV_GL(glDeleteShader(vs));
-        SV_GL(glDeleteShader(fs));
-        GLint linked = 0;
-        SV_GL(glGetProgramiv(program_, GL_LINK_STATUS, &linked));
-        if (!linked) {
-            char log[2048] = {};
-            gl_.glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-            throw std::runtime_error(std::string("Mesa judge: linking the shaders: ") + log);
-        }
+        program_ = link_program(gl_, kVertexShader, kFragmentShader, "Mesa judge", "volume");
         vp_location_ = gl_.glGetUniformLocation(program_, "VP");
         check("glGetUniformLocation(VP)");
         light_location_ = gl_.glGetUniformLocation(program_, "light");

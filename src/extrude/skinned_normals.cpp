@@ -1,0 +1,164 @@
+/*
+ * Seed 002 on skinned characters (skinned_normals.h): the four ways a
+ * vertex gets its face normal, and the faces the program splits.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#include "skinned_normals.h"
+
+#include <map>
+
+#include "shadowvol_planes.h"
+#include "shadowvol_skin.h"
+
+namespace sv {
+
+namespace {
+
+/* The 3x3 part of joint J's matrix (column-major, 16 floats) times N,
+ * weighted by W, added to OUT: float, one rounding an operation. */
+void add_weighted_normal(const float *m, float w, const float n[3], float out[3]) {
+    for (int r = 0; r < 3; r++) {
+        const float v = (m[r] * n[0] + m[4 + r] * n[1]) + m[8 + r] * n[2];
+        out[r] += w * v;
+    }
+}
+
+/* The rest (mesh-space) face normals: the planes' a, b, c. */
+std::vector<Plane> rest_planes(const AnimatedSurface &s) {
+    std::vector<Plane> p((std::size_t)s.prepared.num_triangles());
+    sv_derive_planes_c_ref(s.rest_positions.data(), s.prepared.indices.data(),
+                           s.prepared.num_triangles(), p.data());
+    return p;
+}
+
+} // namespace
+
+const char *skinned_normals_name(SkinnedNormals n) {
+    switch (n) {
+    case SkinnedNormals::straightforward: return "straightforward";
+    case SkinnedNormals::face_weights: return "face weights";
+    case SkinnedNormals::recomputed: return "recomputed";
+    case SkinnedNormals::neighbours: return "neighbours";
+    }
+    return "?";
+}
+
+SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s, const Pose &pose) {
+    SkinnedFrame f;
+    f.positions.resize(s.rest_positions.size());
+    if (s.skin < 0 || s.influences == 0) {
+        pose_surface(asset, s, pose, Mat4d{}, f.positions.data());
+        return f;
+    }
+    f.joint_matrices.resize(16 * asset.skins[(std::size_t)s.skin].joints.size());
+    joint_matrices(asset, s.skin, pose, Mat4d{}, f.joint_matrices.data());
+    sv_skin_c_ref(f.joint_matrices.data(), s.rest_positions.data(), s.joints.data(),
+                  s.weights.data(), s.influences, (size_t)s.num_vertices(), f.positions.data());
+    return f;
+}
+
+int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,
+                    const sv_extrude_light &light) {
+    const PreparedSurface &p = s.prepared;
+    const int faces = p.num_triangles();
+    const int *ix = p.indices.data();
+    const float *pos = frame.positions.data();
+    const bool skinned = !frame.joint_matrices.empty();
+    if (normals == SkinnedNormals::neighbours) {
+        /* One expression for the face, whatever the vertex: the normal from
+         * the corners in the face's order, the dot with the light's
+         * direction to corner 0. Every vertex computes the same float. */
+        int64_t split = 0;
+        const Vec4 &L = light.position;
+        for (int t = 0; t < faces; t++) {
+            int keep[3];
+            for (int k = 0; k < 3; k++) {
+                const float *a = pos + 3 * (std::size_t)ix[3 * t];
+                const float *b = pos + 3 * (std::size_t)ix[3 * t + 1];
+                const float *c = pos + 3 * (std::size_t)ix[3 * t + 2];
+                const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                const float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                    e1[0] * e2[1] - e1[1] * e2[0]};
+                const float d[3] = {a[0] * L.w - L.x, a[1] * L.w - L.y, a[2] * L.w - L.z};
+                keep[k] = ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) < 0.0f;
+            }
+            split += keep[0] != keep[1] || keep[1] != keep[2];
+        }
+        return split;
+    }
+    std::vector<Plane> planes((std::size_t)faces);
+    if (normals == SkinnedNormals::recomputed || !skinned) {
+        sv_derive_planes_c_ref(pos, ix, faces, planes.data());
+    }
+    const std::vector<Plane> rest = normals == SkinnedNormals::recomputed || !skinned
+                                        ? std::vector<Plane>()
+                                        : rest_planes(s);
+    const int inf = s.influences;
+    const float *m = frame.joint_matrices.data();
+    std::vector<float> stream((std::size_t)faces * 3 * SV_EXTRUDE_STREAM_FLOATS);
+    for (int t = 0; t < faces; t++) {
+        float face_normal[3] = {0, 0, 0};
+        if (normals == SkinnedNormals::recomputed || !skinned) {
+            const Plane &pl = planes[(std::size_t)t];
+            face_normal[0] = pl.a, face_normal[1] = pl.b, face_normal[2] = pl.c;
+        } else if (normals == SkinnedNormals::face_weights) {
+            /* The face's weights: the average of its vertices' (a joint's
+             * weight summed over the three, then divided by 3), in joint
+             * order. */
+            std::map<int, float> w;
+            for (int k = 0; k < 3; k++) {
+                const std::size_t v = (std::size_t)ix[3 * t + k];
+                for (int i = 0; i < inf; i++) {
+                    w[s.joints[v * (std::size_t)inf + (std::size_t)i]] +=
+                        s.weights[v * (std::size_t)inf + (std::size_t)i];
+                }
+            }
+            const Plane &r = rest[(std::size_t)t];
+            const float n[3] = {r.a, r.b, r.c};
+            for (const auto &[j, wsum] : w) {
+                if (wsum != 0.0f)
+                    add_weighted_normal(m + 16 * (std::size_t)j, wsum / 3.0f, n, face_normal);
+            }
+        }
+        for (int k = 0; k < 3; k++) {
+            const std::size_t v = (std::size_t)ix[3 * t + k];
+            float *out = &stream[(3 * (std::size_t)t + (std::size_t)k) * SV_EXTRUDE_STREAM_FLOATS];
+            out[0] = pos[3 * v], out[1] = pos[3 * v + 1], out[2] = pos[3 * v + 2];
+            float n[3] = {face_normal[0], face_normal[1], face_normal[2]};
+            if (normals == SkinnedNormals::straightforward && skinned) {
+                /* The vertex's own weights on the rest face normal. */
+                const Plane &r = rest[(std::size_t)t];
+                const float rn[3] = {r.a, r.b, r.c};
+                n[0] = n[1] = n[2] = 0;
+                for (int i = 0; i < inf; i++) {
+                    const float wi = s.weights[v * (std::size_t)inf + (std::size_t)i];
+                    if (wi != 0.0f) {
+                        add_weighted_normal(
+                            m + 16 * (std::size_t)s.joints[v * (std::size_t)inf + (std::size_t)i],
+                            wi, rn, n);
+                    }
+                }
+            }
+            out[3] = n[0], out[4] = n[1], out[5] = n[2];
+        }
+    }
+    const int n = 3 * faces;
+    std::vector<Vec4> out((std::size_t)n);
+    sv_extrude_c_ref(stream.data(), n, &light, out.data());
+    int64_t split = 0;
+    for (int t = 0; t < faces; t++) {
+        bool kept[3];
+        for (int k = 0; k < 3; k++) {
+            const float *v =
+                &stream[(3 * (std::size_t)t + (std::size_t)k) * SV_EXTRUDE_STREAM_FLOATS];
+            const Vec4 &o = out[3 * (std::size_t)t + (std::size_t)k];
+            kept[k] = o.w == 1.0f && o.x == v[0] && o.y == v[1] && o.z == v[2];
+        }
+        split += kept[0] != kept[1] || kept[1] != kept[2];
+    }
+    return split;
+}
+
+} // namespace sv

@@ -1,0 +1,66 @@
+/*
+ * Seed 002 on skinned characters (issue 31; Brennan, ShaderX 2002, "Using
+ * Shadow Volumes with Character Animation", its Figures 4 and 5): the face
+ * normal each vertex of a skinned surface's shadow mesh carries, four ways,
+ * and the faces the vertex program then splits (its three vertices
+ * disagree on facing, so the volume is extruded across the face instead of
+ * along the edge quads: the notch of Figure 4).
+ *
+ *   straightforward  the seed's "most straightforward approach": the rest
+ *                    face normal skinned at each vertex with that vertex's
+ *                    weights, as a vertex normal (the joints' 3x3 parts);
+ *   face_weights     the seed's inexpensive fix (Figure 5): one set of
+ *                    weights per face, the average of its vertices', for
+ *                    the face normal; every vertex of the face carries it;
+ *   recomputed       the seed's ideal: the face normal derived from the
+ *                    skinned positions (sv_derive_planes_c_ref), carried
+ *                    by every vertex of the face;
+ *   neighbours       the seed's other fix: each vertex carries its two
+ *                    neighbours' skinned positions and recomputes the face
+ *                    normal by a cross product; here the three vertices of
+ *                    a face also evaluate facing with one shared expression
+ *                    (the face's corners in the face's order, whatever the
+ *                    vertex), so their decisions cannot differ.
+ *
+ * The first three go through the seed's program (sv_extrude_c_ref: its
+ * per-vertex dp3 with the vertex's own light direction), so even one
+ * normal per face may split a face nearly edge-on to the light by
+ * rounding; the fourth cannot split.
+ *
+ * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
+ */
+#ifndef SV_EXTRUDE_SKINNED_NORMALS_H
+#define SV_EXTRUDE_SKINNED_NORMALS_H
+
+#include <cstdint>
+#include <vector>
+
+#include "shadowvol_anim.h"
+#include "shadowvol_extrude.h"
+
+namespace sv {
+
+enum class SkinnedNormals { straightforward, face_weights, recomputed, neighbours };
+constexpr SkinnedNormals kAllSkinnedNormals[] = {SkinnedNormals::straightforward,
+                                                 SkinnedNormals::face_weights,
+                                                 SkinnedNormals::recomputed,
+                                                 SkinnedNormals::neighbours};
+const char *skinned_normals_name(SkinnedNormals n);
+
+/* A skinned surface posed: its joint matrices (joint_matrices(), identity
+ * root) and skinned positions (sv_skin_c_ref), and its rest face normals
+ * (the triangle planes of the mesh-space rest positions). */
+struct SkinnedFrame {
+    std::vector<float> joint_matrices; /* 16 per joint */
+    std::vector<float> positions;      /* 3 per welded vertex */
+};
+SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s, const Pose &pose);
+
+/* Faces of S whose three vertices disagree on facing under LIGHT, the
+ * normals given the NORMALS way at FRAME. */
+int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,
+                    const sv_extrude_light &light);
+
+} // namespace sv
+
+#endif

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Seed 002's skinned artifact over whole animations (issue 31; the seed's
+# Figure 4 and its fixes): for each skinned, animated character of
+# ../shared/models, its first animation at FPS frames a second, three
+# lights around each posed surface (a point light with a range, the same
+# without, a sun), the faces the seed's program splits (its three vertices
+# disagree on facing) with the face normal skinned per vertex
+# (straightforward), by face weights, recomputed from the skinned
+# positions, and from the neighbours with one shared facing expression.
+# One line per character: the totals over frames and lights, and the worst
+# frame. (The ctest entry extrude_skinned_shared_models runs 4 frames.)
+#
+# usage: tools/extrude_skinned_table.sh [BUILD_DIR] [--fps F]   (default 30)
+set -u
+repo=$(cd "$(dirname "$0")/.." && pwd)
+build="$repo/build" fps=30
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --fps) fps="$2"; shift 2 ;;
+    -h|--help) sed -n 2,14p "$0"; exit 0 ;;
+    *) build="$1"; shift ;;
+  esac
+done
+t="$build/tests/shadowvol_extrude_skinned_tests"
+[ -x "$t" ] || { echo "extrude_skinned_table: no $t (build first)" >&2; exit 2; }
+SV_TEST_SHARED_MODELS=1 SV_EXTRUDE_SKINNED_FPS="$fps" "$t" --gtest_filter='*SharedModels*' \
+  | sed -n 's/^\[ skinned  \] //p'
+echo "command: tools/extrude_skinned_table.sh --fps $fps"
