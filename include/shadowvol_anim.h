@@ -272,6 +272,10 @@ struct DeformPlan {
     const SkinningKernel *skinning = nullptr;
     const sv_planes_variant *planes = nullptr;
     const SkinPlanesKernel *skin_planes = nullptr; /* nullptr: two passes */
+    /* The second pass by clusters (plane_clusters, built once per index
+     * list) instead of PLANES; nullptr: PLANES. Chosen only by
+     * measurement or wisdom, never statically. */
+    const sv_planes_clustered_variant *clustered = nullptr;
     const char *source = "static"; /* "measured", "wisdom" or "static" (of skin_planes' choice) */
 };
 DeformPlan deform_plan_for(int num_triangles);
@@ -279,17 +283,20 @@ DeformPlan deform_plan_for(int num_triangles);
 /* One variant's time in measure_deform_plan. */
 struct DeformTiming {
     sv_deform_routine routine;
-    std::string variant; /* skin_planes: a one-pass kernel, or "two_passes" (the chosen K then P) */
+    std::string variant; /* skin_planes: a one-pass kernel, or "two_passes" (the chosen K then P);
+                            derive_planes_clustered: a kernel, or "none" (the chosen P) */
     double ticks_per_triangle; /* the lowest of the rounds' medians */
 };
-/* Times every skinning kernel, planes variant and one-pass kernel this CPU
- * runs on a generated skinned height field of size class SIZE_CLASS
+/* Times every skinning kernel, planes variant, clustered planes kernel
+ * and one-pass kernel this CPU runs on a generated skinned height field of size class SIZE_CLASS
  * (sv_size_class_triangles triangles, vertices in row order, 4 influences
  * of 24 joints), in rounds, each output checked bit for bit against the C
  * references; records the winners with sv_deform_choice_set (a kernel
- * keeps the static choice unless another is more than 3% faster; the
- * one-pass kernel is chosen only when more than 3% faster than the chosen
- * two passes). Throws std::runtime_error when a kernel disagrees with the
+ * keeps the static choice unless another is more than 3% faster; a
+ * clustered kernel replaces the chosen planes variant only when more than
+ * 3% faster (the clusters' building, once per index list, not counted);
+ * the one-pass kernel is chosen only when more than 3% faster than the
+ * chosen two passes). Throws std::runtime_error when a kernel disagrees with the
  * reference (nothing recorded) or SIZE_CLASS is out of range. */
 std::vector<DeformTiming> measure_deform_plan(int size_class);
 

@@ -12,6 +12,7 @@
 #define SHADOWVOL_MESH_H
 
 #include "shadowvol.h"
+#include "shadowvol_planes.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -162,6 +163,27 @@ AlignedVector<Vec4> shadow_vertices_for_light(const PreparedSurface &s, const Ve
  * and extents rounded so that center +- extents contains every vertex
  * (extents rounded up). An empty surface gives zero bounds. */
 Bounds surface_bounds(const PreparedSurface &s);
+
+/* The triangles of an index list grouped for the clustered plane kernels
+ * (include/shadowvol_planes.h, "Planes by clusters"): owning storage, and
+ * view() for the kernels. Built once per index list; the planes of every
+ * frame then come from the clusters and that frame's positions. */
+struct PlaneClusters {
+    std::vector<int> vertex_begin, group_begin;
+    std::vector<uint32_t> vertex_offsets, plane_offsets;
+    std::vector<uint8_t> corners;
+    int num_clusters() const { return (int)group_begin.size() - 1; }
+    sv_plane_clusters view() const;
+};
+
+/* Greedy clusters, grown over shared vertices: a cluster starts at the
+ * first triangle not yet in one and takes, again and again, the triangle
+ * sharing the most corners with it (ties: the first met), while the
+ * cluster stays within SV_PLANE_CLUSTER_VERTICES vertices. Deterministic.
+ * Throws PrepareError when an index is negative or not below NUM_VERTICES,
+ * for a negative count, or for more vertices or triangles than the 32-bit
+ * offsets reach (include/shadowvol_planes.h). No triangles: no clusters. */
+PlaneClusters plane_clusters(const int *indices, int num_triangles, int num_vertices);
 
 } // namespace sv
 

@@ -201,12 +201,15 @@ int sv_shadow_volume_for_light(const sv_plan *plan, const sv_surface *surface, c
  * "class N skinning avx2 2.9", ticks per triangle). With neither, the
  * animation layer uses its static choice (sv::deform_plan_for says which). */
 typedef enum sv_deform_routine {
-    SV_DEFORM_SKINNING,      /* a skinning kernel's name */
-    SV_DEFORM_DERIVE_PLANES, /* a planes variant's name */
-    SV_DEFORM_SKIN_PLANES,   /* a one-pass kernel's name, or "none": two passes */
+    SV_DEFORM_SKINNING,         /* a skinning kernel's name */
+    SV_DEFORM_DERIVE_PLANES,    /* a planes variant's name */
+    SV_DEFORM_SKIN_PLANES,      /* a one-pass kernel's name, or "none": two passes */
+    SV_DEFORM_PLANES_CLUSTERED, /* a clustered planes kernel's name (sv_planes_clustered_variants),
+                                   or "none": the planes variant */
     SV_NUM_DEFORM_ROUTINES
 } sv_deform_routine;
-/* "skinning", "derive_planes", "skin_planes"; NULL out of range. */
+/* "skinning", "derive_planes", "skin_planes", "derive_planes_clustered";
+ * NULL out of range. */
 const char *sv_deform_routine_name(sv_deform_routine r);
 
 typedef struct sv_deform_choice {

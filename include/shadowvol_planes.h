@@ -92,6 +92,73 @@ void sv_derive_planes_avx2(const float *positions, const int *indices, int numTr
 void sv_derive_planes_avx512(const float *positions, const int *indices, int numTriangles,
                              Plane *planes);
 
+/* ---- Planes by clusters ---------------------------------------------------
+ * The same planes, bit for bit, with the corners taken from registers
+ * instead of memory. Every triangle's three corners are a gather from
+ * random vertices, and that gather (masked loads and transposes), not the
+ * arithmetic, is most of the time of the variants above (docs/PLANES.md
+ * measures both). So the triangles are grouped once per index list into
+ * clusters of at most SV_PLANE_CLUSTER_VERTICES vertices; a kernel loads a
+ * cluster's vertices once into registers (x, y and z of 32 vertices in six
+ * 512-bit registers) and takes each corner by one two-register permute
+ * (vpermt2ps), 16 triangles at a time. A vertex shared by six triangles is
+ * loaded about once per cluster instead of six times.
+ * sv::plane_clusters (include/shadowvol_mesh.h) builds them.
+ *
+ * Cluster c has the vertex list vertex_offsets[vertex_begin[c] ..
+ * vertex_begin[c+1]): 16 or 32 entries, its vertices (at most 32) and then
+ * copies of its first (so a kernel loads whole halves, no count), each as
+ * the byte offset of the vertex in the positions (12 * vertex: one load
+ * and no arithmetic per address). Its triangles come in groups of 16,
+ * groups group_begin[c] .. group_begin[c+1]) (at least one); group g has
+ * the byte offsets of the triangles' planes (16 * triangle)
+ * plane_offsets[16g .. 16g + 16) and their corners, places in the
+ * cluster's vertex list, at corners + 48g: the 16 first corners, then the
+ * 16 second, then the 16 third, each triangle's in its index order (so
+ * the planes are the same). A cluster's last group is filled up by
+ * repeating its last triangle with its corners: that plane is written
+ * again, with the same bits, so a kernel needs no count. Every triangle of
+ * the index list is in exactly one cluster, in any order. Offsets are
+ * 32-bit unsigned: at most 357,913,941 vertices and 268,435,455 triangles
+ * (sv::plane_clusters refuses more).
+ * Clusters come from sv::plane_clusters and are trusted (not checked by
+ * the kernels: a place beyond the list reads a wrong vertex). */
+#define SV_PLANE_CLUSTER_VERTICES 32
+typedef struct sv_plane_clusters {
+    int num_clusters;
+    const int *vertex_begin;        /* num_clusters + 1, multiples of 16 */
+    const uint32_t *vertex_offsets; /* 12 * vertex number */
+    const int *group_begin;         /* num_clusters + 1 */
+    const uint32_t *plane_offsets;  /* 16 per group: 16 * triangle number */
+    const uint8_t *corners;         /* 48 bytes per group */
+} sv_plane_clusters;
+
+/* Plane t = sv_derive_planes_c_ref's plane t for every triangle of the
+ * clusters, BIT-IDENTICAL to it (the same float sequence, the zero plane
+ * the same). The kernels read each cluster vertex's 12 bytes only (masked
+ * loads) and write the triangles' planes only. */
+typedef void (*sv_derive_planes_clustered_fn)(const float *positions,
+                                              const sv_plane_clusters *clusters, Plane *planes);
+/* Cluster by cluster, triangle by triangle, sv_derive_planes_c_ref's
+ * expression on the cluster's vertex numbers: the definition. */
+void sv_derive_planes_clustered_c_ref(const float *positions, const sv_plane_clusters *clusters,
+                                      Plane *planes);
+/* AVX-512 (F, VL, BW): a cluster's vertices transposed into x, y, z of 32
+ * lanes, corners by vpermt2ps, 16 planes a step, stored one by one to
+ * their triangles. No AVX2 variant: AVX2 has no two-register permute, and
+ * a 32-entry lookup by four vpermps and three blends costs more than the
+ * loads it replaces. */
+void sv_derive_planes_clustered_avx512(const float *positions, const sv_plane_clusters *clusters,
+                                       Plane *planes);
+
+typedef struct sv_planes_clustered_variant {
+    const char *name; /* "clusters_c_ref", "clusters_avx512" */
+    unsigned isa;
+    sv_derive_planes_clustered_fn derive_planes;
+} sv_planes_clustered_variant;
+const sv_planes_clustered_variant *sv_planes_clustered_variants(int *count);
+const sv_planes_clustered_variant *sv_planes_clustered_variant_by_name(const char *name);
+
 /* ---- Facing straight from positions (BFG) --------------------------------
  * No stored planes: for triangle t (corners as above) and LIGHT (x,y,z,w as
  * sv_calculate_facing takes it),

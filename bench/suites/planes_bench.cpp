@@ -11,8 +11,10 @@
  * generated 224 x 224-quad height field (100,352 triangles) in row order.
  *
  * Rows (ticks per triangle, median of calls, min in the JSON):
- *  1. derive planes, every variant the CPU runs; every call's planes
- *     compared bit for bit with the C reference's.
+ *  1. derive planes, every variant the CPU runs, and by clusters (every
+ *     clustered kernel, the clusters built once beforehand: that build's
+ *     ticks too); every call's planes compared bit for bit with the C
+ *     reference's.
  *  2. a frame of 1 and of 4 lights (moving: 16 point lights around the
  *     mesh, the next 1 or 4 in each call):
  *       bfg     sv_facing_from_positions per light (each variant);
@@ -33,8 +35,10 @@
 #include <vector>
 
 #include <unistd.h>
+#include <x86intrin.h>
 
 #include "json_writer.h"
+#include "shadowvol_mesh.h"
 #include "planes_bench.h"
 #include "seed_bench.h"
 #include "shadowvol_planes.h"
@@ -64,6 +68,7 @@ struct PlanesResult {
     PlanesMesh mesh;
     std::vector<PlanesRow> rows;
     long long disagree = 0, compared = 0; /* bfg facing vs plane facing */
+    int clusters = 0;                     /* sv::plane_clusters of the mesh */
 };
 
 PlanesMesh from_workload(const SeedMesh &m) {
@@ -156,6 +161,29 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
             [&](int) { return first_plane_diff(planes.data(), refPlanes); });
         res.rows.push_back(r);
     }
+    /* The clustered kernels (include/shadowvol_planes.h): the clusters are
+     * built once per index list, outside the timing (their cost, once, in
+     * the "clusters" row: ticks per triangle of one build). */
+    uint64_t b0 = __rdtsc();
+    const sv::PlaneClusters clusters = sv::plane_clusters(idx, n, m.vertices);
+    PlanesRow build{"cluster_build", "clusters", {}};
+    build.t.median = build.t.min = (double)(__rdtsc() - b0);
+    build.t.ok = true;
+    build.t.calls = 1;
+    res.rows.push_back(build);
+    res.clusters = clusters.num_clusters();
+    const sv_plane_clusters view = clusters.view();
+    const sv_planes_clustered_variant *cv = sv_planes_clustered_variants(&count);
+    for (int i = 0; i < count; i++) {
+        if ((cv[i].isa & sv_cpu_isa()) != cv[i].isa) continue;
+        const sv_planes_clustered_variant *v = &cv[i];
+        if (progress) std::fprintf(progress, "\r%s: derive %s        ", m.name.c_str(), v->name);
+        PlanesRow r{"derive", v->name, {}};
+        r.t = time_seed_row(
+            timer, [&](int) { v->derive_planes(pos, &view, planes.data()); },
+            [&](int) { return first_plane_diff(planes.data(), refPlanes); });
+        res.rows.push_back(r);
+    }
     for (int k : {1, 4}) {
         auto check_facing = [&](int i, const std::vector<std::vector<uint8_t>> &ref) {
             for (int j = 0; j < k; j++) {
@@ -201,23 +229,32 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
 }
 
 void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
-    std::vector<std::string> variants;
+    std::vector<std::string> variants, derive;
     for (const PlanesRow &r : results.front().rows) {
-        if (r.what == "derive") variants.push_back(r.variant);
+        if (r.what == "derive") derive.push_back(r.variant);
+        if (r.what == "bfg_1") variants.push_back(r.variant);
     }
-    std::fprintf(out, "\nderive planes, ticks per triangle (median; every call bit-identical to "
-                      "c_ref, else FAIL)\n");
+    std::fprintf(out,
+                 "\nderive planes, ticks per triangle (median; every call bit-identical to "
+                 "c_ref, else FAIL)\n"
+                 "  clusters_*: by clusters of at most %d vertices, built once per index "
+                 "list (build: ticks per triangle, once; tri/cl: triangles per cluster)\n",
+                 SV_PLANE_CLUSTER_VERTICES);
     std::fprintf(out, "%-24s %9s", "mesh", "triangles");
-    for (const std::string &v : variants) std::fprintf(out, " %11s", v.c_str());
-    std::fprintf(out, "\n");
+    for (const std::string &v : derive)
+        std::fprintf(out, " %*s", v.size() > 11 ? 15 : 11, v.c_str());
+    std::fprintf(out, " %7s %7s\n", "build", "tri/cl");
     for (const PlanesResult &r : results) {
         std::fprintf(out, "%-24s %9d", r.mesh.name.c_str(), r.mesh.triangles);
-        for (const std::string &v : variants) {
+        for (const std::string &v : derive) {
             std::fprintf(
-                out, " %11s",
+                out, " %*s", v.size() > 11 ? 15 : 11,
                 ticks_cell(find_variant_row(r.rows, "derive", v), r.mesh.triangles).c_str());
         }
-        std::fprintf(out, "\n");
+        std::fprintf(
+            out, " %7s %7.1f\n",
+            ticks_cell(find_variant_row(r.rows, "cluster_build", ""), r.mesh.triangles).c_str(),
+            r.clusters ? (double)r.mesh.triangles / r.clusters : 0.0);
     }
 
     std::fprintf(out,
@@ -282,6 +319,8 @@ std::string planes_json(const std::vector<PlanesResult> &results,
         j.value(r.disagree);
         j.key("facing_compared");
         j.value(r.compared);
+        j.key("clusters");
+        j.value(r.clusters);
         j.key("rows");
         j.begin_array();
         for (const PlanesRow &row : r.rows) {

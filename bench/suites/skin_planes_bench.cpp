@@ -44,6 +44,7 @@ struct PosedSurface {
     std::vector<float> want_pos;
     std::vector<Plane> want_planes;
     sv::SkinPlanesSchedule schedule;
+    sv::PlaneClusters clusters; /* for the clustered planes kernels */
     sv_skin_planes_args args{};
     /* The per-light job: the posed positions as Vec4, the stored planes
      * (the reference's, made beforehand), and per light of a frame (up to
@@ -146,6 +147,12 @@ void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>
     const sv_plan *plan = sv_plan_for(r.triangles / std::max(1, r.surfaces), SV_PLAN_ESTIMATE);
     const sv::DeformPlan deform = sv::deform_plan_for(r.triangles / std::max(1, r.surfaces));
     const sv_planes_variant *pv = deform.planes;
+    const sv_planes_clustered_variant *cv = nullptr;
+    int nc = 0;
+    const sv_planes_clustered_variant *all_clustered = sv_planes_clustered_variants(&nc);
+    for (int i = 1; i < nc; i++) { /* past the C reference */
+        if ((all_clustered[i].isa & sv_cpu_isa()) == all_clustered[i].isa) cv = &all_clustered[i];
+    }
     for (auto &s : surfaces) {
         const sv::PreparedSurface &p = s->as->prepared;
         for (std::size_t v = 0; v < s->vertices(); v++) {
@@ -153,6 +160,7 @@ void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>
                 Vec4{s->want_pos[3 * v], s->want_pos[3 * v + 1], s->want_pos[3 * v + 2], 1.0f});
         }
         s->bounds = sv::surface_bounds(p);
+        s->clusters = sv::plane_clusters(p.indices.data(), p.num_triangles(), p.num_vertices());
         for (int j = 0; j < 4; j++) {
             s->out[j].resize(sv_shadow_volume_capacity(p.num_indices(), p.num_sil_edges()));
             s->facing[j].resize((std::size_t)p.num_triangles() + 1);
@@ -214,6 +222,24 @@ void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>
             },
             [&](int i) { return check(i, k, ref_planes); });
         r.rows.push_back(derived);
+        /* The planes by clusters (the widest clustered kernel here). */
+        if (cv) {
+            SkinPlanesRow clustered{"job_clustered_" + n, cv->name, {}};
+            clustered.t = time_seed_row(
+                timer,
+                [&](int i) {
+                    for (auto &s : surfaces) {
+                        const sv_plane_clusters view = s->clusters.view();
+                        cv->derive_planes(s->want_pos.data(), &view, s->planes.data());
+                        for (int j = 0; j < k; j++) {
+                            volume(*s, plan, s->planes.data(),
+                                   lights[(std::size_t)((k * i + j) % kJobLights)], j, nullptr);
+                        }
+                    }
+                },
+                [&](int i) { return check(i, k, ref_planes); });
+            r.rows.push_back(clustered);
+        }
         SkinPlanesRow bfg{"job_bfg_" + n, pv->name, {}};
         bfg.t = time_seed_row(
             timer,
@@ -390,9 +416,11 @@ void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results) {
                       "planes + facing + volume (sv_shadow_volume_for_light), ticks per triangle "
                       "(median; every volume checked against the C references)\n"
                       "  stored: the planes made beforehand; derived: derived once per frame "
-                      "(the planned variant); bfg: facing from positions per light, no planes\n");
-    std::fprintf(out, "%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s\n", "character", "triangles",
-                 "stored 1", "derived", "ratio", "bfg 1", "stored 4", "derived", "ratio", "bfg 4");
+                      "(the planned variant); clusters: derived by the widest clustered kernel "
+                      "(- where none runs); bfg: facing from positions per light, no planes\n");
+    std::fprintf(out, "%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "character",
+                 "triangles", "stored 1", "derived", "ratio", "clusters", "ratio", "bfg 1",
+                 "stored 4", "derived", "ratio", "clusters", "ratio", "bfg 4");
     for (const SkinPlanesResult &r : results) {
         auto row = [&](const char *what) { return find_variant_row(r.rows, what, ""); };
         auto ratio = [&](const char *a, const char *b) {
@@ -403,17 +431,22 @@ void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results) {
             }
             return std::string(buf);
         };
-        std::fprintf(out, "%-22s %9d %8s %8s %8s %8s %8s %8s %8s %8s\n", r.name.c_str(),
-                     r.triangles, ticks_cell(row("job_stored_1"), r.triangles).c_str(),
+        std::fprintf(out, "%-22s %9d %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n",
+                     r.name.c_str(), r.triangles,
+                     ticks_cell(row("job_stored_1"), r.triangles).c_str(),
                      ticks_cell(row("job_derived_1"), r.triangles).c_str(),
                      ratio("job_derived_1", "job_stored_1").c_str(),
+                     ticks_cell(row("job_clustered_1"), r.triangles).c_str(),
+                     ratio("job_clustered_1", "job_stored_1").c_str(),
                      ticks_cell(row("job_bfg_1"), r.triangles).c_str(),
                      ticks_cell(row("job_stored_4"), r.triangles).c_str(),
                      ticks_cell(row("job_derived_4"), r.triangles).c_str(),
                      ratio("job_derived_4", "job_stored_4").c_str(),
+                     ticks_cell(row("job_clustered_4"), r.triangles).c_str(),
+                     ratio("job_clustered_4", "job_stored_4").c_str(),
                      ticks_cell(row("job_bfg_4"), r.triangles).c_str());
     }
-    std::fprintf(out, "  ratio: derived / stored, same run\n");
+    std::fprintf(out, "  ratio: derived (or clusters) / stored, same run\n");
 }
 
 void skin_planes_json(JsonWriter &j, const std::vector<SkinPlanesResult> &results) {

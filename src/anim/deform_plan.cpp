@@ -126,6 +126,8 @@ DeformPlan deform_plan_for(int num_triangles) {
     p.planes = chosen<sv_planes_variant>(c, SV_DEFORM_DERIVE_PLANES, sv_planes_variant_by_name,
                                          &source);
     if (!p.planes) p.planes = sv_best_planes_variant();
+    p.clustered = chosen<sv_planes_clustered_variant>(c, SV_DEFORM_PLANES_CLUSTERED,
+                                                      sv_planes_clustered_variant_by_name, &source);
     source = "static";
     p.skin_planes = chosen<SkinPlanesKernel>(c, SV_DEFORM_SKIN_PLANES, skin_planes_kernel_by_name,
                                              &source);
@@ -186,6 +188,15 @@ std::vector<DeformTiming> measure_deform_plan(int size_class) {
                          },
                          true});
     }
+    const PlaneClusters clusters = plane_clusters(f.indices.data(), f.triangles, (int)f.vertices);
+    const sv_plane_clusters cview = clusters.view();
+    const sv_planes_clustered_variant *cv = sv_planes_clustered_variants(&n);
+    for (int i = 0; i < n; i++) {
+        if (!runs(cv[i].isa)) continue;
+        const sv_planes_clustered_variant *v = &cv[i];
+        cands.push_back({SV_DEFORM_PLANES_CLUSTERED, v->name,
+                         [&, v] { v->derive_planes(want.data(), &cview, planes.data()); }, true});
+    }
     sv_skin_planes_args args{};
     args.joint_matrices = f.matrices.data();
     args.rest = f.rest.data();
@@ -217,6 +228,7 @@ std::vector<DeformTiming> measure_deform_plan(int size_class) {
             std::memset(static_cast<void *>(planes.data()), 0xCD, sizeof(Plane) * planes.size());
             c.run();
             const bool pos_ok = c.routine == SV_DEFORM_DERIVE_PLANES ||
+                                c.routine == SV_DEFORM_PLANES_CLUSTERED ||
                                 std::memcmp(pos.data(), want.data(), 4 * pos.size()) == 0;
             const bool planes_ok = !c.planes_too ||
                                    std::memcmp(static_cast<const void *>(planes.data()),
@@ -243,7 +255,15 @@ std::vector<DeformTiming> measure_deform_plan(int size_class) {
     };
     const Candidate *ks = pick(SV_DEFORM_SKINNING, best_skinning_kernel()->name);
     const Candidate *kp = pick(SV_DEFORM_DERIVE_PLANES, sv_best_planes_variant()->name);
-    const double two = ks->best + kp->best;
+    /* Clusters only when more than 3% faster than the chosen variant. */
+    const Candidate *kc = nullptr;
+    for (const Candidate &c : cands) {
+        if (c.routine == SV_DEFORM_PLANES_CLUSTERED && c.best < kp->best / 1.03 &&
+            (!kc || c.best < kc->best)) {
+            kc = &c;
+        }
+    }
+    const double two = ks->best + (kc ? kc->best : kp->best);
     const Candidate *kf = nullptr;
     for (const Candidate &c : cands) {
         if (c.routine == SV_DEFORM_SKIN_PLANES && c.best < two / 1.03 &&
@@ -253,12 +273,22 @@ std::vector<DeformTiming> measure_deform_plan(int size_class) {
     }
     sv_deform_choice_set(size_class, SV_DEFORM_SKINNING, ks->name.c_str(), ks->best);
     sv_deform_choice_set(size_class, SV_DEFORM_DERIVE_PLANES, kp->name.c_str(), kp->best);
+    sv_deform_choice_set(size_class, SV_DEFORM_PLANES_CLUSTERED, kc ? kc->name.c_str() : "none",
+                         kc ? kc->best : kp->best);
     sv_deform_choice_set(size_class, SV_DEFORM_SKIN_PLANES, kf ? kf->name.c_str() : "none",
                          kf ? kf->best : two);
 
     std::vector<DeformTiming> out;
-    out.reserve(cands.size() + 1);
-    for (const Candidate &c : cands) out.push_back({c.routine, c.name, c.best});
+    out.reserve(cands.size() + 2);
+    for (std::size_t i = 0; i < cands.size(); i++) {
+        const Candidate &c = cands[i];
+        out.push_back({c.routine, c.name, c.best});
+        /* "none" (the chosen planes variant) after the clustered kernels. */
+        if (c.routine == SV_DEFORM_PLANES_CLUSTERED &&
+            (i + 1 == cands.size() || cands[i + 1].routine != SV_DEFORM_PLANES_CLUSTERED)) {
+            out.push_back({SV_DEFORM_PLANES_CLUSTERED, "none", kp->best});
+        }
+    }
     out.push_back({SV_DEFORM_SKIN_PLANES, "two_passes", two});
     return out;
 }

@@ -113,7 +113,7 @@ bool tune_deform(int c) {
         const bool chosen = sv_deform_choice_for(c, x.routine, &ch) == 1 &&
                             (x.variant == ch.variant ||
                              (x.variant == "two_passes" && std::string(ch.variant) == "none"));
-        std::printf("%-22s %-14s %12.2f  %s\n", sv_deform_routine_name(x.routine),
+        std::printf("%-24s %-16s %10.2f  %s\n", sv_deform_routine_name(x.routine),
                     x.variant.c_str(), x.ticks_per_triangle, chosen ? "<- planned" : "");
     }
     return true;

@@ -82,7 +82,8 @@ extern "C" {
 
 const char *sv_deform_routine_name(sv_deform_routine r) {
     static const char *const kNames[SV_NUM_DEFORM_ROUTINES] = {"skinning", "derive_planes",
-                                                               "skin_planes"};
+                                                               "skin_planes",
+                                                               "derive_planes_clustered"};
     return r >= 0 && r < SV_NUM_DEFORM_ROUTINES ? kNames[r] : nullptr;
 }
 

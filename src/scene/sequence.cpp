@@ -38,6 +38,7 @@ struct SceneSequence::Model {
     /* Per surface of the asset: its one-pass schedule (built the first time
      * the surface is skinned with planes). */
     std::vector<SkinPlanesSchedule> schedules;
+    std::vector<PlaneClusters> clusters; /* per surface, when the plan takes clusters */
 
     bool surface_moves(int s) const {
         const AnimatedSurface &as = asset.surfaces[(std::size_t)s];
@@ -55,7 +56,8 @@ struct SceneSequence::Model {
 SceneSequence::SceneSequence(const SequenceOptions &o)
     : skinning_(o.skinning ? o.skinning : best_skinning_kernel()),
       planes_(o.planes ? o.planes : sv_best_planes_variant()), skin_planes_(o.skin_planes),
-      forced_(o.skinning || o.planes || o.skin_planes), aspect_(o.aspect) {
+      clustered_(o.clustered), forced_(o.skinning || o.planes || o.skin_planes || o.clustered),
+      aspect_(o.aspect) {
     std::vector<ModelPlacement> files;
     files.push_back({o.file, o.placement, o.animation});
     files.insert(files.end(), o.adds.begin(), o.adds.end());
@@ -162,6 +164,7 @@ DeformPlan SceneSequence::deform_for(int num_triangles) const {
     d.skinning = skinning_;
     d.planes = planes_;
     d.skin_planes = skin_planes_;
+    d.clustered = clustered_;
     d.source = "options";
     return d;
 }
@@ -230,9 +233,22 @@ PoseStats SceneSequence::set_time(double time) {
         if (one_pass) {
             std::swap(m.plane_scratch, s.prepared.planes);
         } else {
-            k0 = __rdtsc();
-            d.planes->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
-                                    s.prepared.num_triangles(), s.prepared.planes.data());
+            if (d.clustered) {
+                m.clusters.resize(m.asset.surfaces.size());
+                PlaneClusters &pc = m.clusters[(std::size_t)link.surface];
+                if (pc.group_begin.empty()) {
+                    pc = plane_clusters(s.prepared.indices.data(), s.prepared.num_triangles(),
+                                        s.prepared.num_vertices());
+                }
+                const sv_plane_clusters view = pc.view();
+                k0 = __rdtsc();
+                d.clustered->derive_planes(s.prepared.positions.data(), &view,
+                                           s.prepared.planes.data());
+            } else {
+                k0 = __rdtsc();
+                d.planes->derive_planes(s.prepared.positions.data(), s.prepared.indices.data(),
+                                        s.prepared.num_triangles(), s.prepared.planes.data());
+            }
             st.ticks_planes += __rdtsc() - k0;
         }
         st.planes_derived += s.prepared.num_triangles();

@@ -47,11 +47,14 @@ struct SequenceOptions {
     const SkinningKernel *skinning = nullptr;  /* nullptr: the planned or static choice */
     const sv_planes_variant *planes = nullptr; /* nullptr: the planned or static choice */
     /* Skinned surfaces: positions and planes in one pass by this kernel
-     * (nullptr: two passes). With none of the three set, each surface runs
+     * (nullptr: two passes). With none of the four set, each surface runs
      * what deform_plan_for() chooses for its size (the planner's
      * measurement or wisdom, else the static choice); with any set, the
      * ones not set are the static choices and two passes. */
     const SkinPlanesKernel *skin_planes = nullptr;
+    /* Two passes: the planes by clusters with this kernel instead of
+     * PLANES (nullptr: PLANES). */
+    const sv_planes_clustered_variant *clustered = nullptr;
 };
 
 /* What set_time did. */
@@ -103,8 +106,9 @@ private:
     std::string animation_name_;
     const SkinningKernel *skinning_;
     const sv_planes_variant *planes_;
-    const SkinPlanesKernel *skin_planes_; /* nullptr: two passes */
-    bool forced_;                         /* the options named a kernel */
+    const SkinPlanesKernel *skin_planes_;          /* nullptr: two passes */
+    const sv_planes_clustered_variant *clustered_; /* nullptr: planes_ */
+    bool forced_;                                  /* the options named a kernel */
     DeformPlan deform_for(int num_triangles) const;
     double aspect_;
 };

@@ -26,7 +26,9 @@ assert d["schema"] == "shadowvol-planes/1"
 assert len(d["meshes"]) == 2, d["meshes"]
 for m in d["meshes"]:
     whats = {r["routine"] for r in m["rows"]}
-    assert whats == {"derive", "bfg_1", "bfg_4", "planes_1", "planes_4"}, whats
+    assert whats == {"derive", "cluster_build", "bfg_1", "bfg_4", "planes_1", "planes_4"}, whats
+    assert any(r["variant"] == "clusters_c_ref" for r in m["rows"] if r["routine"] == "derive")
+    assert m["clusters"] > 0, m["clusters"]
     for r in m["rows"]:
         assert r["ok"] is True and r["calls"] > 0 and r["ticks_per_triangle"] > 0, r
     assert 0 <= m["bfg_vs_planes_facing_differ"] <= m["facing_compared"]

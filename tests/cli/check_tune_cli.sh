@@ -15,9 +15,9 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 rc=$?
 cat "$tmp/out"
 [ $rc -eq 0 ] || err "tune --class 0 exited $rc: $(cat "$tmp/err")"
-# Six volume routines and three of the deforming pass (skinning, planes,
-# one pass or two).
-[ "$(grep -c '<- planned' "$tmp/out")" -eq 9 ] || err "not one planned variant per routine"
+# Six volume routines and four of the deforming pass (skinning, planes,
+# planes by clusters or not, one pass or two).
+[ "$(grep -c '<- planned' "$tmp/out")" -eq 10 ] || err "not one planned variant per routine"
 for r in calculate_facing calculate_cull_bits count_facing count_facing_cull create_sil_triangles \
          create_cap_triangles skinning derive_planes skin_planes; do
   grep -q "^$r .* c_ref " "$tmp/out" || err "no c_ref timing for $r"
@@ -42,9 +42,9 @@ awk '$1 ~ /^(calc|count|create)/ { if (!($1 in best) || $3 < best[$1]) best[$1] 
 # The deforming pass: skinning and planes planned at the fastest or within
 # the 3% margin of it; the one-pass kernel only when it beats the two
 # passes by more than 3%, else "two_passes".
-awk '$1 ~ /^(skinning|derive_planes|skin_planes)$/ { t[$1 " " $2] = $3
+awk '$1 ~ /^(skinning|derive_planes|derive_planes_clustered|skin_planes)$/ { t[$1 " " $2] = $3
        if (!($1 in best) || $3 < best[$1]) best[$1] = $3 }
-     $1 ~ /^(skinning|derive_planes|skin_planes)$/ && /<- planned/ { planned[$1] = $3 }
+     $1 ~ /^(skinning|derive_planes|derive_planes_clustered|skin_planes)$/ && /<- planned/ { planned[$1] = $3 }
      END { for (r in best) if (!(r in planned) || planned[r] > best[r] * 1.03 + 0.005) { print r; bad = 1 }
            exit bad }' "$tmp/out" \
   || err "a deforming-pass choice is not within 3% of the fastest"
@@ -57,8 +57,8 @@ rc=$?
 grep -q '^class 0 (.*character_1344.glb, surface .*: 1344 triangles)$' "$tmp/out" || err "tune MODEL: not measured on the model: $(head -5 "$tmp/out")"
 [ "$(grep -c '^class [0-9] (' "$tmp/out")" -eq 1 ] || err "tune MODEL measured other classes than the model's"
 [ "$(grep -c '^class 0, deforming surfaces' "$tmp/out")" -eq 1 ] || err "tune MODEL: no deforming pass for its class"
-[ "$(grep -c '<- planned' "$tmp/out")" -eq 9 ] || err "tune MODEL: not one planned variant per routine"
-[ "$(grep -c '^class 0 ' "$tmp/m/wisdom")" -eq 9 ] && ! grep -q '^class [123] ' "$tmp/m/wisdom" \
+[ "$(grep -c '<- planned' "$tmp/out")" -eq 10 ] || err "tune MODEL: not one planned variant per routine"
+[ "$(grep -c '^class 0 ' "$tmp/m/wisdom")" -eq 10 ] && ! grep -q '^class [123] ' "$tmp/m/wisdom" \
   || err "tune MODEL: the wisdom is not the model's class alone"
 
 # --dry-run saves nothing.

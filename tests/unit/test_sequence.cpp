@@ -128,6 +128,32 @@ SV_TIERED_TEST(Sequence, StaticVolumesAreReusedAndKernelsAgree) {
             EXPECT_EQ(g.rgb, f.rgb) << kernels[k].name << " / " << planes[p].name;
         }
     }
+    /* The planes by clusters: the same planes, bit for bit, and frame. */
+    int nc = 0;
+    const sv_planes_clustered_variant *clustered = sv_planes_clustered_variants(&nc);
+    for (int c = 0; c < nc; c++) {
+        if (!svtest::in_this_run(clustered[c].isa, clustered[c].name)) continue;
+        SequenceOptions so = demo();
+        so.clustered = &clustered[c];
+        SceneSequence other(so);
+        for (double t : {0.125, 0.5}) {
+            seq.set_time(t);
+            other.set_time(t);
+            const Scene &a = seq.scene(), &b = other.scene();
+            ASSERT_EQ(a.surfaces.size(), b.surfaces.size());
+            for (std::size_t i = 0; i < a.surfaces.size(); i++) {
+                const auto &pa = a.surfaces[i].prepared.planes, &pb = b.surfaces[i].prepared.planes;
+                ASSERT_EQ(pa.size(), pb.size());
+                EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(Plane)), 0)
+                    << clustered[c].name << ", surface " << i << ", time " << t;
+            }
+        }
+        render::RenderOptions q = o;
+        q.cache = nullptr;
+        other.set_time(0.125);
+        seq.set_time(0.125);
+        EXPECT_EQ(render::render_frame(other.scene(), q).rgb, f.rgb) << clustered[c].name;
+    }
 }
 
 TEST(Sequence, UnknownAnimationIsRefusedWithTheList) {

@@ -376,7 +376,7 @@ TEST(DeformPlan, StaticChoiceAndUnknownNames) {
 TEST(DeformPlan, MeasurementChoosesRunnableKernels) {
     PlanReset reset;
     const std::vector<sv::DeformTiming> t = sv::measure_deform_plan(0);
-    int want = 1; // "two passes"
+    int want = 2; // "two passes", and "none" for the clusters
     int n = 0;
     const sv::SkinningKernel *sk = sv::skinning_kernels(&n);
     for (int i = 0; i < n; i++) want += (sk[i].isa & sv_cpu_isa()) == sk[i].isa;
@@ -384,6 +384,8 @@ TEST(DeformPlan, MeasurementChoosesRunnableKernels) {
     for (int i = 0; i < n; i++) want += (pv[i].isa & sv_cpu_isa()) == pv[i].isa;
     const sv::SkinPlanesKernel *fk = sv::skin_planes_kernels(&n);
     for (int i = 0; i < n; i++) want += (fk[i].isa & sv_cpu_isa()) == fk[i].isa;
+    const sv_planes_clustered_variant *cv = sv_planes_clustered_variants(&n);
+    for (int i = 0; i < n; i++) want += (cv[i].isa & sv_cpu_isa()) == cv[i].isa;
     EXPECT_EQ((int)t.size(), want);
     for (const sv::DeformTiming &x : t) {
         EXPECT_GT(x.ticks_per_triangle, 0.0) << x.variant;
