@@ -152,7 +152,7 @@ void sv_derive_planes_clustered_avx512(const float *positions, const sv_plane_cl
                                        Plane *planes);
 
 typedef struct sv_planes_clustered_variant {
-    const char *name; /* "clusters_c_ref", "clusters_avx512" */
+    const char *name; /* "c_ref", "avx512" (the same names as the planes variants') */
     unsigned isa;
     sv_derive_planes_clustered_fn derive_planes;
 } sv_planes_clustered_variant;

@@ -177,8 +177,9 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
     for (int i = 0; i < count; i++) {
         if ((cv[i].isa & sv_cpu_isa()) != cv[i].isa) continue;
         const sv_planes_clustered_variant *v = &cv[i];
-        if (progress) std::fprintf(progress, "\r%s: derive %s        ", m.name.c_str(), v->name);
-        PlanesRow r{"derive", v->name, {}};
+        if (progress)
+            std::fprintf(progress, "\r%s: derive clusters %s   ", m.name.c_str(), v->name);
+        PlanesRow r{"derive", std::string("clusters_") + v->name, {}};
         r.t = time_seed_row(
             timer, [&](int) { v->derive_planes(pos, &view, planes.data()); },
             [&](int) { return first_plane_diff(planes.data(), refPlanes); });

@@ -224,7 +224,7 @@ void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>
         r.rows.push_back(derived);
         /* The planes by clusters (the widest clustered kernel here). */
         if (cv) {
-            SkinPlanesRow clustered{"job_clustered_" + n, cv->name, {}};
+            SkinPlanesRow clustered{"job_clustered_" + n, std::string("clusters_") + cv->name, {}};
             clustered.t = time_seed_row(
                 timer,
                 [&](int i) {

@@ -15,6 +15,7 @@
 #include <limits>
 
 #include "check_run.h"
+#include "shadowvol_mesh.h"
 
 namespace svcheck {
 
@@ -928,6 +929,47 @@ void run_derive_planes(std::vector<Row> &rows, Rng &rng) {
             check_guards(row, at,
                          {"around the planes", "around the positions", "around the indices"},
                          {&out, &pbuf, &ibuf});
+        }
+    });
+}
+
+// The planes by clusters: the clusters of each case's index list built by
+// sv::plane_clusters (its contract is the kernels' input), the planes
+// against sv_derive_planes_c_ref's on the same list bit for bit.
+void run_derive_planes_clustered(std::vector<Row> &rows, Rng &rng) {
+    for_each_case(false, kShapes, [&](int n, Shape shape, size_t caseno) {
+        const int v = n / 2 + 3;
+        const std::vector<float> pos = deform_positions(rng, v, shape);
+        const std::vector<int> ix = deform_indices(rng, n, v, shape);
+        const sv::PlaneClusters clusters = sv::plane_clusters(ix.data(), n, v);
+        const sv_plane_clusters view = clusters.view();
+        const uint8_t pat = guard_pattern(rng);
+        std::vector<Plane> want((size_t)n);
+        sv_derive_planes_c_ref(pos.data(), ix.data(), n, want.data());
+        const size_t po = pick(kIntOffsets, caseno), oo = pick(kIntOffsets, caseno + 3);
+        const std::string at = "n=" + std::to_string(n) + ", " + shape_name(shape) + ", " +
+                               std::to_string(clusters.num_clusters()) + " clusters, offset " +
+                               std::to_string(oo);
+        for (Row &row : rows) {
+            const Kernels &k = row.variant->for_triangles(n);
+            if (!k.clustered) continue; /* "planned" kept the planes variant for this class */
+            GuardedBuffer pbuf = guarded_copy(pos, po, pat);
+            GuardedBuffer out(want.size() * sizeof(Plane), oo, pat);
+            uint32_t failed = 0;
+            abi_call(row.abi, &failed, k.clustered->derive_planes, pbuf.as<const float>(), &view,
+                     out.as<Plane>());
+            count_case(row);
+            record_abi(row, failed, at);
+            for (size_t t = 0; t < want.size(); t++) {
+                // Bit for bit is the contract (-0.0 against 0.0, a NaN's payload).
+                // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
+                if (std::memcmp(out.data() + t * sizeof(Plane), &want[t], sizeof(Plane)) != 0) {
+                    record_failure(row, at, "plane " + std::to_string(t) + " differs from c_ref's");
+                    break;
+                }
+            }
+            if (!unchanged(pbuf, pos)) record_failure(row, at, "modified its const positions");
+            check_guards(row, at, {"around the planes", "around the positions"}, {&out, &pbuf});
         }
     });
 }

@@ -75,6 +75,7 @@ void run_shadow_volume_for_light(std::vector<Row> &rows, Rng &rng);
 void run_create_general_sil_triangles(std::vector<Row> &rows, Rng &rng);
 void run_create_general_cap_triangles(std::vector<Row> &rows, Rng &rng);
 void run_derive_planes(std::vector<Row> &rows, Rng &rng);
+void run_derive_planes_clustered(std::vector<Row> &rows, Rng &rng);
 void run_facing_from_positions(std::vector<Row> &rows, Rng &rng);
 void run_skinning(std::vector<Row> &rows, Rng &rng);
 void run_skin_planes(std::vector<Row> &rows, Rng &rng);

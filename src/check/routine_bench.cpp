@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "check_inputs.h"
+#include "shadowvol_mesh.h"
 #include "timer.h"
 
 namespace svcheck {
@@ -53,6 +54,8 @@ struct BenchWorkload::Data {
     // Seed 002's shadow mesh of the same triangles: three vertices a face
     // with its plane's normal, a point light with a range.
     std::vector<float> extrude_stream;
+    // The triangles' clusters, for the planes by clusters.
+    sv::PlaneClusters clusters;
     std::vector<Vec4> extrude_out;
     sv_extrude_light extrude_light{};
     // Every array a kernel reads or writes, on a 64-byte boundary.
@@ -118,6 +121,7 @@ struct BenchWorkload::Data {
             }
         }
         extrude_out.resize((size_t)3 * kTriangles);
+        clusters = sv::plane_clusters(indices.data(), kTriangles, numVerts);
         extrude_light = {light, 20.0f};
         // The fences' cost: an empty region, timed the same way.
         std::vector<double> t(kCalls);
@@ -248,6 +252,11 @@ double BenchWorkload::ticks(Routine routine, const Kernels &k) {
         a.out = d.pos_out.data();
         a.planes = d.plane_out.data();
         return d.time_calls([&] { k.skin_planes->fn(&a); });
+    }
+    case Routine::derive_planes_clustered: {
+        const sv_plane_clusters view = d.clusters.view();
+        return d.time_calls(
+            [&] { k.clustered->derive_planes(d.pos3.data(), &view, d.plane_out.data()); });
     }
     case Routine::extrude:
         return d.time_calls([&] {

@@ -31,6 +31,7 @@ const char *const kRoutineNames[kNumRoutines] = {
     "skinning",
     "skin_planes",
     "extrude",
+    "derive_planes_clustered",
 };
 
 // The library's own contract check decides whether bit 7 is in
@@ -74,6 +75,11 @@ void planned_deform(int c, Kernels &k) {
     if (sv_deform_choice_for(c, SV_DEFORM_SKIN_PLANES, &ch) == 1) {
         k.skin_planes = sv_skin_planes_variant_by_name(ch.variant);
         if (k.skin_planes && !runs_here(k.skin_planes->isa)) k.skin_planes = nullptr;
+    }
+    k.clustered = nullptr;
+    if (sv_deform_choice_for(c, SV_DEFORM_PLANES_CLUSTERED, &ch) == 1) {
+        k.clustered = sv_planes_clustered_variant_by_name(ch.variant);
+        if (k.clustered && !runs_here(k.clustered->isa)) k.clustered = nullptr;
     }
 }
 
@@ -119,6 +125,7 @@ bool Variant::has(Routine r) const {
     case Routine::skinning: return k.skin != nullptr;
     case Routine::skin_planes: return k.skin_planes != nullptr;
     case Routine::extrude: return k.extrude != nullptr;
+    case Routine::derive_planes_clustered: return k.clustered != nullptr;
     default: return k.kernels.count_facing != nullptr;
     }
 }
@@ -146,6 +153,9 @@ Variant make_variant(const std::string &name, const sv_facing_variant *facing,
         v.isa |= k.skin_planes->isa;
     }
     if ((k.extrude = sv_extrude_variant_by_name(name.c_str()))) v.isa |= k.extrude->isa;
+    if ((k.clustered = sv_planes_clustered_variant_by_name(name.c_str()))) {
+        v.isa |= k.clustered->isa;
+    }
     for (Kernels &c : v.by_class) c = k;
     return v;
 }
@@ -203,7 +213,8 @@ std::vector<Variant> library_variants() {
             }
         }
         planned_deform(c, k);
-        planned.isa |= k.planes->isa | k.skin->isa | (k.skin_planes ? k.skin_planes->isa : 0u);
+        planned.isa |= k.planes->isa | k.skin->isa | (k.skin_planes ? k.skin_planes->isa : 0u) |
+                       (k.clustered ? k.clustered->isa : 0u);
         // No planner choice for the extrusion: the static one, as the
         // renderer's (the widest this CPU runs).
         k.extrude = sv_best_extrude_variant();
@@ -292,6 +303,7 @@ std::vector<Result> check_routine(Routine routine, const std::vector<Variant> &t
     case Routine::skinning: run_skinning(rows, input); break;
     case Routine::skin_planes: run_skin_planes(rows, input); break;
     case Routine::extrude: run_extrude(rows, input); break;
+    case Routine::derive_planes_clustered: run_derive_planes_clustered(rows, input); break;
     }
     // Back in table order, each run row in its place.
     size_t next = 0;

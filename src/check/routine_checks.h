@@ -45,9 +45,10 @@ enum class Routine {
     facing_from_positions,
     skinning,
     skin_planes,
-    extrude, /* seed 002's vertex program (shadowvol_extrude.h, issue 31) */
+    extrude,                 /* seed 002's vertex program (shadowvol_extrude.h, issue 31) */
+    derive_planes_clustered, /* planes by clusters (shadowvol_planes.h, issue 32) */
 };
-constexpr int kNumRoutines = 17;
+constexpr int kNumRoutines = 18;
 const char *routine_name(Routine r);
 // false when NAME is none of routine_name()'s.
 bool routine_by_name(const std::string &name, Routine *out);
@@ -72,6 +73,9 @@ struct Kernels {
     const sv_skin_planes_variant *skin_planes = nullptr;
     // Seed 002's vertex program of the variant's name (null: none).
     const sv_extrude_variant *extrude = nullptr;
+    // The clustered planes kernel of the variant's name (null: none;
+    // planned: the planner's choice, none when it keeps the planes variant).
+    const sv_planes_clustered_variant *clustered = nullptr;
     // Whether the contract lets CountFacingCull see cull bit 7
     // (sse2_paper's does not, erratum D-5): asked of the library's own
     // contract check (sv_count_facing_cull_checked), not known by name.

@@ -27,9 +27,8 @@ void sv_derive_planes_clustered_c_ref(const float *positions, const sv_plane_clu
 }
 
 static const sv_planes_clustered_variant clustered_variants[] = {
-    {"clusters_c_ref", SV_ISA_NONE, sv_derive_planes_clustered_c_ref},
-    {"clusters_avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512,
-     sv_derive_planes_clustered_avx512},
+    {"c_ref", SV_ISA_NONE, sv_derive_planes_clustered_c_ref},
+    {"avx512", SV_ISA_SSE2 | SV_ISA_AVX2 | SV_ISA_AVX512, sv_derive_planes_clustered_avx512},
 };
 
 #define NUM_CLUSTERED_VARIANTS (sizeof clustered_variants / sizeof clustered_variants[0])

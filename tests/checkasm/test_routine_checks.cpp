@@ -236,6 +236,42 @@ TEST(RoutineChecks, ReportsAOnePassKernelThatDerivesBeforeSkinning) {
     EXPECT_GT(bad.failures, 0);
 }
 
+// The planes by clusters with a 16-entry lookup where the clusters need
+// 32 (vpermps where vpermt2ps belongs): a corner at place 16 or beyond
+// takes the vertex 16 places before it. Right on clusters of at most 16
+// vertices: only the larger cases meet it.
+void clustered_with_half_the_table(const float *positions, const sv_plane_clusters *c,
+                                   Plane *planes) {
+    for (int k = 0; k < c->num_clusters; k++) {
+        const uint32_t *list = c->vertex_offsets + c->vertex_begin[k];
+        for (int g = c->group_begin[k]; g < c->group_begin[k + 1]; g++) {
+            const uint8_t *corners = c->corners + 48 * (size_t)g;
+            for (int i = 0; i < 16; i++) {
+                const float *p[3];
+                for (int j = 0; j < 3; j++) {
+                    p[j] = positions + list[corners[16 * j + i] & 15] / 4;
+                }
+                const int tri[3] = {0, 1, 2};
+                const float corner_xyz[9] = {p[0][0], p[0][1], p[0][2], p[1][0], p[1][1],
+                                             p[1][2], p[2][0], p[2][1], p[2][2]};
+                Plane out;
+                sv_derive_planes_c_ref(corner_xyz, tri, 1, &out);
+                planes[c->plane_offsets[16 * (size_t)g + (size_t)i] / 16] = out;
+            }
+        }
+    }
+}
+
+TEST(RoutineChecks, ReportsAClusteredKernelWithHalfTheTable) {
+    static const sv_planes_clustered_variant broken = {"half_table", SV_ISA_NONE,
+                                                       clustered_with_half_the_table};
+    Variant v = svcheck::make_variant("half_table", nullptr, nullptr);
+    for (auto &k : v.by_class) k.clustered = &broken;
+    const Result bad = expect_reported(Routine::derive_planes_clustered, with_good({v}),
+                                       "half_table", "differs from c_ref's");
+    EXPECT_GT(bad.failures, 0);
+}
+
 // Seed 002's program as the seed writes it: rsq(0) = +inf for a light on
 // the vertex, so that vertex comes out NaN (the contract keeps it in place).
 // Right everywhere else: only the cases with the light on a vertex meet it.

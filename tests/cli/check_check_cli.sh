@@ -26,7 +26,7 @@ grep -q '^seed      42 ' "$tmp/a" || err "the seed line does not name seed 42"
 routines="calculate_facing calculate_cull_bits calculate_facing_count count_facing count_facing_cull
           create_sil_triangles create_cap_triangles shadow_volume shadow_volume_cull
           shadow_volume_for_light derive_planes facing_from_positions skinning skin_planes
-          extrude"
+          extrude derive_planes_clustered"
 variants=$("$sv" check --help | sed -n '/^  --variant V/{n;p}')
 [ -n "$variants" ] || err "--help lists no variants"
 # One line per routine and variant that has it: every variant has C-F and
@@ -46,8 +46,9 @@ for v in $variants; do
 done
 for r in $routines; do
   [ $r = shadow_volume_for_light ] || grep -qE "^$r +c_ref +ok " "$tmp/a" || err "no ok line for $r c_ref"
-  # planned runs a one-pass kernel only where the planner chose one.
-  [ $r = skin_planes ] || grep -qE "^$r +planned +ok " "$tmp/a" || err "no ok line for $r planned"
+  # planned runs a one-pass or clustered kernel only where the planner chose one.
+  [ $r = skin_planes ] || [ $r = derive_planes_clustered ] || grep -qE "^$r +planned +ok " "$tmp/a" \
+    || err "no ok line for $r planned"
 done
 
 # The kernels' routines (C-F and the volume) have the same variants, and
@@ -65,6 +66,12 @@ done
 # Seed 002's program: its own table (c_ref, avx2, avx512) and planned.
 [ "$(set_of extrude)" = "c_ref avx2 avx512 planned " ] \
   || err "extrude's variants ($(set_of extrude)) are not c_ref avx2 avx512 planned"
+# The planes by clusters: their own table (c_ref, avx512), and planned
+# where the planner chose clusters.
+case "$(set_of derive_planes_clustered)" in
+  "c_ref avx512 "|"c_ref avx512 planned ") ;;
+  *) err "derive_planes_clustered's variants ($(set_of derive_planes_clustered)) are not c_ref avx512 [planned]" ;;
+esac
 # The per-light call takes a plan: planned only.
 [ "$(set_of shadow_volume_for_light)" = "planned " ] || err "shadow_volume_for_light is not planned's alone"
 oks=$(grep -cE '^[a-z_]+ +[a-z0-9_]+ +ok \(' "$tmp/a")

@@ -598,8 +598,8 @@ SV_TIERED_TEST(PlaneClusters, RefusesBadInputAndBuildsNothingForNothing) {
         v->derive_planes(nullptr, &view, &guard);
         EXPECT_TRUE(same_bits(guard, (Plane{1, 2, 3, 4}))) << v->name;
     }
-    EXPECT_NE(sv_planes_clustered_variant_by_name("clusters_c_ref"), nullptr);
-    EXPECT_EQ(sv_planes_clustered_variant_by_name("clusters_avx2"), nullptr);
+    EXPECT_NE(sv_planes_clustered_variant_by_name("c_ref"), nullptr);
+    EXPECT_EQ(sv_planes_clustered_variant_by_name("avx2"), nullptr);
     EXPECT_EQ(sv_planes_clustered_variant_by_name(nullptr), nullptr);
 }
 
