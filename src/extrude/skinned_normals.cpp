@@ -58,36 +58,15 @@ SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s,
     return f;
 }
 
-int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,
-                    const sv_extrude_light &light) {
+void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
+                           SkinnedNormals normals, float *stream) {
     const PreparedSurface &p = s.prepared;
     const int faces = p.num_triangles();
     const int *ix = p.indices.data();
     const float *pos = frame.positions.data();
     const bool skinned = !frame.joint_matrices.empty();
-    if (normals == SkinnedNormals::neighbours) {
-        /* One expression for the face, whatever the vertex: the normal from
-         * the corners in the face's order, the dot with the light's
-         * direction to corner 0. Every vertex computes the same float. */
-        int64_t split = 0;
-        const Vec4 &L = light.position;
-        for (int t = 0; t < faces; t++) {
-            int keep[3];
-            for (int k = 0; k < 3; k++) {
-                const float *a = pos + 3 * (std::size_t)ix[3 * t];
-                const float *b = pos + 3 * (std::size_t)ix[3 * t + 1];
-                const float *c = pos + 3 * (std::size_t)ix[3 * t + 2];
-                const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-                const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-                const float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                                    e1[0] * e2[1] - e1[1] * e2[0]};
-                const float d[3] = {a[0] * L.w - L.x, a[1] * L.w - L.y, a[2] * L.w - L.z};
-                keep[k] = ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) < 0.0f;
-            }
-            split += keep[0] != keep[1] || keep[1] != keep[2];
-        }
-        return split;
-    }
+    /* The neighbours' normal is the skinned face's own: the recomputed one. */
+    if (normals == SkinnedNormals::neighbours) normals = SkinnedNormals::recomputed;
     std::vector<Plane> planes((std::size_t)faces);
     if (normals == SkinnedNormals::recomputed || !skinned) {
         sv_derive_planes_c_ref(pos, ix, faces, planes.data());
@@ -97,7 +76,6 @@ int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, Skinned
                                         : rest_planes(s);
     const int inf = s.influences;
     const float *m = frame.joint_matrices.data();
-    std::vector<float> stream((std::size_t)faces * 3 * SV_EXTRUDE_STREAM_FLOATS);
     for (int t = 0; t < faces; t++) {
         float face_normal[3] = {0, 0, 0};
         if (normals == SkinnedNormals::recomputed || !skinned) {
@@ -124,8 +102,7 @@ int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, Skinned
         }
         for (int k = 0; k < 3; k++) {
             const std::size_t v = (std::size_t)ix[3 * t + k];
-            float *out = &stream[(3 * (std::size_t)t + (std::size_t)k) * SV_EXTRUDE_STREAM_FLOATS];
-            out[0] = pos[3 * v], out[1] = pos[3 * v + 1], out[2] = pos[3 * v + 2];
+            float *out = stream + (3 * (std::size_t)t + (std::size_t)k) * SV_EXTRUDE_STREAM_FLOATS;
             float n[3] = {face_normal[0], face_normal[1], face_normal[2]};
             if (normals == SkinnedNormals::straightforward && skinned) {
                 /* The vertex's own weights on the rest face normal. */
@@ -144,6 +121,44 @@ int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, Skinned
             out[3] = n[0], out[4] = n[1], out[5] = n[2];
         }
     }
+}
+
+int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,
+                    const sv_extrude_light &light) {
+    const PreparedSurface &p = s.prepared;
+    const int faces = p.num_triangles();
+    const int *ix = p.indices.data();
+    const float *pos = frame.positions.data();
+    if (normals == SkinnedNormals::neighbours) {
+        /* One expression for the face, whatever the vertex: the normal from
+         * the corners in the face's order, the dot with the light's
+         * direction to corner 0. Every vertex computes the same float. */
+        int64_t split = 0;
+        const Vec4 &L = light.position;
+        for (int t = 0; t < faces; t++) {
+            int keep[3];
+            for (int k = 0; k < 3; k++) {
+                const float *a = pos + 3 * (std::size_t)ix[3 * t];
+                const float *b = pos + 3 * (std::size_t)ix[3 * t + 1];
+                const float *c = pos + 3 * (std::size_t)ix[3 * t + 2];
+                const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                const float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                    e1[0] * e2[1] - e1[1] * e2[0]};
+                const float d[3] = {a[0] * L.w - L.x, a[1] * L.w - L.y, a[2] * L.w - L.z};
+                keep[k] = ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) < 0.0f;
+            }
+            split += keep[0] != keep[1] || keep[1] != keep[2];
+        }
+        return split;
+    }
+    std::vector<float> stream((std::size_t)faces * 3 * SV_EXTRUDE_STREAM_FLOATS);
+    for (std::size_t j = 0; j < 3 * (std::size_t)faces; j++) {
+        const std::size_t v = (std::size_t)ix[j];
+        float *out = &stream[j * SV_EXTRUDE_STREAM_FLOATS];
+        out[0] = pos[3 * v], out[1] = pos[3 * v + 1], out[2] = pos[3 * v + 2];
+    }
+    write_skinned_normals(s, frame, normals, stream.data());
     const int n = 3 * faces;
     std::vector<Vec4> out((std::size_t)n);
     sv_extrude_c_ref(stream.data(), n, &light, out.data());

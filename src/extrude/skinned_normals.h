@@ -56,6 +56,14 @@ struct SkinnedFrame {
 };
 SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s, const Pose &pose);
 
+/* The normals of the NORMALS way at FRAME into the normal columns of
+ * STREAM, S's shadow mesh's (vertex 3t + k: corner k of S's triangle t;
+ * the caster itself, not a two-sided one). Neighbours write the recomputed
+ * normal: their own facing expression is not the seed's program, which
+ * the stream feeds. */
+void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
+                           SkinnedNormals normals, float *stream);
+
 /* Faces of S whose three vertices disagree on facing under LIGHT, the
  * normals given the NORMALS way at FRAME. */
 int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,

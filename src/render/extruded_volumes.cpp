@@ -113,6 +113,7 @@ void use_extruded_volumes(const Scene &scene, const RenderOptions &opt,
         two_sided[(std::size_t)si] = two_sided_caster(s.prepared, find_shells(s.prepared), rule);
         meshes[(std::size_t)si] = build_shadow_mesh(
             two_sided[(std::size_t)si] ? *two_sided[(std::size_t)si] : s.prepared);
+        if (opt.shadow_mesh_hook) opt.shadow_mesh_hook(si, meshes[(std::size_t)si]);
     });
     const sv_extrude_variant *variant = sv_best_extrude_variant();
     std::vector<Volume> job_volume((std::size_t)num_lights * (std::size_t)num_surfaces);

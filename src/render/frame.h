@@ -14,12 +14,14 @@
 #define SV_RENDER_FRAME_H
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "rasterizer.h"
 #include "reach.h"
 #include "shadowvol_casters.h"
+#include "shadowvol_extrude.h"
 #include "shadowvol_scene.h"
 #include "stencil_method.h"
 
@@ -166,6 +168,11 @@ struct RenderOptions {
      * paper's, in place of the seed's clamp0(range - |vLP|) for a light
      * with a range. */
     bool extrude_to_infinity = false;
+    /* --volume extrude, tests and tools only: called with each surface's
+     * shadow mesh once it is built (before any light's program runs), to
+     * give its vertices other normals (skinned_normals.h: the seed's
+     * skinned artifact). */
+    std::function<void(int surface, ShadowMesh &mesh)> shadow_mesh_hook;
     /* Which volume each shell casts: auto (closed shells the paper's
      * rule, the others the general rule: exact for any caster), closed
      * (the paper's everywhere) or general (docs/CASTERS.md). */
