@@ -14,19 +14,23 @@
 # face weights. (The ctest entry extrude_skinned_shared_models runs 4 and 2
 # frames.)
 #
-# usage: tools/extrude_skinned_table.sh [BUILD_DIR] [--fps F]   (default 30)
+# --png DIR: where skinned_artifact.png goes (the worst straightforward frame
+# of all at 480x360 beside the recomputed one, differing pixels magenta).
+#
+# usage: tools/extrude_skinned_table.sh [BUILD_DIR] [--fps F] [--png DIR]   (default 30, no image)
 set -u
 repo=$(cd "$(dirname "$0")/.." && pwd)
-build="$repo/build" fps=30
+build="$repo/build" fps=30 png=
 while [ $# -gt 0 ]; do
   case "$1" in
     --fps) fps="$2"; shift 2 ;;
-    -h|--help) sed -n 2,19p "$0"; exit 0 ;;
+    --png) png="$2"; shift 2 ;;
+    -h|--help) sed -n 2,22p "$0"; exit 0 ;;
     *) build="$1"; shift ;;
   esac
 done
 t="$build/tests/shadowvol_extrude_skinned_tests"
 [ -x "$t" ] || { echo "extrude_skinned_table: no $t (build first)" >&2; exit 2; }
-SV_TEST_SHARED_MODELS=1 SV_EXTRUDE_SKINNED_FPS="$fps" "$t" --gtest_filter='*SharedModels*' \
-  | sed -n 's/^\[ skinned  \] //p; s/^\[ pixels   \] /pixels: /p'
+SV_TEST_SHARED_MODELS=1 SV_EXTRUDE_SKINNED_FPS="$fps" SV_EXTRUDE_SKINNED_PNG="$png" "$t" --gtest_filter='*SharedModels*' \
+  | sed -n 's/^\[ skinned  \] //p; s/^\[ pixels   \] /pixels: /p; s/^\[ image    \] /image: /p'
 echo "command: tools/extrude_skinned_table.sh --fps $fps"

@@ -22,6 +22,7 @@
 
 #include "extruded_volumes.h"
 #include "frame.h"
+#include "images.h"
 #include "model_surfaces.h"
 #include "skinned_normals.h"
 #include "shadowvol_scene.h"
@@ -103,16 +104,59 @@ TEST(ExtrudeSkinnedSharedModels, NeighboursSplitNoFaceAndTheOthersAreCounted) {
     EXPECT_GT(characters, 0) << "no skinned, animated character in the shared models";
 }
 
+/* A skinned character of ASSET at time T on the ground under a point
+ * light, its seed volumes (--caster-rule closed: the shadow mesh is the
+ * surface's own faces, which the normals follow) with the normals WAY,
+ * rendered at W x H. */
+render::Frame posed_frame(const AnimatedAsset &asset, double t, SkinnedNormals way, int w, int h) {
+    const Pose pose = pose_at(asset, 0, t);
+    std::vector<SkinnedFrame> frames;
+    Scene scene;
+    for (const AnimatedSurface &s : asset.surfaces) {
+        frames.push_back(skinned_frame(asset, s, pose));
+        SceneSurface ss;
+        ss.name = s.name;
+        ss.prepared = prepared_at(s, frames.back().positions.data());
+        update_bounds(ss);
+        scene.surfaces.push_back(std::move(ss));
+    }
+    add_ground(scene);
+    scene.camera = frame_camera(scene, (double)w / h);
+    scene.lights = {auto_light(scene, LightKind::point)};
+    validate_scene(scene);
+    render::RenderOptions o;
+    o.width = w, o.height = h, o.threads = 0;
+    o.volume = render::VolumeSource::extrude;
+    o.stencil_saturate = true;
+    o.caster_rule = CasterRule::closed;
+    o.shadow_mesh_hook = [&](int si, ShadowMesh &m) {
+        if (si >= (int)asset.surfaces.size()) return; /* the ground */
+        write_skinned_normals(asset.surfaces[(std::size_t)si], frames[(std::size_t)si], way,
+                              m.stream.data());
+    };
+    return render::render_frame(scene, o);
+}
+
+uint64_t mask_differences(const std::vector<uint8_t> &a, const std::vector<uint8_t> &b) {
+    uint64_t n = 0;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); i++) n += (a[i] != 0) != (b[i] != 0);
+    return n;
+}
+
 /* The pixels the seed's artifact costs: per frame, each skinned character
- * posed on the ground under a point light, its seed volumes (--caster-rule
- * closed: the shadow mesh is the surface's own faces, which the normals
- * follow) drawn with the normals skinned per vertex and by face weights,
- * against the recomputed normals: the shadow pixels that differ. */
+ * posed (posed_frame) with the normals skinned per vertex and by face
+ * weights, against the recomputed normals: the shadow pixels that differ.
+ * SV_EXTRUDE_SKINNED_PNG=DIR also writes DIR/skinned_artifact.png: the
+ * worst straightforward frame of all at 480x360 beside the same frame with
+ * the recomputed normals, the differing shadow pixels magenta in both. */
 TEST(ExtrudeSkinnedSharedModels, PixelsTheSplitFacesCost) {
     const char *fps_env = std::getenv("SV_EXTRUDE_SKINNED_FPS");
+    const char *png_dir = std::getenv("SV_EXTRUDE_SKINNED_PNG");
     const double fps = fps_env ? std::atof(fps_env) : 0.0;
     constexpr int kW = 160, kH = 120;
-    uint64_t total_straightforward = 0;
+    uint64_t total_straightforward = 0, worst_of_all = 0;
+    std::string worst_path;
+    double worst_time = 0;
     for (const std::string &path : svtest::seed_model_paths("SharedModels")) {
         const AnimatedAsset asset = load_animated_gltf(path);
         if (asset.animations.empty()) continue;
@@ -128,44 +172,21 @@ TEST(ExtrudeSkinnedSharedModels, PixelsTheSplitFacesCost) {
         }
         uint64_t differ[2] = {0, 0}, worst[2] = {0, 0}, shadowed = 0;
         for (double t : times) {
-            const Pose pose = pose_at(asset, 0, t);
-            std::vector<SkinnedFrame> frames;
-            Scene scene;
-            for (const AnimatedSurface &s : asset.surfaces) {
-                frames.push_back(skinned_frame(asset, s, pose));
-                SceneSurface ss;
-                ss.name = s.name;
-                ss.prepared = prepared_at(s, frames.back().positions.data());
-                update_bounds(ss);
-                scene.surfaces.push_back(std::move(ss));
-            }
-            add_ground(scene);
-            scene.camera = frame_camera(scene, (double)kW / kH);
-            scene.lights = {auto_light(scene, LightKind::point)};
-            validate_scene(scene);
-            auto frame_with = [&](SkinnedNormals way) {
-                render::RenderOptions o;
-                o.width = kW, o.height = kH, o.threads = 0;
-                o.volume = render::VolumeSource::extrude;
-                o.stencil_saturate = true;
-                o.caster_rule = CasterRule::closed;
-                o.shadow_mesh_hook = [&](int si, ShadowMesh &m) {
-                    if (si >= (int)asset.surfaces.size()) return; /* the ground */
-                    write_skinned_normals(asset.surfaces[(std::size_t)si], frames[(std::size_t)si],
-                                          way, m.stream.data());
-                };
-                return render::render_frame(scene, o).lights[0].stencil;
-            };
-            const std::vector<uint8_t> ref = frame_with(SkinnedNormals::recomputed);
+            const std::vector<uint8_t> ref =
+                posed_frame(asset, t, SkinnedNormals::recomputed, kW, kH).lights[0].stencil;
             for (uint8_t v : ref) shadowed += v != 0;
             const SkinnedNormals ways[2] = {SkinnedNormals::straightforward,
                                             SkinnedNormals::face_weights};
             for (int w = 0; w < 2; w++) {
-                const std::vector<uint8_t> got = frame_with(ways[w]);
-                uint64_t n = 0;
-                for (std::size_t i = 0; i < got.size(); i++) n += (got[i] != 0) != (ref[i] != 0);
+                const uint64_t n =
+                    mask_differences(posed_frame(asset, t, ways[w], kW, kH).lights[0].stencil, ref);
                 differ[w] += n;
                 worst[w] = std::max(worst[w], n);
+                if (w == 0 && n > worst_of_all) {
+                    worst_of_all = n;
+                    worst_path = path;
+                    worst_time = t;
+                }
             }
         }
         total_straightforward += differ[0];
@@ -179,6 +200,33 @@ TEST(ExtrudeSkinnedSharedModels, PixelsTheSplitFacesCost) {
     }
     /* Figure 4's notch shows in some frame of some character. */
     EXPECT_GT(total_straightforward, 0u);
+    if (png_dir && *png_dir && !worst_path.empty()) {
+        const AnimatedAsset asset = load_animated_gltf(worst_path);
+        const render::Frame bad = posed_frame(asset, worst_time, SkinnedNormals::straightforward,
+                                              480, 360);
+        const render::Frame good = posed_frame(asset, worst_time, SkinnedNormals::recomputed, 480,
+                                               360);
+        render::Image panels[2];
+        const render::Frame *f[2] = {&bad, &good};
+        for (int k = 0; k < 2; k++) {
+            panels[k] = render::Image(480, 360);
+            panels[k].rgb = f[k]->rgb;
+            for (int i = 0; i < 480 * 360; i++) {
+                if ((bad.lights[0].stencil[(std::size_t)i] != 0) !=
+                    (good.lights[0].stencil[(std::size_t)i] != 0)) {
+                    uint8_t *px = panels[k].at(i % 480, i / 480);
+                    px[0] = 255, px[1] = 0, px[2] = 255;
+                }
+            }
+        }
+        const std::string out = std::string(png_dir) + "/skinned_artifact.png";
+        render::write_png(out, render::side_by_side({panels[0], panels[1]}));
+        std::printf("[ image    ] %s: %s at %.3f s, straightforward (left) and recomputed "
+                    "normals (right), %llu differing pixels magenta\n",
+                    out.c_str(), worst_path.substr(worst_path.rfind('/') + 1).c_str(), worst_time,
+                    (unsigned long long)mask_differences(bad.lights[0].stencil,
+                                                         good.lights[0].stencil));
+    }
 }
 
 } // namespace
