@@ -225,7 +225,32 @@ int sv_deform_choice_for(int sizeClass, sv_deform_routine r, sv_deform_choice *o
  * [a-z0-9_]. 0, or -1 for a bad class, routine or name. */
 int sv_deform_choice_set(int sizeClass, sv_deform_routine r, const char *variant, double ticks);
 
-/* Forgets every measured and wisdom plan and deform choice (tests). */
+/* ---- The stencil pass's method ----------------------------------------
+ * What `shadowvol render`, `scene` and `view` draw the stencil with when
+ * no --stencil is given: a method ("bf", "db", "hier" or "auto"), hier's
+ * tile side (4, 8, 16, 32), and auto's threshold (a light goes to hier
+ * when its volume pieces' mean area is at least that many pixels;
+ * infinity: every light bf). Measured by `shadowvol tune` (bench
+ * --stencil-rule's fit, docs/RENDERING.md) or read from the wisdom file
+ * (this CPU model's section, a line "stencil auto 32 65.0"). With
+ * neither, the renderer's own default: auto with the threshold measured
+ * offline (kDefaultHierFromAreaPerPiece). Every method gives the same
+ * bytes. */
+typedef struct sv_stencil_choice {
+    char method[8];                  /* "bf", "db", "hier" or "auto" */
+    int tile;                        /* hier's tile side */
+    double hier_from_area_per_piece; /* auto's threshold, pixels (may be infinity) */
+    const char *source;              /* "measured" or "wisdom" */
+} sv_stencil_choice;
+/* Fills OUT and returns 1; 0 when there is none; -1 for OUT NULL. */
+int sv_stencil_choice_for(sv_stencil_choice *out);
+/* Records a measurement's choice for this process (sv_wisdom_save writes
+ * it; the wisdom file never overrides it). 0, or -1 for a method, tile or
+ * threshold (NaN, negative) that is not one. */
+int sv_stencil_choice_set(const char *method, int tile, double hier_from_area_per_piece);
+
+/* Forgets every measured and wisdom plan, deform choice and stencil
+ * choice (tests). */
 void sv_plan_reset(void);
 
 #ifdef __cplusplus

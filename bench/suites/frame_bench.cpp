@@ -114,13 +114,8 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
     t.width = fo.width, t.height = fo.height;
     t.threads = fo.threads > 0 ? fo.threads : tbb::info::default_concurrency();
     t.frames = std::max(fo.frames, 1), t.runs = std::max(fo.runs, 1);
-    std::unique_ptr<ScenePreset> preset;
-    try {
-        preset = make_scene_preset(t.preset, (double)fo.width / fo.height, SV_MODELS_DIR,
-                                   cmd.sharedModels, SV_DEMO_SCENE);
-    } catch (const std::exception &e) { /* exit 3, as a model that cannot be loaded */
-        throw WorkloadError(std::string("--preset ") + t.preset + ": " + e.what());
-    }
+    std::unique_ptr<ScenePreset> preset = open_bench_preset(cmd, t.preset,
+                                                            (double)fo.width / fo.height);
     t.scene = preset->describe();
     const sv::Scene &first = preset->at(0);
     const sv::Camera base_camera = first.camera;

@@ -147,17 +147,7 @@ int find_surface(const sv::Scene &s, const std::string &suffix) {
 /* The table of passes (scene_pass_table.h) of preset NAME at WIDTH x
  * HEIGHT. */
 PassTable pass_table(const SeedCommand &cmd, const std::string &name, int width, int height) {
-    std::unique_ptr<ScenePreset> preset;
-    try {
-        preset = make_scene_preset(name, (double)width / height, SV_MODELS_DIR, cmd.sharedModels,
-                                   SV_DEMO_SCENE);
-    } catch (const sv::GltfError &e) { /* exit 3, as a model that cannot be loaded */
-        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
-    } catch (const sv::PrepareError &e) {
-        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
-    } catch (const sv::SceneError &e) {
-        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
-    }
+    std::unique_ptr<ScenePreset> preset = open_bench_preset(cmd, name, (double)width / height);
     PassTableOptions po;
     po.width = width;
     po.height = height;

@@ -30,7 +30,7 @@ using sv::render::RenderOptions;
 using sv::render::StencilMethod;
 
 constexpr StencilMethod kMethods[] = {StencilMethod::brute_force, StencilMethod::depth_bounds,
-                                      StencilMethod::hierarchical};
+                                      StencilMethod::hierarchical, StencilMethod::automatic};
 
 /* What one render of a frame gives the table: per pass its wall ms. */
 struct PassTiming {
@@ -134,7 +134,9 @@ PassTable run_pass_table(ScenePreset &preset, const PassTableOptions &o) {
             PassRow r;
             r.pass = "stencil";
             r.method = sv::render::stencil_method_name(m);
-            r.tile = m == StencilMethod::hierarchical ? default_tile : 0;
+            r.tile = m == StencilMethod::hierarchical || m == StencilMethod::automatic
+                         ? default_tile
+                         : 0;
             r.threads = threads;
             r.frames = o.frames;
             r.runs = o.runs;

@@ -11,6 +11,7 @@
 #include "json_writer.h"
 #include "model_workload.h"
 #include "output_file.h"
+#include "scene_presets.h"
 #include "scaling.h"
 #include "sysinfo.h"
 
@@ -167,6 +168,15 @@ int run_seed_frame(const SeedCommand &cmd, const char *what,
     } catch (const std::exception &e) {
         std::fprintf(stderr, "shadowvol bench: internal error: %s\n", e.what());
         return 1;
+    }
+}
+
+std::unique_ptr<ScenePreset> open_bench_preset(const SeedCommand &cmd, const std::string &name,
+                                               double aspect) {
+    try {
+        return make_scene_preset(name, aspect, SV_MODELS_DIR, cmd.sharedModels, SV_DEMO_SCENE);
+    } catch (const std::exception &e) {
+        throw WorkloadError(std::string("--preset ") + name + ": " + e.what());
     }
 }
 

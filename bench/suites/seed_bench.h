@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,14 @@ int run_casters_bench(const SeedCommand &cmd);
  * (run_silhouette_bench's). WHAT names the rows in the failure line. */
 int run_seed_frame(const SeedCommand &cmd, const char *what,
                    const std::function<int(FILE *out, std::string *doc)> &body);
+
+class ScenePreset; /* scene_presets.h */
+/* make_scene_preset for preset NAME with the bench's folders (the bundled
+ * models, CMD's shared models, the demo scene), a frame of ASPECT; what
+ * does not load throws WorkloadError naming --preset NAME (exit 3, as a
+ * model that cannot be loaded). */
+std::unique_ptr<ScenePreset> open_bench_preset(const SeedCommand &cmd, const std::string &name,
+                                               double aspect);
 
 struct SeedTiming {
     bool ok = true;

@@ -16,6 +16,7 @@
 #include "shadowvol_gltf.h"
 #include "cycle_table.h"
 #include "figure1.h"
+#include "stencil_rule.h"
 #include "frame_bench.h"
 #include "json_report.h"
 #include "machine_limits.h"
@@ -190,17 +191,18 @@ struct CliOptions {
     bool hasLight = false;
     Vec4 light{};
     LightTargets targets;
-    std::string json;        /* --json FILE; "" none, "-" stdout */
-    bool scaling = false;    /* --scaling: scaling.h instead of the cycle table */
-    bool limits = false;     /* --limits: machine_limits.h after each table */
-    bool silhouette = false; /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
-    bool backface = false;   /* --backface: seed 001's culling (backface_bench.cpp) */
-    bool planes = false;     /* --planes: per-frame planes (planes_bench.cpp) */
-    bool extrude = false;    /* --extrude: seed 002's vertex program (extrude_bench.cpp) */
-    bool scene = false;      /* --scene: the demo scene per frame (scene_bench.cpp) */
-    bool casters = false;    /* --casters: the general rule's builders (casters_bench.cpp) */
-    std::string casterRule;  /* --caster-rule R (with --scene); "" the default, auto */
-    std::string scenePreset; /* --preset NAME|FILE (with --scene or --frame) */
+    std::string json;         /* --json FILE; "" none, "-" stdout */
+    bool scaling = false;     /* --scaling: scaling.h instead of the cycle table */
+    bool limits = false;      /* --limits: machine_limits.h after each table */
+    bool silhouette = false;  /* --silhouette: seed 003's finders (silhouette_bench.cpp) */
+    bool backface = false;    /* --backface: seed 001's culling (backface_bench.cpp) */
+    bool planes = false;      /* --planes: per-frame planes (planes_bench.cpp) */
+    bool extrude = false;     /* --extrude: seed 002's vertex program (extrude_bench.cpp) */
+    bool scene = false;       /* --scene: the demo scene per frame (scene_bench.cpp) */
+    bool casters = false;     /* --casters: the general rule's builders (casters_bench.cpp) */
+    bool stencilRule = false; /* --stencil-rule: auto's rule measured (stencil_rule.cpp) */
+    std::string casterRule;   /* --caster-rule R (with --scene); "" the default, auto */
+    std::string scenePreset;  /* --preset NAME|FILE (with --scene or --frame) */
     int sceneWidth = 0, sceneHeight = 0; /* --size WxH (with --scene or --frame) */
     bool frame = false;             /* --frame: the whole frame, pass by pass (frame_bench.cpp) */
     FrameBenchOptions frameOptions; /* --threads, --frames, --no-mesa, --out (with --frame) */
@@ -333,6 +335,8 @@ CliOptions parse(int argc, char **argv) {
             c.scene = true;
         } else if (opt == "--casters" && !hasValue) {
             c.casters = true;
+        } else if (opt == "--stencil-rule" && !hasValue) {
+            c.stencilRule = true;
         } else if (opt == "--frame" && !hasValue) {
             c.frame = true;
         } else if (opt == "--figure1" && !hasValue) {
@@ -388,7 +392,8 @@ CliOptions parse(int argc, char **argv) {
         } else if (hasValue && (opt == "--quick" || opt == "--scaling" || opt == "--limits" ||
                                 opt == "--silhouette" || opt == "--backface" || opt == "--planes" ||
                                 opt == "--extrude" || opt == "--scene" || opt == "--casters" ||
-                                opt == "--frame" || opt == "--figure1" || opt == "--no-mesa")) {
+                                opt == "--frame" || opt == "--figure1" || opt == "--no-mesa" ||
+                                opt == "--stencil-rule")) {
             bad(opt + " takes no value");
         } else if (arg.rfind('-', 0) == 0) {
             bad("unknown option '" + arg + "'");
@@ -426,7 +431,8 @@ CliOptions parse(int argc, char **argv) {
     if (c.frameOptionGiven) {
         bad("--threads, --stencil, --frames, --no-mesa and --out are options of --frame");
     }
-    if (c.silhouette || c.backface || c.planes || c.extrude || c.scene || c.casters) {
+    if (c.silhouette || c.backface || c.planes || c.extrude || c.scene || c.casters ||
+        c.stencilRule) {
         /* Their own meshes, lights, rows and variants (silhouette_bench.cpp,
          * backface_bench.cpp, planes_bench.cpp, casters_bench.cpp). */
         const std::string mode = c.silhouette ? "--silhouette"
@@ -434,8 +440,11 @@ CliOptions parse(int argc, char **argv) {
                                  : c.planes   ? "--planes"
                                  : c.extrude  ? "--extrude"
                                  : c.casters  ? "--casters"
-                                              : "--scene";
-        if ((c.silhouette + c.backface + c.planes + c.extrude + c.scene + c.casters > 1) ||
+                                 : c.scene    ? "--scene"
+                                              : "--stencil-rule";
+        if ((c.silhouette + c.backface + c.planes + c.extrude + c.scene + c.casters +
+                 c.stencilRule >
+             1) ||
             c.scaling || c.limits || !c.plot.empty() || !c.models.empty() || c.lightGiven ||
             c.regimeGiven || !c.table.routines.empty() || !c.variants.empty() || c.runs ||
             c.table.batch || c.targets.facing != LightTargets{}.facing ||
@@ -443,8 +452,8 @@ CliOptions parse(int argc, char **argv) {
             bad(mode + " takes --quick, --json, --max-triangles, --seed, --timer and --isa only");
         }
         if (!c.casterRule.empty() && !c.scene) bad("--caster-rule is an option of --scene");
-        if ((!c.scenePreset.empty() || c.sceneWidth) && !c.scene)
-            bad("--preset and --size are options of --scene and --frame");
+        if ((!c.scenePreset.empty() || c.sceneWidth) && !c.scene && !c.stencilRule)
+            bad("--preset and --size are options of --scene, --stencil-rule and --frame");
         return c;
     }
     if (!c.casterRule.empty()) bad("--caster-rule is an option of --scene");
@@ -725,7 +734,7 @@ void bench_usage(FILE *out) {
         "light only, shorter rows. JSON schema shadowvol-casters-bench/1.\n"
         "\n"
         "The whole frame: shadowvol bench --frame [--preset simple|knights|demo|FILE]\n"
-        "                 [--size WxH] [--threads N] [--stencil bf|db|hier] [--frames N]\n"
+        "                 [--size WxH] [--threads N] [--stencil bf|db|hier|auto] [--frames N]\n"
         "                 [--runs N] [--no-mesa]\n"
         "                 [--out DIR] [--quick] [--json FILE]\n"
         "A scene (default the demo scene at 1280x720, 8 frames, every core) with the\n"
@@ -738,6 +747,17 @@ void bench_usage(FILE *out) {
         "(docs/FRAME.md). --out DIR: the last frame, ours and Mesa's, as PNG. --quick:\n"
         "2 frames, 1 run.\n"
         "JSON schema shadowvol-frame-bench/1.\n"
+        "\n"
+        "The automatic stencil method's rule: shadowvol bench --stencil-rule [--quick]\n"
+        "                 [--preset P] [--size WxH] [--json FILE]\n"
+        "Every light of the simple, knights and demo presets (or P alone; 3 frames) and\n"
+        "of the render table's models (tools/render_models.sh: point, spot and sun, in\n"
+        "z-pass and z-fail), at 1280x1024 (--quick: 320x256, 1 frame), drawn by bf and\n"
+        "by hier on 1 thread, the minimum of 3 runs (--quick 2), each light's pieces and\n"
+        "their area, and the threshold of area per piece (pixels)\n"
+        "above which --stencil auto takes hier that gives the least\n"
+        "total time (docs/results/stencil_rule/). A light whose hier stencil differs\n"
+        "from bf's fails the check. JSON schema shadowvol-stencil-rule/1.\n"
         "\n"
         "Seed 004's Figure 1: shadowvol bench --figure1 --out DIR [--preset P] [--size WxH]\n"
         "A preset's first frame and first light (default knights at 640x400) drawn\n"
@@ -789,6 +809,9 @@ int bench_main(int argc, char **argv) {
         }
         if (c.casters) {
             return run_casters_bench(seed_command(c));
+        }
+        if (c.stencilRule) {
+            return run_stencil_rule_bench(seed_command(c));
         }
         if (c.frame) {
             return run_frame_bench(seed_command(c), c.frameOptions);

@@ -45,19 +45,22 @@ bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &a
     return true;
 }
 
-bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil, int &stencil_tile) {
+bool parse_render_pass_option(ArgReader &a, StencilArgs &stencil) {
     if (a.is("--stencil")) {
         const std::string m = a.value();
-        if (!sv::render::stencil_method_by_name(m, stencil)) {
+        if (!sv::render::stencil_method_by_name(m, stencil.method)) {
             usage_error("--stencil needs " + sv::render::stencil_method_names() + ", not '" +
                         quoted(m) + "'");
         }
+        stencil.method_given = true;
+        stencil.source = "option";
     } else if (a.is("--stencil-tile")) {
         const std::string t = a.value();
         const int side = t == "4" ? 4 : t == "8" ? 8 : t == "16" ? 16 : t == "32" ? 32 : 0;
         if (!sv::render::valid_stencil_tile(side))
             usage_error("--stencil-tile needs 4, 8, 16 or 32, not '" + quoted(t) + "'");
-        stencil_tile = side;
+        stencil.tile = side;
+        stencil.tile_given = true;
     } else {
         return false;
     }
@@ -112,7 +115,7 @@ RenderArgs parse_render_args(int argc, char **argv, bool &help) {
             return r;
         } else if (parse_scene_content_option(a, r.models, r.ground, r.lights, r.camera,
                                               r.has_camera) ||
-                   parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
+                   parse_render_pass_option(a, r.stencil) ||
                    parse_caster_rule_option(a, r.caster_rule) ||
                    parse_ground_hints_option(a, r.ground_hints) ||
                    parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode) ||

@@ -18,6 +18,29 @@
 
 namespace svcli {
 
+/* --stencil and --stencil-tile as given, and where neither says, the
+ * default (take_stencil_default, stencil_default.cpp: the wisdom file's
+ * choice, else auto with its offline threshold). */
+struct StencilArgs {
+    sv::render::StencilMethod method = sv::render::StencilMethod::automatic;
+    int tile = sv::render::kDefaultStencilTile; /* hier's (and auto's hier's) tile side */
+    sv::render::StencilRule rule;               /* auto's threshold */
+    bool method_given = false, tile_given = false;
+    const char *source = "default"; /* of the method: "option", "wisdom", "measured", "default" */
+    void apply(sv::render::RenderOptions &o) const {
+        o.stencil = method;
+        o.stencil_tile = tile;
+        o.stencil_rule = rule;
+    }
+};
+
+/* Fills what S's options left open from this process's stencil choice
+ * (sv_stencil_choice_for: `shadowvol tune`'s measurement or the wisdom
+ * file, which the caller loads first): its method unless --stencil was
+ * given, its tile unless --stencil-tile was, its threshold for auto; with
+ * no choice, auto at kDefaultHierFromAreaPerPiece. */
+void take_stencil_default(StencilArgs &s);
+
 struct RenderArgs {
     std::vector<sv::ModelPlacement> models;
     bool ground = false;
@@ -26,8 +49,7 @@ struct RenderArgs {
     sv::Camera camera;
     int width = 1280, height = 1024;
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
-    sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
-    int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
+    StencilArgs stencil; /* --stencil, --stencil-tile */
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     bool ground_hints = true;
     VolumeArgs volume; /* --volume, --stencil-op, --extrude-to */
@@ -59,7 +81,7 @@ bool parse_scene_content_option(ArgReader &a, std::vector<sv::ModelPlacement> &a
  * tile side). Consumes A's value and returns true when A is one of them;
  * false (nothing consumed) otherwise. Throws UsageError for a value no
  * method or tile side has. */
-bool parse_render_pass_option(ArgReader &a, sv::render::StencilMethod &stencil, int &stencil_tile);
+bool parse_render_pass_option(ArgReader &a, StencilArgs &stencil);
 
 /* --caster-rule auto|closed|general (shadowvol_casters.h), shared by
  * render, scene and bench --scene. As parse_render_pass_option. */

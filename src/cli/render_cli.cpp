@@ -32,6 +32,7 @@
 #include "json_writer.h"
 #include "scene_options.h"
 #include "shadowvol_gltf.h"
+#include "shadowvol_plan.h"
 #include "timer.h"
 #include "truth.h"
 
@@ -87,7 +88,7 @@ void render_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol render [scene options] [--size WxH] [--mode zpass|zfail|auto]\n"
-        "                        [--stencil bf|db|hier] [--stencil-tile N]\n"
+        "                        [--stencil bf|db|hier|auto] [--stencil-tile N]\n"
         "                        [--caster-rule auto|closed|general] [--ground-hints use|ignore]\n"
         "                        [--volume silhouette|extrude] [--stencil-op saturate|wrap]\n"
         "                        [--extrude-to range|infinity]\n"
@@ -121,10 +122,13 @@ void render_usage(FILE *out) {
         "                    (default: z-fail for a volume only where the camera's near\n"
         "                    rectangle may lie inside it)\n"
         "  --stencil S       how the stencil pass fills: bf (brute force: every volume\n"
-        "                    triangle walked per pixel; the reference, and the default),\n"
-        "                    db (behind per-volume depth bounds) or hier (tiles\n"
-        "                    classified per volume, seed 004); all leave the same bytes\n"
-        "  --stencil-tile N  hier's tile side: 4, 8 (the seed's), 16 or 32 (default)\n"
+        "                    triangle walked per pixel; the reference), db (behind\n"
+        "                    per-volume depth bounds), hier (tiles classified per volume,\n"
+        "                    seed 004) or auto (bf or hier per light, by its volume\n"
+        "                    pieces' mean area: docs/RENDERING.md); all leave the same\n"
+        "                    bytes. Default: the wisdom file's (shadowvol tune), else auto\n"
+        "  --stencil-tile N  hier's tile side: 4, 8 (the seed's), 16 or 32 (default: the\n"
+        "                    wisdom file's, else 32)\n"
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
         "                    non-manifold shells the general rule, exact for any caster),\n"
         "                    closed (the paper's everywhere) or general (docs/CASTERS.md)\n"
@@ -245,8 +249,12 @@ int render_main(int argc, char **argv) {
     opt.width = args.width;
     opt.height = args.height;
     opt.mode = args.mode;
-    opt.stencil = args.stencil;
-    opt.stencil_tile = args.stencil_tile;
+    /* The stencil method `shadowvol tune` measured for this CPU where
+     * --stencil does not say (render_args.h); the same bytes by each. */
+    char wisdom[1024];
+    sv_wisdom_load(sv_wisdom_default_path(wisdom, sizeof wisdom));
+    svcli::take_stencil_default(args.stencil);
+    args.stencil.apply(opt);
     opt.caster_rule = args.caster_rule;
     opt.ground_hints = args.ground_hints;
     opt.general_build = args.general_build;
@@ -480,6 +488,12 @@ int render_main(int argc, char **argv) {
         j.key("extrude_to_infinity"), j.value(opt.extrude_to_infinity);
         j.key("general_build"), j.value(sv::general_build_name(args.general_build));
         j.key("stencil"), j.value(frame.stencil_method);
+        /* Where the method came from: --stencil ("option"), the wisdom
+         * file ("wisdom"), or the built-in default ("default": auto). */
+        j.key("stencil_source"), j.value(args.stencil.source);
+        j.key("stencil_tile"), j.value(args.stencil.tile);
+        j.key("stencil_hier_from_area_per_piece"),
+            j.value(args.stencil.rule.hier_from_area_per_piece);
         j.key("row_kernels"), j.value(frame.kernels);
         j.key("volume_kernels"), j.value(frame.variant);
         j.key("tsc_hz"), j.value(hz);
@@ -519,6 +533,16 @@ int render_main(int argc, char **argv) {
             j.key("stencil"), j.value((unsigned long long)lf.ticks_stencil);
             j.key("extrude"), j.value((unsigned long long)lf.ticks_extrude);
             j.end_object();
+            /* The method that ran (auto: the one it chose, by the load). */
+            j.key("stencil_method"), j.value(sv::render::stencil_method_name(lf.stencil_ran));
+            if (frame.stencil_method == "auto") {
+                j.key("stencil_load");
+                j.begin_object(true);
+                j.key("pieces"), j.value((unsigned long long)lf.stencil_load.pieces);
+                j.key("area"), j.value(lf.stencil_load.area);
+                j.key("cap_pieces"), j.value((unsigned long long)lf.stencil_load.cap_pieces);
+                j.end_object();
+            }
             j.key("stencil_counters");
             counters_json(j, lf.stencil_counters);
             /* One row per volume (a surface that casts), with its light's

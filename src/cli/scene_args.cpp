@@ -24,8 +24,7 @@ double parse_number(const std::string &text, const std::string &what) {
 bool SharedSceneOptions::read(ArgReader &a, SceneArgs &r) {
     if (parse_scene_content_option(a, r.seq.adds, r.seq.ground, r.seq.lights, r.seq.camera,
                                    r.seq.has_camera) ||
-        parse_render_pass_option(a, r.stencil, r.stencil_tile) ||
-        parse_caster_rule_option(a, r.caster_rule) ||
+        parse_render_pass_option(a, r.stencil) || parse_caster_rule_option(a, r.caster_rule) ||
         parse_ground_hints_option(a, r.ground_hints) ||
         parse_general_build_option(a, r.general_build) || parse_mode_option(a, r.mode) ||
         parse_volume_option(a, r.volume)) {

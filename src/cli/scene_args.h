@@ -13,6 +13,7 @@
 #include "cli_args.h"
 #include "frame.h"
 #include "sequence.h"
+#include "render_args.h"
 #include "stencil_method.h"
 #include "volume_args.h"
 
@@ -24,10 +25,9 @@ struct SceneArgs {
     bool has_time = false;
     double time_from = 0, time_to = 0;
     double fps = 8;
-    int threads = 0;   /* 0: every core */
-    bool full = false; /* render with no shortcuts */
-    sv::render::StencilMethod stencil = sv::render::StencilMethod::brute_force;
-    int stencil_tile = sv::render::kDefaultStencilTile; /* --stencil-tile (hier) */
+    int threads = 0;     /* 0: every core */
+    bool full = false;   /* render with no shortcuts */
+    StencilArgs stencil; /* --stencil, --stencil-tile (render_args.h) */
     sv::render::ModeChoice mode = sv::render::ModeChoice::automatic;
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     bool ground_hints = true;

@@ -188,8 +188,9 @@ void scene_usage(FILE *out) {
         "usage: shadowvol scene [FILE[@x,y,z[,yaw[,scale]]][:A]] [--add FILE[@...][:A]]\n"
         "                       [--animation A]\n"
         "                       [--frames N | --time FROM:TO] [--fps F] [--threads T] [--full]\n"
-        "                       [--size WxH] [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
-        "                       [--stencil-tile N] [--caster-rule auto|closed|general]\n"
+        "                       [--size WxH] [--mode zpass|zfail|auto]\n"
+        "                       [--stencil bf|db|hier|auto] [--stencil-tile N]\n"
+        "                       [--caster-rule auto|closed|general]\n"
         "                       [--ground-hints use|ignore] [--volume silhouette|extrude]\n"
         "                       [--stencil-op saturate|wrap] [--extrude-to range|infinity]\n"
         "                       [--out DIR] [--json FILE]\n"
@@ -227,10 +228,12 @@ void scene_usage(FILE *out) {
         "frame:\n"
         "  --size WxH        default 640x512\n"
         "  --threads T       worker threads (default: every core); the same bytes at any T\n"
-        "  --stencil S       how the stencil pass fills: bf (brute force, the reference;\n"
-        "                    the default), db (depth bounds) or hier (tiles, seed 004);\n"
-        "                    the same bytes by each\n"
-        "  --stencil-tile N  hier's tile side: 4, 8 (the seed's), 16 or 32 (default)\n"
+        "  --stencil S       how the stencil pass fills: bf (brute force, the reference),\n"
+        "                    db (depth bounds), hier (tiles, seed 004) or auto (bf or\n"
+        "                    hier per light); the same bytes by each. Default: the\n"
+        "                    wisdom file's (shadowvol tune), else auto\n"
+        "  --stencil-tile N  hier's tile side: 4, 8 (the seed's), 16 or 32 (default: the\n"
+        "                    wisdom file's, else 32)\n"
         "  --mode M          zpass, zfail or auto (default: z-fail only where the near\n"
         "                    plane may be in shadow)\n"
         "  --caster-rule R   auto (default: closed shells the paper's volume, open or\n"
@@ -333,8 +336,7 @@ int scene_main(int argc, char **argv) {
     fast.width = args.width;
     fast.height = args.height;
     fast.threads = threads;
-    fast.stencil = args.stencil;
-    fast.stencil_tile = args.stencil_tile;
+    args.stencil.apply(fast);
     fast.mode = args.mode;
     fast.caster_rule = args.caster_rule;
     fast.ground_hints = args.ground_hints;
@@ -572,7 +574,7 @@ int scene_main(int argc, char **argv) {
         j.key("height"), j.value(args.height);
         j.key("threads"), j.value(threads);
         j.key("shortcuts"), j.value(!args.full);
-        j.key("stencil"), j.value(sv::render::stencil_method_name(args.stencil));
+        j.key("stencil"), j.value(sv::render::stencil_method_name(args.stencil.method));
         j.key("mode"), j.value(sv::render::mode_name(args.mode));
         j.key("caster_rule"), j.value(sv::caster_rule_name(args.caster_rule));
         j.key("ground_hints"), j.value(args.ground_hints);

@@ -34,12 +34,13 @@ std::unique_ptr<sv::SceneSequence> open_scene(const char *command, SceneArgs &ar
         }
     }
     args.seq.aspect = (double)args.width / args.height;
-    /* The plans `shadowvol tune` measured for this CPU (the volume kernels'
-     * and the skinned surfaces' deforming pass), as bench and check read
-     * them; without the file, the static choices. Every choice gives the
-     * same bytes. */
+    /* The plans `shadowvol tune` measured for this CPU (the volume kernels',
+     * the skinned surfaces' deforming pass and the stencil method), as bench
+     * and check read them; without the file, the static choices. Every
+     * choice gives the same bytes. */
     char wisdom[1024];
     sv_wisdom_load(sv_wisdom_default_path(wisdom, sizeof wisdom));
+    take_stencil_default(args.stencil);
     std::unique_ptr<sv::SceneSequence> seq;
     try {
         seq = std::make_unique<sv::SceneSequence>(args.seq);

@@ -28,9 +28,12 @@
 
 #include "cli_args.h"
 #include "model_load.h"
+#include "render_args.h"
 #include "shadowvol_anim.h"
 #include "shadowvol_mesh.h"
 #include "shadowvol_plan.h"
+#include "stencil_method.h"
+#include "stencil_rule.h"
 
 namespace svcli {
 
@@ -38,6 +41,7 @@ void tune_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol tune [MODEL.glb|MODEL.gltf] [--class N]... [--wisdom FILE] [--dry-run]\n"
+        "                      [--stencil-size WxH | --no-stencil]\n"
         "  Times every variant of every routine this CPU runs on a mesh of each size\n"
         "  class (0: under 4096 triangles, 1: under 65536, 2: under 524288, 3: larger),\n"
         "  checks every call against c_ref, and saves the fastest per routine and class\n"
@@ -47,11 +51,17 @@ void tune_usage(FILE *out) {
         "  class it has (its own shape and silhouette share), and only those classes.\n"
         "  Then, per class, the deforming pass of skinned surfaces (skinning kernel,\n"
         "  planes variant, and one pass or two) on a generated skinned height field.\n"
+        "  Last, the stencil pass's method (what render, scene and view use without\n"
+        "  --stencil): auto, its threshold fitted as bench --stencil-rule fits it (every\n"
+        "  light of the simple, knights and demo presets and of the render table's\n"
+        "  models, bf against hier on 1 thread, 1 frame, the minimum of 2 runs).\n"
         "  --class N       measure class N only (repeatable; default: all four, or\n"
         "                  those of MODEL's surfaces)\n"
         "  --wisdom FILE   the wisdom file (default: $SV_WISDOM, else\n"
         "                  $XDG_CACHE_HOME/shadowvol/wisdom, else ~/.cache/shadowvol/wisdom)\n"
         "  --dry-run       measure and print, save nothing\n"
+        "  --stencil-size WxH  the stencil measurement's frame (default 1280x1024)\n"
+        "  --no-stencil    leave the stencil method out (the wisdom file keeps its line)\n"
         "exit status: 0 done, 1 a variant disagreed with c_ref, 2 bad arguments,\n"
         "3 the wisdom file could not be written, or MODEL could not be loaded or has\n"
         "no surface in the classes asked for\n",
@@ -119,12 +129,50 @@ bool tune_deform(int c) {
     return true;
 }
 
+/* The stencil pass's method (stencil_rule.h): auto at the fitted
+ * threshold, recorded for sv_wisdom_save. Returns false when hier's
+ * stencil differed from bf's on a light, or a scene did not load. */
+bool tune_stencil(int width, int height) {
+    svbench::SeedCommand cmd;
+    cmd.sharedModels = SV_SHARED_MODELS_DIR;
+    svbench::StencilRuleOptions o;
+    o.models = svbench::render_table_models(cmd);
+    o.width = width, o.height = height;
+    o.frames = 1, o.runs = 2;
+    std::vector<svbench::StencilRuleSample> samples;
+    try {
+        samples = svbench::sample_stencil_rule(cmd, o);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "shadowvol tune: the stencil measurement: %s; nothing saved\n",
+                     e.what());
+        return false;
+    }
+    for (const svbench::StencilRuleSample &s : samples) {
+        if (!s.equal) {
+            std::fprintf(stderr,
+                         "shadowvol tune: %s, light %d: hier's stencil differs from bf's; "
+                         "nothing saved (a bug: please report it)\n",
+                         s.scene.c_str(), s.light);
+            return false;
+        }
+    }
+    const svbench::StencilRuleFit fit = svbench::fit_stencil_rule(samples);
+    std::printf("\nstencil pass (%dx%d, %d lights, 1 thread; ms in all): bf %.2f, hier %.2f, "
+                "each light's faster %.2f\n",
+                width, height, fit.lights, fit.total_bf, fit.total_hier, fit.total_best);
+    std::printf("stencil   auto, hier from %.1f pixels of area per piece: %.2f ms  <- planned\n",
+                fit.threshold, fit.total_rule);
+    sv_stencil_choice_set("auto", sv::render::kDefaultStencilTile, fit.threshold);
+    return true;
+}
+
 } // namespace
 
 int tune_main(int argc, char **argv) {
     std::vector<int> classes;
     std::string path, model;
-    bool dry = false;
+    bool dry = false, stencil = true;
+    int stencil_width = 1280, stencil_height = 1024;
     try {
         ArgReader a(argc, argv);
         while (a.next()) {
@@ -138,6 +186,10 @@ int tune_main(int argc, char **argv) {
                 if (path.empty()) usage_error("--wisdom needs a file name");
             } else if (a.is_flag("--dry-run")) {
                 dry = true;
+            } else if (a.is("--stencil-size")) {
+                parse_frame_size(a.value(), stencil_width, stencil_height);
+            } else if (a.is_flag("--no-stencil")) {
+                stencil = false;
             } else if (!a.arg().empty() && a.arg()[0] != '-' && model.empty()) {
                 model = a.arg();
             } else {
@@ -226,6 +278,7 @@ int tune_main(int argc, char **argv) {
         print_class(c, measuredOn, t);
         if (!tune_deform(c)) return 1;
     }
+    if (stencil && !tune_stencil(stencil_width, stencil_height)) return 1;
     if (dry) {
         std::printf("\n--dry-run: nothing saved\n");
         return 0;

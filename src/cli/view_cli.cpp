@@ -97,7 +97,7 @@ void view_usage(FILE *out) {
                  "usage: shadowvol view [FILE[@x,y,z[,yaw[,scale]]][:A]] [--add FILE[@...][:A]]\n"
                  "                      [--animation A] [--ground] [--light L] [--camera C]\n"
                  "                      [--fps F] [--size WxH] [--threads T] [--full]\n"
-                 "                      [--mode zpass|zfail|auto] [--stencil bf|db|hier]\n"
+                 "                      [--mode zpass|zfail|auto] [--stencil bf|db|hier|auto]\n"
                  "                      [--stencil-tile N] [--caster-rule auto|closed|general]\n"
                  "                      [--ground-hints use|ignore] [--general-build B]\n"
                  "                      [--skinning K] [--no-hud] [--script FILE]\n"
@@ -121,7 +121,7 @@ void view_usage(FILE *out) {
                  "       the picked light\n"
                  "keys:  W A S D Q E move the camera; R the scene's camera again\n"
                  "       L pick the next light (or none); Space pause; . one frame on, paused\n"
-                 "       M mode (zpass, zfail, auto); T stencil pass (bf, db, hier);\n"
+                 "       M mode (zpass, zfail, auto); T stencil pass (bf, db, hier, auto);\n"
                  "       C caster rule (auto, closed, general); 1-6 each shortcut off and on\n"
                  "       (1 light reach, 2 view reach, 3 culling where straddling, 4 z-pass\n"
                  "       when safe, 5 no directional dark cap, 6 static reuse)\n"
@@ -177,7 +177,7 @@ int view_main(int argc, char **argv) {
 
     ViewSwitches start;
     start.mode = sa.mode;
-    start.stencil = sa.stencil;
+    start.stencil = sa.stencil.method;
     start.caster_rule = sa.caster_rule;
     if (sa.full) start.shortcuts = sv::render::Shortcuts::none();
     start.hud = args.hud;
@@ -187,7 +187,8 @@ int view_main(int argc, char **argv) {
     options.width = sa.width;
     options.height = sa.height;
     options.threads = sa.threads ? sa.threads : tbb::info::default_concurrency();
-    options.stencil_tile = sa.stencil_tile;
+    options.stencil_tile = sa.stencil.tile;
+    options.stencil_rule = sa.stencil.rule;
     options.ground_hints = sa.ground_hints;
     options.general_build = sa.general_build;
     sv::render::VolumeCache cache;

@@ -58,7 +58,7 @@ bool ViewControls::key(const std::string &name) {
         cycle(switches_.mode, {ModeChoice::zpass, ModeChoice::zfail, ModeChoice::automatic});
     } else if (name == "T") {
         cycle(switches_.stencil, {StencilMethod::brute_force, StencilMethod::depth_bounds,
-                                  StencilMethod::hierarchical});
+                                  StencilMethod::hierarchical, StencilMethod::automatic});
     } else if (name == "C") {
         cycle(switches_.caster_rule,
               {sv::CasterRule::automatic, sv::CasterRule::closed, sv::CasterRule::general});

@@ -37,6 +37,11 @@ int set_deform_choice(int sizeClass, int r, const char *variant, double ticks, i
 bool measured_deform_choice(int sizeClass, int r, sv_deform_choice *out);
 void reset_deform_choices();
 
+/* The stencil choice (stencil_choices.cpp), kinds as the deform choices'. */
+int set_stencil_choice(const char *method, int tile, double hier_from_area_per_piece, int kind);
+bool measured_stencil_choice(sv_stencil_choice *out);
+void reset_stencil_choice();
+
 } // namespace svplan
 
 #endif

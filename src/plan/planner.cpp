@@ -622,6 +622,7 @@ const sv_plan *sv_plan_for(int numTriangles, unsigned flags) {
 
 void sv_plan_reset(void) {
     svplan::reset_deform_choices();
+    svplan::reset_stencil_choice();
     State &s = state();
     std::lock_guard<std::mutex> g(s.lock);
     s.kind.fill(0);

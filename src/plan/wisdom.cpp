@@ -7,6 +7,9 @@
  *   ...                                      (one line per class and routine)
  *   class 0 skinning avx512 2.7              (deforming surfaces: ticks per
  *   class 0 skin_planes none 6.3              triangle; "none": two passes)
+ *   stencil auto 32 65.0                     (the stencil pass's method, hier's
+ *                                             tile side, auto's threshold:
+ *                                             sv_stencil_choice; "inf" allowed)
  *   cpu <another CPU's key>
  *   ...
  *
@@ -47,6 +50,13 @@ struct Entry {
 /* cpu key -> class -> routine -> entry; the deform routines (skinning,
  * derive_planes, skin_planes) are numbered SV_NUM_ROUTINES + r. */
 using Sections = std::map<std::string, std::map<int, std::map<int, Entry>>>;
+/* cpu key -> its "stencil" line. */
+struct StencilLine {
+    std::string method;
+    int tile = 0;
+    double threshold = 0;
+};
+using StencilLines = std::map<std::string, StencilLine>;
 
 constexpr int kAllRoutines = (int)SV_NUM_ROUTINES + (int)SV_NUM_DEFORM_ROUTINES;
 
@@ -62,7 +72,22 @@ int routine_number(const std::string &name) {
     return -1;
 }
 
-bool parse(const std::string &path, Sections &out, std::vector<std::string> &order) {
+/* "stencil METHOD TILE THRESHOLD" (THRESHOLD through strtod, so "inf"
+ * reads); false for anything else, or values sv_stencil_choice refuses. */
+bool parse_stencil_line(const std::string &line, StencilLine &out) {
+    std::istringstream ls(line);
+    std::string word, threshold, extra;
+    if (!(ls >> word >> out.method >> out.tile >> threshold) || word != "stencil" || (ls >> extra))
+        return false;
+    char *end = nullptr;
+    out.threshold = std::strtod(threshold.c_str(), &end);
+    if (end == threshold.c_str() || *end != 0 || !(out.threshold >= 0)) return false;
+    if (!(out.tile == 4 || out.tile == 8 || out.tile == 16 || out.tile == 32)) return false;
+    return out.method == "bf" || out.method == "db" || out.method == "hier" || out.method == "auto";
+}
+
+bool parse(const std::string &path, Sections &out, std::vector<std::string> &order,
+           StencilLines &stencil) {
     std::ifstream in(path);
     if (!in) return false;
     std::string line;
@@ -74,6 +99,12 @@ bool parse(const std::string &path, Sections &out, std::vector<std::string> &ord
             cpu = line.substr(4);
             if (!out.count(cpu)) order.push_back(cpu);
             out[cpu];
+            continue;
+        }
+        if (line.rfind("stencil ", 0) == 0) {
+            StencilLine st;
+            if (cpu.empty() || !parse_stencil_line(line, st)) return false;
+            stencil[cpu] = st;
             continue;
         }
         std::istringstream ls(line);
@@ -133,7 +164,13 @@ int sv_wisdom_load(const char *path) {
     if (!path || !*path) return -1;
     Sections all;
     std::vector<std::string> order;
-    if (!parse(path, all, order)) return -1;
+    StencilLines stencil;
+    if (!parse(path, all, order, stencil)) return -1;
+    const auto st = stencil.find(this_cpu());
+    if (st != stencil.end()) {
+        const StencilLine &l = st->second;
+        svplan::set_stencil_choice(l.method.c_str(), l.tile, l.threshold, 2);
+    }
     const auto it = all.find(this_cpu());
     if (it == all.end()) return 0;
     int classes = 0;
@@ -162,8 +199,9 @@ int sv_wisdom_save(const char *path) {
     if (!path || !*path || !make_parent_dirs(path)) return -1;
     Sections all;
     std::vector<std::string> order;
+    StencilLines stencil;
     struct stat st;
-    if (stat(path, &st) == 0 && !parse(path, all, order))
+    if (stat(path, &st) == 0 && !parse(path, all, order, stencil))
         return -1; /* never clobber a file we cannot read */
     const std::string cpu = this_cpu();
     if (!all.count(cpu)) order.push_back(cpu);
@@ -181,6 +219,9 @@ int sv_wisdom_save(const char *path) {
             }
         }
     }
+    sv_stencil_choice sc;
+    if (svplan::measured_stencil_choice(&sc))
+        stencil[cpu] = StencilLine{sc.method, sc.tile, sc.hier_from_area_per_piece};
     const std::string tmp = std::string(path) + ".tmp";
     {
         std::ofstream out(tmp);
@@ -188,6 +229,13 @@ int sv_wisdom_save(const char *path) {
         out << kHeader << "\n";
         for (const std::string &key : order) {
             out << "cpu " << key << "\n";
+            const auto sl = stencil.find(key);
+            if (sl != stencil.end()) {
+                char t[64];
+                std::snprintf(t, sizeof t, "%.1f", sl->second.threshold); /* "inf" as such */
+                out << "stencil " << sl->second.method << " " << sl->second.tile << " " << t
+                    << "\n";
+            }
             for (const auto &[cls, routines] : all[key]) {
                 for (const auto &[r, e] : routines) {
                     char t[64];

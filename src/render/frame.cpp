@@ -188,6 +188,7 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
         /* hier's tile depth ranges: the same depth for every light. Their
          * time counts in the first light's stencil pass. */
         detail::TileGrid tile_grid;
+        detail::TileGrid auto_tile_grid; /* auto: the first light that takes hier computes it */
         uint64_t grid_ticks = 0;
         double grid_seconds = 0;
         const bool share_grid = opt.stencil == StencilMethod::hierarchical && !f.lights.empty() &&
@@ -213,6 +214,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             sin.faults = opt.stencil_faults;
             sin.saturate = opt.stencil_saturate;
             if (share_grid) sin.tile_grid = &tile_grid;
+            sin.tile_grid_for_auto = &auto_tile_grid;
+            sin.rule = opt.stencil_rule;
             sin.surface_triangles = &scratch.surface_triangles;
             StencilPassResult st = stencil_pass(opt.stencil, sin);
             st.ticks += grid_ticks;
@@ -225,6 +228,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             lf.stencil_counters = st.counters;
             lf.ticks_stencil = st.ticks;
             lf.seconds_stencil = st.seconds;
+            lf.stencil_ran = st.ran;
+            lf.stencil_load = st.load;
         }
         /* The target's own stencil holds the last light's, as before. */
         if (!f.lights.empty()) {

@@ -160,6 +160,7 @@ struct RenderOptions {
     StencilMethod stencil = StencilMethod::brute_force; /* how the stencil pass fills */
     int stencil_tile = kDefaultStencilTile;             /* hier's tile side: 4, 8, 16, 32 */
     StencilFaults stencil_faults;                       /* tests only */
+    StencilRule stencil_rule;                           /* auto's choice per light */
     /* Seed 002's IncrSat/DecrSat in place of additions modulo 256
      * (StencilPassInputs::saturate): the seed's stencil state. */
     bool stencil_saturate = false;
@@ -244,6 +245,10 @@ struct LightFrame {
     /* --stencil hier: its boundary tiles (StencilPassResult). */
     std::vector<uint8_t> stencil_boundary_tiles;
     uint64_t stencil_psv_lines = 0;
+    /* The method that filled this light's stencil (--stencil auto: the
+     * one it chose), and the load auto chose by (StencilPassResult). */
+    StencilMethod stencil_ran = StencilMethod::brute_force;
+    StencilLoad stencil_load;
 };
 
 struct Frame {

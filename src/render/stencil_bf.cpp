@@ -18,6 +18,32 @@ namespace sv::render {
 
 using namespace detail;
 
+void detail::brute_force_walk(const StencilPassInputs &in, const BinnedTriangles &bt,
+                              StencilPassResult &result) {
+    const raster::Rasterizer &rast = *in.rast;
+    const int width = in.target->width, height = in.target->height;
+    const int num_bands = band_count(height);
+    std::vector<raster::RowCounts> rc((std::size_t)num_bands);
+    std::unique_ptr<SaturatingCounts> sat;
+    if (in.saturate) sat = std::make_unique<SaturatingCounts>(width, height);
+    parallel(num_bands, [&](int b) {
+        const raster::RowBand band = band_rows(b, height);
+        bt.for_each_in_band(b, [&](std::size_t c, const raster::SetupTriangle &t) {
+            if (sat) {
+                rast.walk_stencil_saturating(t, in.target->depth.data(),
+                                             sat->count_for(bt.chunk_mode[c], t.front), width, band,
+                                             bt.chunk_mode[c], no_depth_bounds(),
+                                             rc[(std::size_t)b]);
+            } else {
+                rast.walk_stencil(t, in.target->depth.data(), result.stencil.data(), width, height,
+                                  band, bt.chunk_mode[c], rc[(std::size_t)b]);
+            }
+        });
+    });
+    if (sat) sat->resolve(result.stencil);
+    for (const auto &r : rc) raster::Rasterizer::add_stencil_counts(r, result.counters);
+}
+
 StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
     StencilPassResult result;
     const std::vector<Volume> &volumes = *in.volumes;
@@ -49,26 +75,8 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
                                     ? raster::StencilMode::zfail
                                     : raster::StencilMode::zpass);
     }
-    const int num_bands = band_count(height);
-    std::vector<raster::RowCounts> rc((std::size_t)num_bands);
-    std::unique_ptr<SaturatingCounts> sat;
-    if (in.saturate) sat = std::make_unique<SaturatingCounts>(width, height);
-    parallel(num_bands, [&](int b) {
-        const raster::RowBand band = band_rows(b, height);
-        bt.for_each_in_band(b, [&](std::size_t c, const raster::SetupTriangle &t) {
-            if (sat) {
-                rast.walk_stencil_saturating(t, in.target->depth.data(),
-                                             sat->count_for(bt.chunk_mode[c], t.front), width, band,
-                                             bt.chunk_mode[c], no_depth_bounds(),
-                                             rc[(std::size_t)b]);
-            } else {
-                rast.walk_stencil(t, in.target->depth.data(), result.stencil.data(), width, height,
-                                  band, bt.chunk_mode[c], rc[(std::size_t)b]);
-            }
-        });
-    });
-    if (sat) sat->resolve(result.stencil);
-    for (const auto &r : rc) raster::Rasterizer::add_stencil_counts(r, result.counters);
+    brute_force_walk(in, bt, result);
+    result.ran = StencilMethod::brute_force;
     result.ticks = ticks() - k0;
     result.seconds = now_seconds() - t0;
     return result;

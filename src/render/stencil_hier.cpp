@@ -69,6 +69,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "frame_math.h"
 #include "pass_bins.h"
@@ -135,27 +136,50 @@ constexpr int kPsvLineTiles = 128;
 
 } // namespace
 
-StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
-    if (!valid_stencil_tile(in.tile)) {
-        throw std::invalid_argument("stencil tile side " + std::to_string(in.tile) +
+void detail::check_stencil_tile(int side) {
+    if (!valid_stencil_tile(side)) {
+        throw std::invalid_argument("stencil tile side " + std::to_string(side) +
                                     ": 4, 8, 16 or 32");
     }
+}
+
+StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
+    check_stencil_tile(in.tile);
     StencilPassResult result;
-    const raster::Rasterizer &rast = *in.rast;
     const int width = in.target->width, height = in.target->height;
     result.stencil.assign((std::size_t)width * height, 0); /* the clear: not the pass's time */
     const double t0 = now_seconds();
     const uint64_t k0 = ticks();
+    hierarchical_stencil(in, set_up_pieces(in), result);
+    result.ticks = ticks() - k0;
+    result.seconds = now_seconds() - t0;
+    return result;
+}
+
+void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setup,
+                                  StencilPassResult &result) {
+    check_stencil_tile(in.tile);
+    const raster::Rasterizer &rast = *in.rast;
+    const int width = in.target->width, height = in.target->height;
     TileGrid own_grid;
-    if (!in.tile_grid)
-        own_grid = tile_depth_ranges(in.target->depth.data(), width, height, in.tile);
-    const TileGrid &grid = in.tile_grid ? *in.tile_grid : own_grid;
+    const TileGrid *given = in.tile_grid;
+    if (!given && in.tile_grid_for_auto && in.tile_grid_for_auto->side == in.tile &&
+        in.tile_grid_for_auto->width == width && in.tile_grid_for_auto->height == height) {
+        given = in.tile_grid_for_auto; /* an earlier light's */
+    }
+    if (!given) {
+        /* Computed here, into auto's frame-wide slot where there is one. */
+        TileGrid &into = in.tile_grid_for_auto ? *in.tile_grid_for_auto : own_grid;
+        into = tile_depth_ranges(in.target->depth.data(), width, height, in.tile);
+        given = &into;
+    }
+    const TileGrid &grid = *given;
     if (grid.side != in.tile || grid.width != width || grid.height != height) {
         throw std::invalid_argument("stencil_pass_hierarchical: the tile grid given is not the "
                                     "frame's at the pass's tile side");
     }
     const TileGrid coarse = coarser_grid(grid, kCoarse);
-    const VolumePieces vp = set_up_volume_pieces(in);
+    const VolumePieces vp = finish_volume_pieces(in, std::move(setup));
     result.counters = vp.counters;
     /* Pieces binned to bands (a row of coarse tiles) by their extent, in
      * submission order (so a volume's pieces are consecutive in every
@@ -474,9 +498,7 @@ StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in) {
         result.psv_lines += t.psv_lines;
     }
     result.tiles = (uint64_t)grid.tiles_x * (uint64_t)grid.tiles_y;
-    result.ticks = ticks() - k0;
-    result.seconds = now_seconds() - t0;
-    return result;
+    result.ran = StencilMethod::hierarchical;
 }
 
 } // namespace sv::render

@@ -24,6 +24,7 @@ constexpr MethodName kMethods[] = {
     {StencilMethod::brute_force, "bf"},
     {StencilMethod::depth_bounds, "db"},
     {StencilMethod::hierarchical, "hier"},
+    {StencilMethod::automatic, "auto"},
 };
 
 } // namespace
@@ -114,6 +115,7 @@ StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in
     case StencilMethod::brute_force: return stencil_pass_brute_force(in);
     case StencilMethod::depth_bounds: return stencil_pass_depth_bounds(in);
     case StencilMethod::hierarchical: return stencil_pass_hierarchical(in);
+    case StencilMethod::automatic: return stencil_pass_automatic(in);
     }
     return stencil_pass_brute_force(in); /* (every method is a case above) */
 }

@@ -24,6 +24,8 @@ namespace sv::render {
 namespace detail {
 class SurfaceTrianglesCache; /* surface_triangles.h */
 struct TileGrid;             /* tile_depth_range.h */
+struct BinnedTriangles;      /* pass_bins.h */
+struct PieceSetup;           /* volume_pieces.h */
 } // namespace detail
 
 struct StencilPassInputs {
@@ -38,6 +40,11 @@ struct StencilPassInputs {
     /* Hierarchical: the depth's ranges in tiles of side TILE, computed once
      * for the frame's lights (nullptr: computed by the pass). */
     const detail::TileGrid *tile_grid = nullptr;
+    /* auto: where the first light that takes hier leaves the depth's
+     * ranges for the next (nullptr: each computes its own); unused when
+     * TILE_GRID is given. */
+    detail::TileGrid *tile_grid_for_auto = nullptr;
+    StencilRule rule; /* auto: bf or hier per light */
     /* db, hier: the receivers' triangles grouped, kept across lights and
      * frames (nullptr: grouped by the pass for itself). */
     detail::SurfaceTrianglesCache *surface_triangles = nullptr;
@@ -99,6 +106,10 @@ struct StencilPassResult {
      * 2 bits of boundary and first, and the 8-bit count of a 2x2 group of
      * tiles sharing their sample point, section 5) in 64 bytes. */
     uint64_t psv_lines = 0;
+    /* The method that filled the stencil (auto: the one it chose), and the
+     * load auto chose by (counted by auto only). */
+    StencilMethod ran = StencilMethod::brute_force;
+    StencilLoad load;
 };
 
 /* What every method sets up the same way. The volumes' triangles in
@@ -124,6 +135,20 @@ StencilPassResult stencil_pass(StencilMethod method, const StencilPassInputs &in
 StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in);
 StencilPassResult stencil_pass_depth_bounds(const StencilPassInputs &in);
 StencilPassResult stencil_pass_hierarchical(const StencilPassInputs &in);
+StencilPassResult stencil_pass_automatic(const StencilPassInputs &in);
+
+/* The stages the automatic method shares with bf and hier (RESULT's
+ * stencil allocated and cleared, its timing the caller's). */
+namespace detail {
+/* bf's walk: BT's chunks set up, binned and given their modes. */
+void brute_force_walk(const StencilPassInputs &in, const BinnedTriangles &bt,
+                      StencilPassResult &result);
+/* hier from the shared set-up on (its open edges, caps, classification
+ * and walks). */
+void hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setup,
+                          StencilPassResult &result);
+void check_stencil_tile(int side); /* throws std::invalid_argument */
+} // namespace detail
 
 } // namespace sv::render
 

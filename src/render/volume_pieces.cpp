@@ -1,7 +1,8 @@
 /*
  * The volumes' pieces for the classifying stencil methods
  * (volume_pieces.h): set-up in chunks of triangles in parallel as the
- * brute-force method does, then per volume its open edges.
+ * brute-force method does (set_up_pieces), then per volume its open edges
+ * and the receiver's caps (finish_volume_pieces).
  *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
@@ -54,25 +55,20 @@ int visible_segment(const raster::ClipVertex &a, const raster::ClipVertex &b, in
 
 } // namespace
 
-VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
-    const Scene &scene = *in.scene;
+PieceSetup set_up_pieces(const StencilPassInputs &in) {
     const std::vector<Volume> &volumes = *in.volumes;
     const raster::Rasterizer &rast = *in.rast;
     const int width = in.target->width, height = in.target->height;
-    const Vec4 L = in.light;
-    const std::vector<VolumeChunk> chunks = volume_chunks(volumes);
-    const std::vector<ShadowVertexBuffer> sv_clip = shadow_vertex_buffers(in);
-    /* Per chunk: its pieces, extents, the triangle each came from, and per
-     * triangle whether it drew nothing (skipped by the open-edge count)
-     * and whether the near plane cut it. */
-    struct ChunkOut {
-        std::vector<raster::SetupTriangle> pieces;
-        std::vector<raster::PieceExtent> extents;
-        std::vector<int> triangle;
-        raster::PassCounters counters;
-    };
-    std::vector<ChunkOut> co(chunks.size());
-    std::vector<std::vector<uint8_t>> degenerate(volumes.size()), near_cut(volumes.size());
+    PieceSetup ps;
+    ps.chunks = volume_chunks(volumes);
+    ps.sv_clip = shadow_vertex_buffers(in);
+    const std::vector<VolumeChunk> &chunks = ps.chunks;
+    const std::vector<ShadowVertexBuffer> &sv_clip = ps.sv_clip;
+    std::vector<PieceSetup::ChunkOut> &co = ps.chunk_out;
+    co.resize(chunks.size());
+    std::vector<std::vector<uint8_t>> &degenerate = ps.degenerate, &near_cut = ps.near_cut;
+    degenerate.resize(volumes.size());
+    near_cut.resize(volumes.size());
     for (std::size_t vi = 0; vi < volumes.size(); vi++) {
         degenerate[vi].assign((std::size_t)volumes[vi].drawn_indices() / 3, 0);
         near_cut[vi].assign((std::size_t)volumes[vi].drawn_indices() / 3, 0);
@@ -81,7 +77,7 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
         const VolumeChunk &ch = chunks[(std::size_t)c];
         const Volume &vol = volumes[(std::size_t)ch.volume];
         const auto &cv = sv_clip[(std::size_t)ch.volume];
-        ChunkOut &o = co[(std::size_t)c];
+        PieceSetup::ChunkOut &o = co[(std::size_t)c];
         for (int t = ch.first; t < ch.last; t++) {
             const raster::ClipVertex v[3] = {cv[(std::size_t)vol.indices[3 * (std::size_t)t]],
                                              cv[(std::size_t)vol.indices[3 * (std::size_t)t + 1]],
@@ -98,6 +94,18 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
                                                                v[2].z + v[2].w < 0;
         }
     });
+    return ps;
+}
+
+VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps) {
+    const Scene &scene = *in.scene;
+    const std::vector<Volume> &volumes = *in.volumes;
+    const int width = in.target->width, height = in.target->height;
+    const Vec4 L = in.light;
+    const std::vector<VolumeChunk> &chunks = ps.chunks;
+    const std::vector<ShadowVertexBuffer> &sv_clip = ps.sv_clip;
+    const std::vector<PieceSetup::ChunkOut> &co = ps.chunk_out;
+    const std::vector<std::vector<uint8_t>> &degenerate = ps.degenerate, &near_cut = ps.near_cut;
     std::vector<std::vector<uint8_t>> open_tri(volumes.size());
     parallel((int)volumes.size(), [&](int vi) {
         const Volume &vol = volumes[(std::size_t)vi];
@@ -158,7 +166,7 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
         }
     }
     std::size_t total = 0;
-    for (const ChunkOut &o : co) total += o.pieces.size();
+    for (const PieceSetup::ChunkOut &o : co) total += o.pieces.size();
     vp.pieces.reserve(total);
     vp.extents.reserve(total);
     vp.volume.reserve(total);
@@ -166,7 +174,7 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
     vp.open.reserve(total);
     for (std::size_t c = 0; c < chunks.size(); c++) {
         const int vi = chunks[c].volume;
-        const ChunkOut &o = co[c];
+        const PieceSetup::ChunkOut &o = co[c];
         vp.counters.add(o.counters);
         const bool zfail = volumes[(std::size_t)vi].zfail;
         for (std::size_t i = 0; i < o.pieces.size(); i++) {
@@ -252,6 +260,10 @@ VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
         vp.first_piece[vi] = std::max(vp.first_piece[vi], vp.first_piece[vi - 1]);
     }
     return vp;
+}
+
+VolumePieces set_up_volume_pieces(const StencilPassInputs &in) {
+    return finish_volume_pieces(in, set_up_pieces(in));
 }
 
 } // namespace sv::render::detail

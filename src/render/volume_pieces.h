@@ -57,8 +57,31 @@ struct VolumePieces {
     raster::PassCounters counters; /* triangle counts of the set-up */
 };
 
-/* Runs on the calling task arena's threads; the same result at every
- * thread count. */
+/* The first half of the set-up, what brute force's set-up does too (so
+ * the automatic method can choose after it, stencil_auto.cpp): the
+ * volumes' triangles set up in chunks (volume_chunks), each chunk's
+ * pieces, their extents and the triangle each came from; per volume and
+ * triangle whether it drew nothing and whether the near plane cut it. */
+struct PieceSetup {
+    std::vector<VolumeChunk> chunks;
+    std::vector<ShadowVertexBuffer> sv_clip; /* per volume (shadow_vertex_buffers) */
+    struct ChunkOut {
+        std::vector<raster::SetupTriangle> pieces;
+        std::vector<raster::PieceExtent> extents;
+        std::vector<int> triangle;
+        raster::PassCounters counters;
+    };
+    std::vector<ChunkOut> chunk_out; /* per chunk */
+    std::vector<std::vector<uint8_t>> degenerate, near_cut;
+};
+
+/* Each runs on the calling task arena's threads; the same result at
+ * every thread count. */
+PieceSetup set_up_pieces(const StencilPassInputs &in);
+/* The second half: per volume its open edges and the receiver's caps,
+ * the pieces in submission order. */
+VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps);
+/* Both halves. */
 VolumePieces set_up_volume_pieces(const StencilPassInputs &in);
 
 } // namespace sv::render::detail

@@ -9,6 +9,9 @@ sv="$1"; models="$2"
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+# No wisdom file: the defaults below are the built-in ones, whatever
+# `shadowvol tune` saved for this user.
+export SV_WISDOM="$tmp/no-wisdom"
 
 cd "$tmp"
 "$sv" render --json "$tmp/render.json" >"$tmp/out" 2>"$tmp/err"
@@ -29,7 +32,30 @@ fi
 grep -q '"schema": "shadowvol-render/1"' "$tmp/render.json" || err "JSON without its schema"
 grep -q '"passed": true' "$tmp/render.json" || err "JSON does not say passed"
 grep -q '"width": 1280' "$tmp/render.json" || err "the default size is not 1280x1024"
-grep -q '"stencil": "bf"' "$tmp/render.json" || err "JSON does not name the stencil method (bf by default)"
+grep -q '"stencil": "auto"' "$tmp/render.json" || err "JSON does not name the stencil method (auto by default)"
+grep -q '"stencil_source": "default"' "$tmp/render.json" || err "JSON: the default stencil method's source is not default"
+
+# The stencil method from the wisdom file (shadowvol tune's line for this
+# CPU) where --stencil does not say; --stencil and --stencil-tile override
+# it; a line for another CPU is not this one's.
+cpu=$("$sv" tune --class 0 --no-stencil --dry-run 2>/dev/null | sed -n 's/^cpu  *//p')
+[ -n "$cpu" ] || err "tune printed no cpu line"
+printf 'shadowvol-wisdom 1\ncpu Other 1/2/3 sse2 X\nstencil bf 8 1.0\ncpu %s\nstencil hier 16 40.0\n' "$cpu" \
+  >"$tmp/wisdom"
+wisdom_render() { # JSON_FILE ARGS...
+  local json=$1; shift
+  SV_WISDOM="$tmp/wisdom" "$sv" render --size 96x64 --no-gl --no-truth --out "$tmp/w" --json "$json" "$@" \
+    >/dev/null 2>"$tmp/err" || err "render $* with a wisdom file exited $?: $(cat "$tmp/err")"
+}
+wisdom_render "$tmp/w1.json"
+grep -q '"stencil": "hier"' "$tmp/w1.json" && grep -q '"stencil_source": "wisdom"' "$tmp/w1.json" \
+  && grep -q '"stencil_tile": 16' "$tmp/w1.json" || err "the wisdom's stencil line did not set the default"
+wisdom_render "$tmp/w2.json" --stencil bf --stencil-tile 8
+grep -q '"stencil": "bf"' "$tmp/w2.json" && grep -q '"stencil_source": "option"' "$tmp/w2.json" \
+  && grep -q '"stencil_tile": 8' "$tmp/w2.json" || err "--stencil did not override the wisdom"
+wisdom_render "$tmp/w3.json" --stencil auto
+grep -q '"stencil": "auto"' "$tmp/w3.json" && grep -q '"stencil_hier_from_area_per_piece": 40' "$tmp/w3.json" \
+  || err "--stencil auto did not take the wisdom's threshold"
 # index_lists: one row per volume (the lights' "volumes" summed), each with
 # its count and a 16-hex-digit FNV-1a 64 of the list (tools/pin_bytes.sh).
 volumes=$(( $(sed -n 's/^ *"volumes": \([0-9]*\),$/\1/p' "$tmp/render.json" | paste -sd+) + 0 ))

@@ -18,7 +18,7 @@ for preset in simple knights demo "$demo"; do
     >"$tmp/out" 2>"$tmp/err"
   rc=$?
   [ $rc -eq 0 ] || { err "--preset $preset exited $rc: $(cat "$tmp/err")"; continue; }
-  for m in bf db hier; do
+  for m in bf db hier auto; do
     grep -qE "^stencil +$m +[-0-9]+ +1 +[0-9.]+ +[0-9.]+ +[0-9]+ +[0-9.]+ +[0-9]+ +yes$" "$tmp/out" \
       || err "--preset $preset: no checked 1-thread row for $m: $(cat "$tmp/out")"
   done
@@ -46,6 +46,18 @@ done
 grep -q "^bandwidth per frame, MB" "$tmp/out" || err "knights: no bandwidth table"
 "$sv" bench --scene --preset simple --size 160x128 --quick --json "$tmp/b.json" >/dev/null 2>&1
 [ "$(grep -c '"bw_total": ' "$tmp/b.json")" -ge 3 ] || err "simple: no bw_total in the JSON rows"
+
+# auto's rule measured (bench --stencil-rule): a row per light, each checked,
+# the fit printed and in the JSON.
+"$sv" bench --stencil-rule --preset simple --size 160x128 --quick --json "$tmp/r.json" \
+  >"$tmp/out" 2>"$tmp/err" || err "--stencil-rule exited $?: $(cat "$tmp/err")"
+grep -qE "^simple +0 +0 +[0-9]+ .* (bf|hier) +yes$" "$tmp/out" \
+  || err "--stencil-rule: no checked row for simple's light: $(cat "$tmp/out")"
+grep -qE "^koala zfail|^character_1344 zfail" "$tmp/out" \
+  || err "--stencil-rule: no render-table model's z-fail row"
+grep -q "lights. Total stencil ms: bf " "$tmp/out" || err "--stencil-rule: no fit line"
+grep -q '"hier_from_area_per_piece": ' "$tmp/r.json" || err "--stencil-rule: no threshold in the JSON"
+grep -q '"equal": false' "$tmp/r.json" && err "--stencil-rule: hier's stencil differs from bf's"
 
 # Seed 004's Figure 1: four PNGs, the composed shadow equal to the correct
 # one and hier's stencil to bf's (the tool's own checks), usage errors.

@@ -13,6 +13,9 @@ sv="$1"; demo="$2"; shared="$3"; size="${4:-320x256}"; set="${5:-bundled}"
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+# No wisdom file: the built-in stencil default (auto), whatever `shadowvol
+# tune` saved for this user.
+export SV_WISDOM="$tmp/no-wisdom"
 cd "$tmp"
 
 # Every animated real character, on the ground, under the three light kinds:
@@ -60,7 +63,7 @@ cat "$tmp/out"
 grep -q '^PASSED' "$tmp/out" || err "the demo scene did not print PASSED"
 grep -q '"schema": "shadowvol-scene/1"' "$tmp/demo.json" || err "JSON without its schema"
 grep -q '"passed": true' "$tmp/demo.json" || err "JSON does not say passed"
-grep -q '"stencil": "bf"' "$tmp/demo.json" || err "JSON does not name the stencil method (bf by default)"
+grep -q '"stencil": "auto"' "$tmp/demo.json" || err "JSON does not name the stencil method (auto by default)"
 grep -q '"caster_rule": "auto"' "$tmp/demo.json" || err "JSON does not name the caster rule (auto by default)"
 grep -q '"ground_hints": true' "$tmp/demo.json" || err "JSON does not say the ground hints are used (the default)"
 # The terrain is declared ground in the file: inspect says it keeps the paper's rule, and why.

@@ -11,13 +11,13 @@ fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
-"$sv" tune --class 0 --wisdom "$tmp/w/wisdom" >"$tmp/out" 2>"$tmp/err"
+"$sv" tune --class 0 --stencil-size 160x128 --wisdom "$tmp/w/wisdom" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 cat "$tmp/out"
 [ $rc -eq 0 ] || err "tune --class 0 exited $rc: $(cat "$tmp/err")"
-# Six volume routines and four of the deforming pass (skinning, planes,
-# planes by clusters or not, one pass or two).
-[ "$(grep -c '<- planned' "$tmp/out")" -eq 10 ] || err "not one planned variant per routine"
+# Six volume routines, four of the deforming pass (skinning, planes,
+# planes by clusters or not, one pass or two) and the stencil pass's method.
+[ "$(grep -c '<- planned' "$tmp/out")" -eq 11 ] || err "not one planned variant per routine"
 for r in calculate_facing calculate_cull_bits count_facing count_facing_cull create_sil_triangles \
          create_cap_triangles skinning derive_planes skin_planes; do
   grep -q "^$r .* c_ref " "$tmp/out" || err "no c_ref timing for $r"
@@ -49,9 +49,13 @@ awk '$1 ~ /^(skinning|derive_planes|derive_planes_clustered|skin_planes)$/ { t[$
            exit bad }' "$tmp/out" \
   || err "a deforming-pass choice is not within 3% of the fastest"
 grep -qE '^class 0 skin_planes (none|[a-z0-9_]+) [0-9.]+$' "$tmp/w/wisdom" || err "no skin_planes line in the wisdom"
+# The stencil pass's method: auto at the threshold printed, in the wisdom.
+threshold=$(sed -n 's/^stencil   auto, hier from \([0-9.]*\|inf\) pixels of area per piece: .*<- planned$/\1/p' "$tmp/out")
+[ -n "$threshold" ] || err "no planned stencil line: $(grep '^stencil' "$tmp/out")"
+grep -qx "stencil auto 32 $threshold" "$tmp/w/wisdom" || err "the wisdom has no stencil line auto 32 $threshold"
 
 # tune MODEL: measured on the model's own surface, its class only.
-"$sv" tune "$src_models/character_1344.glb" --wisdom "$tmp/m/wisdom" >"$tmp/out" 2>"$tmp/err"
+"$sv" tune "$src_models/character_1344.glb" --no-stencil --wisdom "$tmp/m/wisdom" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 [ $rc -eq 0 ] || err "tune MODEL exited $rc: $(cat "$tmp/err")"
 grep -q '^class 0 (.*character_1344.glb, surface .*: 1344 triangles)$' "$tmp/out" || err "tune MODEL: not measured on the model: $(head -5 "$tmp/out")"
@@ -62,7 +66,7 @@ grep -q '^class 0 (.*character_1344.glb, surface .*: 1344 triangles)$' "$tmp/out
   || err "tune MODEL: the wisdom is not the model's class alone"
 
 # --dry-run saves nothing.
-"$sv" tune --class 0 --dry-run --wisdom "$tmp/dry" >/dev/null 2>&1 || err "--dry-run failed"
+"$sv" tune --class 0 --no-stencil --dry-run --wisdom "$tmp/dry" >/dev/null 2>&1 || err "--dry-run failed"
 [ ! -e "$tmp/dry" ] || err "--dry-run wrote the wisdom file"
 
 # expect STATUS ARGS...
@@ -76,6 +80,7 @@ expect() {
 expect 2 --class 9
 expect 2 --class
 expect 2 --sideways
+expect 2 --stencil-size 0x4
 expect 2 --wisdom ""
 expect 2 "$src_models/character_1344.glb" "$src_models/character_1344.glb"
 expect 3 --dry-run "$tmp/no-such-model.glb"

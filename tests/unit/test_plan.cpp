@@ -318,6 +318,73 @@ TEST_F(PlanTest, WisdomRoundTripKeepsOtherCpusAndRefusesMalformedFiles) {
     std::remove(path.c_str());
 }
 
+// The stencil pass's method (issue 28): a measurement is saved as this
+// CPU's "stencil" line and read back as the wisdom's choice; the wisdom
+// never overrides a measurement; "inf" reads; a line with a method, tile
+// or threshold that is not one refuses the file.
+TEST_F(PlanTest, WisdomCarriesTheStencilChoice) {
+    const std::string path = temp_path("stencil");
+    std::remove(path.c_str());
+    char key[256];
+    sv_cpu_model_key(key, sizeof key);
+    sv_stencil_choice c;
+    EXPECT_EQ(sv_stencil_choice_for(&c), 0) << "none before a measurement";
+    EXPECT_EQ(sv_stencil_choice_for(nullptr), -1);
+    for (const char *bad : {"fast", "", "bf "}) EXPECT_EQ(sv_stencil_choice_set(bad, 32, 1), -1);
+    EXPECT_EQ(sv_stencil_choice_set("auto", 12, 1), -1) << "no such tile";
+    EXPECT_EQ(sv_stencil_choice_set("auto", 32, -1), -1) << "negative threshold";
+    EXPECT_EQ(sv_stencil_choice_set("auto", 32, NAN), -1) << "NaN threshold";
+    ASSERT_EQ(sv_stencil_choice_set("auto", 16, 71.25), 0);
+    ASSERT_EQ(sv_stencil_choice_for(&c), 1);
+    EXPECT_STREQ(c.method, "auto");
+    EXPECT_STREQ(c.source, "measured");
+    ASSERT_EQ(sv_wisdom_save(path.c_str()), 0);
+    const std::string text = read_all(path);
+    EXPECT_NE(text.find(std::string("cpu ") + key + "\nstencil auto 16 71.2\n"), std::string::npos)
+        << text;
+
+    sv_plan_reset();
+    EXPECT_EQ(sv_stencil_choice_for(&c), 0) << "reset forgets it";
+    EXPECT_EQ(sv_wisdom_load(path.c_str()), 0) << "no class in the file";
+    ASSERT_EQ(sv_stencil_choice_for(&c), 1);
+    EXPECT_STREQ(c.method, "auto");
+    EXPECT_EQ(c.tile, 16);
+    EXPECT_NEAR(c.hier_from_area_per_piece, 71.2, 1e-9);
+    EXPECT_STREQ(c.source, "wisdom");
+
+    // A measurement outranks the file, and the file does not come back over it.
+    ASSERT_EQ(sv_stencil_choice_set("hier", 8, 0), 0);
+    EXPECT_EQ(sv_wisdom_load(path.c_str()), 0);
+    ASSERT_EQ(sv_stencil_choice_for(&c), 1);
+    EXPECT_STREQ(c.method, "hier");
+
+    sv_plan_reset();
+    {
+        std::ofstream out(path);
+        out << "shadowvol-wisdom 1\ncpu " << key << "\nstencil bf 32 inf\n";
+    }
+    EXPECT_EQ(sv_wisdom_load(path.c_str()), 0);
+    ASSERT_EQ(sv_stencil_choice_for(&c), 1);
+    EXPECT_STREQ(c.method, "bf");
+    EXPECT_TRUE(std::isinf(c.hier_from_area_per_piece));
+    ASSERT_EQ(sv_wisdom_save(path.c_str()), 0) << "rewrites what it read";
+    EXPECT_NE(read_all(path).find("\nstencil bf 32 inf\n"), std::string::npos) << read_all(path);
+
+    for (const char *bad :
+         {"stencil fast 32 1", "stencil auto 12 1", "stencil auto 32 -1", "stencil auto 32 nan",
+          "stencil auto 32", "stencil auto 32 1 x", "stencil auto 32 1x"}) {
+        sv_plan_reset();
+        {
+            std::ofstream out(path);
+            out << "shadowvol-wisdom 1\ncpu " << key << "\n" << bad << "\n";
+        }
+        EXPECT_EQ(sv_wisdom_load(path.c_str()), -1) << bad;
+        EXPECT_EQ(sv_stencil_choice_for(&c), 0) << bad;
+    }
+    sv_plan_reset();
+    std::remove(path.c_str());
+}
+
 TEST_F(PlanTest, WisdomNamingAVariantThisCpuLacksFallsBack) {
     const std::string path = temp_path("lacks");
     char key[256];

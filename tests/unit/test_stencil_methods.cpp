@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -232,6 +233,48 @@ TEST(StencilMethods, DemoSceneFramesEqualBruteForce) {
     }
 }
 
+/* auto (per light bf or hier, by StencilRule) equals brute force
+ * whichever it takes: its rule forced to hier for every light (threshold
+ * 0), to bf (infinity), and the default, at 1, 2, 3 and all threads; each
+ * light ran what the rule says for its load. */
+TEST(StencilMethods, AutoEqualsBruteForceWhicheverItTakes) {
+    const double rules[] = {0.0, std::numeric_limits<double>::infinity(),
+                            kDefaultHierFromAreaPerPiece};
+    for (const Case &c : kScenes) {
+        const Scene scene = c.make();
+        for (ModeChoice mode : {ModeChoice::zpass, ModeChoice::zfail}) {
+            const Frame bf = render_frame(scene, options(kOddW, kOddH, StencilMethod::brute_force,
+                                                         mode, 1));
+            for (double rule : rules) {
+                for (int threads : {1, 2, 3, 0}) {
+                    RenderOptions o = options(kOddW, kOddH, StencilMethod::automatic, mode,
+                                              threads);
+                    o.stencil_rule.hier_from_area_per_piece = rule;
+                    const Frame f = render_frame(scene, o);
+                    EXPECT_EQ(stencil_differences(f, bf), 0u)
+                        << c.name << ", " << mode_name(mode) << ", rule " << rule << ", " << threads
+                        << " threads";
+                    for (const LightFrame &lf : f.lights) {
+                        const bool hier = o.stencil_rule.choose_hier(lf.stencil_load);
+                        EXPECT_EQ(lf.stencil_ran,
+                                  hier ? StencilMethod::hierarchical : StencilMethod::brute_force)
+                            << c.name << ", rule " << rule;
+                        if (rule == 0 && lf.stencil_load.pieces) {
+                            EXPECT_EQ(lf.stencil_ran, StencilMethod::hierarchical) << c.name;
+                        }
+                        if (std::isinf(rule)) {
+                            EXPECT_EQ(lf.stencil_ran, StencilMethod::brute_force) << c.name;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* Each of hier's tests made wrong is caught, run by hier itself and by
+ * auto with its rule forced to hier (the same stages on auto's shared
+ * set-up). */
 TEST(StencilMethods, TheEqualityCatchesEachHierTestMadeWrong) {
     struct Fault {
         const char *name;
@@ -242,22 +285,25 @@ TEST(StencilMethods, TheEqualityCatchesEachHierTestMadeWrong) {
         {"sample point outside its tile", [](StencilFaults &f) { f.sample_outside_tile = true; }},
     };
     for (const Fault &fault : faults) {
-        for (ModeChoice mode : {ModeChoice::zpass, ModeChoice::zfail}) {
-            uint64_t seen = 0;
-            for (const Case &c : kScenes) {
-                const Scene scene = c.make();
-                const Frame bf = render_frame(scene,
-                                              options(kW, kH, StencilMethod::brute_force, mode, 1));
-                RenderOptions o = options(kW, kH, StencilMethod::hierarchical, mode, 1);
-                /* The seed's tiles: at this frame size they are many, so a
-                 * wrong test has room to show (the default, larger tiles
-                 * leave a few dozen). */
-                o.stencil_tile = 8;
-                fault.apply(o.stencil_faults);
-                seen += stencil_differences(render_frame(scene, o), bf);
+        for (StencilMethod m : {StencilMethod::hierarchical, StencilMethod::automatic}) {
+            for (ModeChoice mode : {ModeChoice::zpass, ModeChoice::zfail}) {
+                uint64_t seen = 0;
+                for (const Case &c : kScenes) {
+                    const Scene scene = c.make();
+                    const Frame bf = render_frame(scene, options(kW, kH, StencilMethod::brute_force,
+                                                                 mode, 1));
+                    RenderOptions o = options(kW, kH, m, mode, 1);
+                    o.stencil_rule.hier_from_area_per_piece = 0; /* auto: hier everywhere */
+                    /* The seed's tiles: at this frame size they are many, so a
+                     * wrong test has room to show (the default, larger tiles
+                     * leave a few dozen). */
+                    o.stencil_tile = 8;
+                    fault.apply(o.stencil_faults);
+                    seen += stencil_differences(render_frame(scene, o), bf);
+                }
+                EXPECT_GT(seen, 0u) << fault.name << ", " << stencil_method_name(m) << ", "
+                                    << mode_name(mode) << ": the equality did not see it";
             }
-            EXPECT_GT(seen, 0u) << fault.name << ", " << mode_name(mode)
-                                << ": the equality did not see it";
         }
     }
 }
@@ -405,8 +451,8 @@ TEST(StencilMethods, HierRefusesATileSideItHasNot) {
 }
 
 TEST(StencilMethods, NamesRoundTrip) {
-    for (StencilMethod m :
-         {StencilMethod::brute_force, StencilMethod::depth_bounds, StencilMethod::hierarchical}) {
+    for (StencilMethod m : {StencilMethod::brute_force, StencilMethod::depth_bounds,
+                            StencilMethod::hierarchical, StencilMethod::automatic}) {
         StencilMethod back = StencilMethod::brute_force;
         ASSERT_TRUE(stencil_method_by_name(stencil_method_name(m), back));
         EXPECT_EQ(back, m);
@@ -414,7 +460,7 @@ TEST(StencilMethods, NamesRoundTrip) {
     StencilMethod untouched = StencilMethod::hierarchical;
     EXPECT_FALSE(stencil_method_by_name("hi", untouched));
     EXPECT_EQ(untouched, StencilMethod::hierarchical);
-    EXPECT_EQ(stencil_method_names(), "bf, db, hier");
+    EXPECT_EQ(stencil_method_names(), "bf, db, hier, auto");
 }
 
 } // namespace

@@ -3,8 +3,8 @@
  * the other; issue 31, StencilPassInputs::saturate) in every stencil
  * method: where 256 copies of the character overlap, the saturating and the
  * wrap-around stencils differ (the wrap-around count is 0 where all 256
- * volumes hold the pixel, the saturating one is not), and bf, db and hier
- * leave the same saturating bytes at 1, 2, 3 and all threads, in z-fail
+ * volumes hold the pixel, the saturating one is not), and bf, db, hier and
+ * auto (forced each way) leave the same saturating bytes at 1, 2, 3 and all threads, in z-fail
  * (the seed's) and z-pass. A saturating count is not a sum modulo 256, so
  * db's closed-volume skip and hier's wholesale tile updates would break
  * this equality if they were still applied.
@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -179,10 +180,13 @@ TEST(StencilSaturate, WholeTilesAndSkippedPixelsOf256BoxesEqualBruteForce) {
         EXPECT_GT(differ, 500u) << mode_name(mode);
         for (int threads : {1, 2, 3, 0}) {
             for (StencilMethod m : {StencilMethod::brute_force, StencilMethod::depth_bounds,
-                                    StencilMethod::hierarchical}) {
+                                    StencilMethod::hierarchical, StencilMethod::automatic}) {
                 o.stencil = m;
                 o.threads = threads;
                 o.stencil_tile = threads == 3 ? 32 : 8;
+                /* auto: its bf at 2 threads, its hier at the others. */
+                o.stencil_rule.hier_from_area_per_piece =
+                    threads == 2 ? std::numeric_limits<double>::infinity() : 0.0;
                 EXPECT_EQ(differing(render_frame(many, o).lights[0].stencil, bf.lights[0].stencil),
                           0u)
                     << stencil_method_name(m) << ", " << mode_name(mode) << ", " << threads

@@ -105,6 +105,7 @@ TEST(ViewControls, EachKeyChangesItsSwitchAndNothingElse) {
                  {"M", "mode auto"},
                  {"T", "stencil db"},
                  {"T", "stencil hier"},
+                 {"T", "stencil auto"},
                  {"T", "stencil bf"},
                  {"C", "caster closed"},
                  {"C", "caster general"},
