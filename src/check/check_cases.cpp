@@ -892,6 +892,19 @@ std::vector<int> deform_indices(Rng &rng, int t, int v, Shape shape) {
     return ix;
 }
 
+// The first plane of OUT that differs from WANT's bits, recorded.
+void compare_planes(Row &row, const std::string &at, const GuardedBuffer &out,
+                    const std::vector<Plane> &want) {
+    for (size_t t = 0; t < want.size(); t++) {
+        // Bit for bit is the contract (-0.0 against 0.0, a NaN's payload).
+        // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
+        if (std::memcmp(out.data() + t * sizeof(Plane), &want[t], sizeof(Plane)) != 0) {
+            record_failure(row, at, "plane " + std::to_string(t) + " differs from c_ref's");
+            return;
+        }
+    }
+}
+
 } // namespace
 
 void run_derive_planes(std::vector<Row> &rows, Rng &rng) {
@@ -915,14 +928,7 @@ void run_derive_planes(std::vector<Row> &rows, Rng &rng) {
                      ibuf.as<const int>(), n, out.as<Plane>());
             count_case(row);
             record_abi(row, failed, at);
-            for (size_t t = 0; t < want.size(); t++) {
-                // Bit for bit is the contract (-0.0 against 0.0, a NaN's payload).
-                // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
-                if (std::memcmp(out.data() + t * sizeof(Plane), &want[t], sizeof(Plane)) != 0) {
-                    record_failure(row, at, "plane " + std::to_string(t) + " differs from c_ref's");
-                    break;
-                }
-            }
+            compare_planes(row, at, out, want);
             if (!unchanged(pbuf, pos) || !unchanged(ibuf, ix)) {
                 record_failure(row, at, "modified its const positions or indices");
             }
@@ -960,14 +966,7 @@ void run_derive_planes_clustered(std::vector<Row> &rows, Rng &rng) {
                      out.as<Plane>());
             count_case(row);
             record_abi(row, failed, at);
-            for (size_t t = 0; t < want.size(); t++) {
-                // Bit for bit is the contract (-0.0 against 0.0, a NaN's payload).
-                // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): Plane is four floats, no padding
-                if (std::memcmp(out.data() + t * sizeof(Plane), &want[t], sizeof(Plane)) != 0) {
-                    record_failure(row, at, "plane " + std::to_string(t) + " differs from c_ref's");
-                    break;
-                }
-            }
+            compare_planes(row, at, out, want);
             if (!unchanged(pbuf, pos)) record_failure(row, at, "modified its const positions");
             check_guards(row, at, {"around the planes", "around the positions"}, {&out, &pbuf});
         }

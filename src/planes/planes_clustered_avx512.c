@@ -37,6 +37,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "planes_avx512_normal.h"
 #include "planes_internal.h"
 #include "../core/simd_exit.h"
 
@@ -103,14 +104,8 @@ SV_TARGET_AVX512 void sv_derive_planes_clustered_avx512(const float *positions,
             const __m512 bx = _mm512_sub_ps(_mm512_permutex2var_ps(x0, i2, x1), px);
             const __m512 by = _mm512_sub_ps(_mm512_permutex2var_ps(y0, i2, y1), py);
             const __m512 bz = _mm512_sub_ps(_mm512_permutex2var_ps(z0, i2, z1), pz);
-            const __m512 nx = _mm512_sub_ps(_mm512_mul_ps(ay, bz), _mm512_mul_ps(az, by));
-            const __m512 ny = _mm512_sub_ps(_mm512_mul_ps(az, bx), _mm512_mul_ps(ax, bz));
-            const __m512 nz = _mm512_sub_ps(_mm512_mul_ps(ax, by), _mm512_mul_ps(ay, bx));
-            const __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(nx, nx),
-                                                            _mm512_mul_ps(ny, ny)),
-                                              _mm512_mul_ps(nz, nz));
-            const __mmask16 ok = _mm512_cmp_ps_mask(len2, _mm512_setzero_ps(), _CMP_GT_OQ) &
-                                 _mm512_cmp_ps_mask(len2, _mm512_set1_ps(INFINITY), _CMP_LT_OQ);
+            __m512 nx, ny, nz, len2;
+            const __mmask16 ok = sv_normal16_avx512(ax, ay, az, bx, by, bz, &nx, &ny, &nz, &len2);
             const __m512 inv = _mm512_div_ps(_mm512_set1_ps(1.0f), _mm512_sqrt_ps(len2));
             const __m512 a = _mm512_maskz_mul_ps(ok, nx, inv);
             const __m512 b = _mm512_maskz_mul_ps(ok, ny, inv);

@@ -27,6 +27,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <vector>
@@ -442,6 +443,25 @@ SV_TIERED_TEST(Planes, VertexZeroAtPageStartAndDegenerateLanes) {
     }
 }
 
+// The files of model set SET (svtest::model_sets()): the bundled
+// character, or NAMES in the shared folder, those not readable listed in
+// MISSING.
+std::vector<std::string> model_files(const std::string &set,
+                                     std::initializer_list<const char *> names,
+                                     std::string *missing) {
+    std::vector<std::string> files;
+    if (set == "bundled") files.push_back(std::string(SV_MODELS_DIR) + "/character_1344.glb");
+    if (set != "SharedModels") return files;
+    for (const char *name : names) {
+        const std::string p = svtest::shared_models_dir() + "/" + name;
+        if (access(p.c_str(), R_OK) == 0)
+            files.push_back(p);
+        else
+            *missing += " " + p;
+    }
+    return files;
+}
+
 // The project's character and the real characters (when their folder is
 // there): every variant bit-identical on real index orders.
 // Once per model set: the bundled character, and the real characters of
@@ -455,20 +475,11 @@ SV_TIERED_TEST_P(PlanesModels, RealMeshes) {
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("RealMeshes");
     const auto variants = runnable();
-    std::vector<std::string> files;
-    if (GetParam() == "bundled")
-        files.push_back(std::string(SV_MODELS_DIR) + "/character_1344.glb");
     std::string missing;
-    if (GetParam() == "SharedModels") {
-        for (const char *name :
-             {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb", "RiggedFigure.glb"}) {
-            const std::string p = svtest::shared_models_dir() + "/" + name;
-            if (access(p.c_str(), R_OK) == 0)
-                files.push_back(p);
-            else
-                missing += " " + p;
-        }
-    }
+    const std::vector<std::string> files = model_files(GetParam(),
+                                                       {"Fox.glb", "CesiumMan.glb",
+                                                        "RobotExpressive.glb", "RiggedFigure.glb"},
+                                                       &missing);
     for (const std::string &f : files) {
         const sv::GltfModel model = sv::load_gltf(f);
         for (const sv::GltfSurface &s : model.surfaces) {
@@ -637,20 +648,12 @@ INSTANTIATE_TEST_SUITE_P(ModelSets, PlaneClustersModels, ::testing::ValuesIn(svt
 SV_TIERED_TEST_P(PlaneClustersModels, RealMeshesDenseAndBitIdentical) {
     SCOPED_TRACE(svtest::seed_trace());
     Rng rng = svtest::rng_for("PlaneClustersModels");
-    std::vector<std::string> files;
-    if (GetParam() == "bundled")
-        files.push_back(std::string(SV_MODELS_DIR) + "/character_1344.glb");
     std::string missing;
-    if (GetParam() == "SharedModels") {
-        for (const char *name : {"Fox.glb", "CesiumMan.glb", "RobotExpressive.glb",
-                                 "RiggedFigure.glb", "open/Zombie_Basic.glb"}) {
-            const std::string p = svtest::shared_models_dir() + "/" + name;
-            if (access(p.c_str(), R_OK) == 0)
-                files.push_back(p);
-            else
-                missing += " " + p;
-        }
-    }
+    const std::vector<std::string> files = model_files(GetParam(),
+                                                       {"Fox.glb", "CesiumMan.glb",
+                                                        "RobotExpressive.glb", "RiggedFigure.glb",
+                                                        "open/Zombie_Basic.glb"},
+                                                       &missing);
     for (const std::string &f : files) {
         const sv::GltfModel model = sv::load_gltf(f);
         int triangles = 0, clusters = 0;
