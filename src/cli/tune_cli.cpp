@@ -41,7 +41,7 @@ void tune_usage(FILE *out) {
     std::fprintf(
         out,
         "usage: shadowvol tune [MODEL.glb|MODEL.gltf] [--class N]... [--wisdom FILE] [--dry-run]\n"
-        "                      [--stencil-size WxH | --no-stencil]\n"
+        "                      [--stencil-size WxH] [--stencil-quick | --no-stencil]\n"
         "  Times every variant of every routine this CPU runs on a mesh of each size\n"
         "  class (0: under 4096 triangles, 1: under 65536, 2: under 524288, 3: larger),\n"
         "  checks every call against c_ref, and saves the fastest per routine and class\n"
@@ -61,6 +61,9 @@ void tune_usage(FILE *out) {
         "                  $XDG_CACHE_HOME/shadowvol/wisdom, else ~/.cache/shadowvol/wisdom)\n"
         "  --dry-run       measure and print, save nothing\n"
         "  --stencil-size WxH  the stencil measurement's frame (default 1280x1024)\n"
+        "  --stencil-quick the stencil measurement on the simple preset and the bundled\n"
+        "                  character only (a rough threshold: for checking the tuning\n"
+        "                  itself, as the tests and the sanitizer build do)\n"
         "  --no-stencil    leave the stencil method out (the wisdom file keeps its line)\n"
         "exit status: 0 done, 1 a variant disagreed with c_ref, 2 bad arguments,\n"
         "3 the wisdom file could not be written, or MODEL could not be loaded or has\n"
@@ -132,11 +135,15 @@ bool tune_deform(int c) {
 /* The stencil pass's method (stencil_rule.h): auto at the fitted
  * threshold, recorded for sv_wisdom_save. Returns false when hier's
  * stencil differed from bf's on a light, or a scene did not load. */
-bool tune_stencil(int width, int height) {
+bool tune_stencil(int width, int height, bool quick) {
     svbench::SeedCommand cmd;
     cmd.sharedModels = SV_SHARED_MODELS_DIR;
     svbench::StencilRuleOptions o;
     o.models = svbench::render_table_models(cmd);
+    if (quick) { /* the smallest preset and the bundled character (the table's first) */
+        o.presets = {"simple"};
+        o.models.resize(1);
+    }
     o.width = width, o.height = height;
     o.frames = 1, o.runs = 2;
     std::vector<svbench::StencilRuleSample> samples;
@@ -171,7 +178,7 @@ bool tune_stencil(int width, int height) {
 int tune_main(int argc, char **argv) {
     std::vector<int> classes;
     std::string path, model;
-    bool dry = false, stencil = true;
+    bool dry = false, stencil = true, stencil_quick = false;
     int stencil_width = 1280, stencil_height = 1024;
     try {
         ArgReader a(argc, argv);
@@ -190,6 +197,8 @@ int tune_main(int argc, char **argv) {
                 parse_frame_size(a.value(), stencil_width, stencil_height);
             } else if (a.is_flag("--no-stencil")) {
                 stencil = false;
+            } else if (a.is_flag("--stencil-quick")) {
+                stencil_quick = true;
             } else if (!a.arg().empty() && a.arg()[0] != '-' && model.empty()) {
                 model = a.arg();
             } else {
@@ -278,7 +287,7 @@ int tune_main(int argc, char **argv) {
         print_class(c, measuredOn, t);
         if (!tune_deform(c)) return 1;
     }
-    if (stencil && !tune_stencil(stencil_width, stencil_height)) return 1;
+    if (stencil && !tune_stencil(stencil_width, stencil_height, stencil_quick)) return 1;
     if (dry) {
         std::printf("\n--dry-run: nothing saved\n");
         return 0;
