@@ -35,7 +35,6 @@
  */
 #include <immintrin.h>
 #include <stdint.h>
-#include <string.h>
 
 #include "planes_avx512_normal.h"
 #include "planes_internal.h"
