@@ -33,21 +33,25 @@ static inline float sv_extrude_rsqrt_nr(float x) {
     return y0 * (1.5f - (0.5f * x) * (y0 * y0));
 }
 
-/* One vertex; APPROX: the rsqrt variant's 1/sqrt (sv_extrude_rsqrt_nr)
- * instead of the correctly rounded one. */
-static inline Vec4 sv_extrude_vertex(const float *v, const Vec4 *l, float range, int finite,
-                                     int approx) {
-    const float px = v[0], py = v[1], pz = v[2];
-    const float nx = v[3], ny = v[4], nz = v[5];
+/* One vertex at P (three floats) whose facing is decided by the normal N
+ * (three floats: the seed's dp3 with the vertex's own light direction) or,
+ * where N is NULL, given by FACE_KEEPS (the neighbour fix of
+ * src/extrude/skinned_normals.h: one decision for the face's three
+ * vertices); the rest of the program is the same either way. APPROX: the
+ * rsqrt variant's 1/sqrt (sv_extrude_rsqrt_nr) instead of the correctly
+ * rounded one. */
+static inline Vec4 sv_extrude_vertex_facing(const float *p, const float *n, int face_keeps,
+                                            const Vec4 *l, float range, int finite, int approx) {
+    const float px = p[0], py = p[1], pz = p[2];
     const float dx = px * l->w - l->x;
     const float dy = py * l->w - l->y;
     const float dz = pz * l->w - l->z;
     const float len2 = (dx * dx + dy * dy) + dz * dz;
     const float inv = approx ? sv_extrude_rsqrt_nr(len2) : 1.0f / sv_extrude_sqrt(len2);
     const float ux = dx * inv, uy = dy * inv, uz = dz * inv;
-    const float dot = (nx * ux + ny * uy) + nz * uz;
+    const int keeps = n ? (n[0] * ux + n[1] * uy) + n[2] * uz < 0.0f : face_keeps;
     Vec4 o;
-    if (dot < 0.0f || !(len2 > 0.0f)) {
+    if (keeps || !(len2 > 0.0f)) {
         o.x = px, o.y = py, o.z = pz, o.w = 1.0f;
     } else if (!finite) {
         o.x = dx, o.y = dy, o.z = dz, o.w = 0.0f;
@@ -58,6 +62,12 @@ static inline Vec4 sv_extrude_vertex(const float *v, const Vec4 *l, float range,
         o.x = ux * ext + px, o.y = uy * ext + py, o.z = uz * ext + pz, o.w = 1.0f;
     }
     return o;
+}
+
+/* One vertex of the seed's stream (position, then the face's normal). */
+static inline Vec4 sv_extrude_vertex(const float *v, const Vec4 *l, float range, int finite,
+                                     int approx) {
+    return sv_extrude_vertex_facing(v, v + 3, 0, l, range, finite, approx);
 }
 
 /* The reference expression. */

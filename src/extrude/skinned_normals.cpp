@@ -8,6 +8,7 @@
 
 #include <map>
 
+#include "extrude_internal.h"
 #include "shadowvol_planes.h"
 #include "shadowvol_skin.h"
 
@@ -123,45 +124,59 @@ void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
     }
 }
 
+std::vector<float> neighbour_stream(const ShadowMesh &mesh) {
+    const std::size_t n = (std::size_t)mesh.num_vertices();
+    std::vector<float> out(n * kNeighbourStreamFloats);
+    for (std::size_t j = 0; j < n; j++) {
+        const float *face = mesh.stream.data() + (j - j % 3) * SV_EXTRUDE_STREAM_FLOATS;
+        for (std::size_t k = 0; k < 3; k++) {
+            for (std::size_t c = 0; c < 3; c++)
+                out[j * kNeighbourStreamFloats + 3 * k + c] =
+                    face[k * SV_EXTRUDE_STREAM_FLOATS + c];
+        }
+    }
+    return out;
+}
+
+void extrude_neighbours(const float *stream, int n, const sv_extrude_light &light, Vec4 *out) {
+    const Vec4 &L = light.position;
+    const int finite = sv_extrude_finite(&L, light.range);
+    for (int j = 0; j < n; j++) {
+        const float *c = stream + (std::size_t)j * kNeighbourStreamFloats;
+        const float *a = c, *b = c + 3, *d = c + 6;
+        const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const float e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const float nrm[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                              e1[0] * e2[1] - e1[1] * e2[0]};
+        const float to0[3] = {a[0] * L.w - L.x, a[1] * L.w - L.y, a[2] * L.w - L.z};
+        const int face_keeps = ((nrm[0] * to0[0] + nrm[1] * to0[1]) + nrm[2] * to0[2]) < 0.0f;
+        out[j] = sv_extrude_vertex_facing(c + 3 * (j % 3), nullptr, face_keeps, &L, light.range,
+                                          finite, 0);
+    }
+}
+
 int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,
                     const sv_extrude_light &light) {
     const PreparedSurface &p = s.prepared;
     const int faces = p.num_triangles();
     const int *ix = p.indices.data();
     const float *pos = frame.positions.data();
-    if (normals == SkinnedNormals::neighbours) {
-        /* One expression for the face, whatever the vertex: the normal from
-         * the corners in the face's order, the dot with the light's
-         * direction to corner 0. Every vertex computes the same float. */
-        int64_t split = 0;
-        const Vec4 &L = light.position;
-        for (int t = 0; t < faces; t++) {
-            int keep[3];
-            for (int k = 0; k < 3; k++) {
-                const float *a = pos + 3 * (std::size_t)ix[3 * t];
-                const float *b = pos + 3 * (std::size_t)ix[3 * t + 1];
-                const float *c = pos + 3 * (std::size_t)ix[3 * t + 2];
-                const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-                const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-                const float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                                    e1[0] * e2[1] - e1[1] * e2[0]};
-                const float d[3] = {a[0] * L.w - L.x, a[1] * L.w - L.y, a[2] * L.w - L.z};
-                keep[k] = ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) < 0.0f;
-            }
-            split += keep[0] != keep[1] || keep[1] != keep[2];
-        }
-        return split;
-    }
     std::vector<float> stream((std::size_t)faces * 3 * SV_EXTRUDE_STREAM_FLOATS);
     for (std::size_t j = 0; j < 3 * (std::size_t)faces; j++) {
         const std::size_t v = (std::size_t)ix[j];
         float *out = &stream[j * SV_EXTRUDE_STREAM_FLOATS];
         out[0] = pos[3 * v], out[1] = pos[3 * v + 1], out[2] = pos[3 * v + 2];
     }
-    write_skinned_normals(s, frame, normals, stream.data());
     const int n = 3 * faces;
     std::vector<Vec4> out((std::size_t)n);
-    sv_extrude_c_ref(stream.data(), n, &light, out.data());
+    if (normals == SkinnedNormals::neighbours) {
+        ShadowMesh m;
+        m.stream.assign(stream.begin(), stream.end());
+        extrude_neighbours(neighbour_stream(m).data(), n, light, out.data());
+    } else {
+        write_skinned_normals(s, frame, normals, stream.data());
+        sv_extrude_c_ref(stream.data(), n, &light, out.data());
+    }
     int64_t split = 0;
     for (int t = 0; t < faces; t++) {
         bool kept[3];

@@ -64,8 +64,28 @@ SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s,
 void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
                            SkinnedNormals normals, float *stream);
 
+/* The neighbour fix's stream: per vertex of the shadow mesh, the three
+ * corners of its face in the face's order (9 floats: its own position and
+ * its two neighbours', three times the seed's position data, in place of
+ * the normal); vertex j is corner j % 3, which a GPU reads from its vertex
+ * id. Built from MESH's positions (vertex 3t + k: corner k of face t). */
+constexpr int kNeighbourStreamFloats = 9;
+std::vector<float> neighbour_stream(const ShadowMesh &mesh);
+
+/* The neighbour fix's vertex program over STREAM (neighbour_stream, N
+ * vertices): the face's normal by a cross product of its corners,
+ * (c1 - c0) x (c2 - c0), its facing by one expression shared by the
+ * face's three vertices (the normal dotted with the light's direction to
+ * corner 0, c0 * l.w - l: the same operands in the same order whichever
+ * vertex evaluates it, so the three decisions cannot differ), then the
+ * seed's program for the vertex's own position (its length, its range,
+ * infinity: sv_extrude_c_ref's, include/shadowvol_extrude.h). Beyond the
+ * seed, as there, a light on the vertex itself keeps it. */
+void extrude_neighbours(const float *stream, int n, const sv_extrude_light &light, Vec4 *out);
+
 /* Faces of S whose three vertices disagree on facing under LIGHT, the
- * normals given the NORMALS way at FRAME. */
+ * normals given the NORMALS way at FRAME (the neighbours by their own
+ * program, extrude_neighbours; the others by the seed's). */
 int64_t split_faces(const AnimatedSurface &s, const SkinnedFrame &frame, SkinnedNormals normals,
                     const sv_extrude_light &light);
 

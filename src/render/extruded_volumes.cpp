@@ -47,14 +47,15 @@ sv_extrude_light extrude_light_for(const SceneLight &light, bool to_infinity) {
 
 Volume extruded_volume(const PreparedSurface &caster, const ShadowMesh &mesh,
                        const sv_extrude_light &light, const sv_extrude_variant *variant,
-                       uint64_t *program_ticks) {
+                       uint64_t *program_ticks, const ExtrudeProgram &program) {
     const int n = mesh.num_vertices();
     if (n != 3 * caster.num_triangles()) {
         throw std::logic_error("extruded_volume: the shadow mesh is not the caster's");
     }
     AlignedVector<Vec4> out((std::size_t)n);
     const uint64_t k0 = ticks();
-    variant->extrude(mesh.stream.data(), n, &light, out.data());
+    if (!program || !program(mesh, light, out.data()))
+        variant->extrude(mesh.stream.data(), n, &light, out.data());
     if (program_ticks) *program_ticks = ticks() - k0;
     Volume vol;
     vol.zfail = true; /* the seed's: z-fail, the whole mesh */
@@ -125,9 +126,15 @@ void use_extruded_volumes(const Scene &scene, const RenderOptions &opt,
         const SceneSurface &s = scene.surfaces[(std::size_t)si];
         const PreparedSurface &caster = two_sided[(std::size_t)si] ? *two_sided[(std::size_t)si]
                                                                    : s.prepared;
+        ExtrudeProgram program;
+        if (opt.extrude_program) {
+            program = [&opt, si](const ShadowMesh &m, const sv_extrude_light &l, Vec4 *out) {
+                return opt.extrude_program(si, m, l, out);
+            };
+        }
         Volume vol = extruded_volume(caster, meshes[(std::size_t)si],
                                      extrude_light_for(lf.light, opt.extrude_to_infinity), variant,
-                                     &job_ticks[(std::size_t)job]);
+                                     &job_ticks[(std::size_t)job], program);
         vol.surface = si;
         job_volume[(std::size_t)job] = std::move(vol);
     });

@@ -24,6 +24,7 @@
 #define SV_RENDER_EXTRUDED_VOLUMES_H
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,15 +43,21 @@ bool volume_source_by_name(const std::string &name, VolumeSource &out);
  * the paper does. */
 sv_extrude_light extrude_light_for(const SceneLight &light, bool to_infinity);
 
+/* Another vertex program for a shadow mesh (RenderOptions::extrude_program
+ * for one surface): true where it wrote the output. */
+using ExtrudeProgram =
+    std::function<bool(const ShadowMesh &mesh, const sv_extrude_light &light, Vec4 *out)>;
+
 /* Seed 002's volume of caster CASTER (the surface itself, or its two-sided
- * caster: the same vertex numbers) under LIGHT, by VARIANT: indices in the
- * paper's numbering and the extruded vertices, as above. MESH is CASTER's
- * shadow mesh. PROGRAM_TICKS, where given, gets the TSC ticks of the
- * vertex program's call alone (what a GPU would run; the renumbering is
- * this CPU renderer's). */
+ * caster: the same vertex numbers) under LIGHT, by VARIANT (or by PROGRAM
+ * where it is given and writes): indices in the paper's numbering and the
+ * extruded vertices, as above. MESH is CASTER's shadow mesh.
+ * PROGRAM_TICKS, where given, gets the TSC ticks of the vertex program's
+ * call alone (what a GPU would run; the renumbering is this CPU
+ * renderer's). */
 Volume extruded_volume(const PreparedSurface &caster, const ShadowMesh &mesh,
                        const sv_extrude_light &light, const sv_extrude_variant *variant,
-                       uint64_t *program_ticks = nullptr);
+                       uint64_t *program_ticks = nullptr, const ExtrudeProgram &program = {});
 
 /* Replaces the volumes of LIGHTS (after volume_pass) by the seed's, for
  * each surface whose decision is built or reused (the light reaches it,

@@ -174,6 +174,14 @@ struct RenderOptions {
      * give its vertices other normals (skinned_normals.h: the seed's
      * skinned artifact). */
     std::function<void(int surface, ShadowMesh &mesh)> shadow_mesh_hook;
+    /* --volume extrude, tests and tools only: where set and it returns
+     * true, it has written SURFACE's vertex program output (MESH's
+     * vertices under LIGHT) in place of the seed's program
+     * (skinned_normals.h: the neighbour fix, whose vertices carry their
+     * neighbours' positions instead of a normal). */
+    std::function<bool(int surface, const ShadowMesh &mesh, const sv_extrude_light &light,
+                       Vec4 *out)>
+        extrude_program;
     /* Which volume each shell casts: auto (closed shells the paper's
      * rule, the others the general rule: exact for any caster), closed
      * (the paper's everywhere) or general (docs/CASTERS.md). */
