@@ -27,6 +27,22 @@
  * per-vertex dp3 rounds differently at each corner of a face nearly
  * edge-on to the light), summed over the lights.
  *
+ * The skinned characters (the demo scene's, and the shared folder's
+ * skinned ones; --quick: the demo scene's alone), posed at the middle of
+ * their first animation, their skinned surfaces: what each normal source
+ * of the seed's Figure 4 (src/extrude/skinned_normals.h) costs a frame for
+ * one light (the next of 16), warm, beside the seed's program alone on the
+ * same stream:
+ *   skinned_program VARIANT      the program alone (best variant; c_ref)
+ *   skinned_straightforward      the skinned positions into the stream,
+ *   skinned_face_weights         the normals that way, then the program
+ *   skinned_recomputed           (best variant)
+ *   skinned_neighbours           the neighbour stream from the skinned
+ *                                positions, then its program (C)
+ * every call's output compared bit for bit with the reference's (c_ref on
+ * the same stream; the neighbours' program once, before the timing, which
+ * must split no face); and the bytes each source's vertex carries.
+ *
  * Copyright (C) 2026 the shadowvol authors. LGPL-2.1-or-later.
  */
 #include <algorithm>
@@ -44,9 +60,13 @@
 #include "shadowvol_casters.h"
 #include "shadowvol_extrude.h"
 #include "shadowvol_plan.h"
+#include "skinned_normals.h"
 
 #ifndef SV_MODELS_DIR
 #define SV_MODELS_DIR "models"
+#endif
+#ifndef SV_DEMO_SCENE
+#define SV_DEMO_SCENE "models/demo_scene.glb"
 #endif
 
 namespace svbench {
@@ -259,6 +279,237 @@ void measure(ExtrudeResult &res, const SeedTimer &timer, uint64_t seed, FILE *pr
     if (progress) std::fprintf(progress, "\r%60s\r", "");
 }
 
+/* ---- The skinned normal sources ---------------------------------------- */
+
+/* The normal sources timed, in the tables' order. */
+constexpr sv::SkinnedNormals kSources[] = {sv::SkinnedNormals::straightforward,
+                                           sv::SkinnedNormals::face_weights,
+                                           sv::SkinnedNormals::recomputed,
+                                           sv::SkinnedNormals::neighbours};
+
+std::string source_row(sv::SkinnedNormals n) {
+    std::string name = sv::skinned_normals_name(n);
+    std::replace(name.begin(), name.end(), ' ', '_');
+    return "skinned_" + name;
+}
+
+/* One skinned surface of a character, posed. */
+struct SkinnedPart {
+    const sv::AnimatedSurface *surface = nullptr;
+    sv::SkinnedNormalData data;
+    sv::SkinnedFrame frame;
+    std::vector<float> stream, neighbours; /* the seed's, the neighbour fix's */
+    std::vector<Vec4> out;
+};
+
+struct SkinnedResult {
+    std::string name;
+    long long faces = 0, influences = 0; /* influences: summed over the shadow mesh's vertices */
+    long long faceJoints = 0;            /* face weights' joints, summed over the faces */
+    /* Bytes a shadow-mesh vertex carries, over all of them: position and
+     * normal 24; the skin (a uint16 joint and a float weight) 6 an
+     * influence. */
+    double bytes[4] = {0, 0, 0, 0}; /* per kSources */
+    long long neighbourSplits = 0;  /* the neighbours' reference, over the lights */
+    std::vector<ExtrudeRow> rows;
+};
+
+/* The skinned positions of PART into its seed stream's position columns. */
+void write_positions(SkinnedPart &part) {
+    const int *ix = part.surface->prepared.indices.data();
+    const std::size_t n = part.stream.size() / SV_EXTRUDE_STREAM_FLOATS;
+    const float *pos = part.frame.positions.data();
+    for (std::size_t j = 0; j < n; j++) {
+        const float *p = pos + 3 * (std::size_t)ix[j];
+        float *o = &part.stream[j * SV_EXTRUDE_STREAM_FLOATS];
+        o[0] = p[0], o[1] = p[1], o[2] = p[2];
+    }
+}
+
+void measure_skinned(SkinnedResult &res, const sv::AnimatedAsset &asset, bool skinnedOnly,
+                     const SeedTimer &timer, uint64_t seed, FILE *progress) {
+    const sv::Animation &a = asset.animations[0];
+    const sv::Pose pose = sv::pose_at(asset, 0, 0.5 * (a.start + a.end));
+    std::vector<SkinnedPart> parts;
+    std::vector<float> all; /* every part's skinned positions: the lights' ring */
+    long long shadowVertices = 0;
+    for (const sv::AnimatedSurface &s : asset.surfaces) {
+        if (skinnedOnly && (s.skin < 0 || !s.influences)) continue;
+        SkinnedPart p;
+        p.surface = &s;
+        p.data = sv::skinned_normal_data(s);
+        p.frame = sv::skinned_frame(asset, s, pose);
+        const std::size_t nv = 3 * (std::size_t)s.prepared.num_triangles();
+        p.stream.assign(nv * SV_EXTRUDE_STREAM_FLOATS, 0.0f);
+        p.neighbours.assign(nv * sv::kNeighbourStreamFloats, 0.0f);
+        p.out.resize(nv);
+        all.insert(all.end(), p.frame.positions.begin(), p.frame.positions.end());
+        res.faces += s.prepared.num_triangles();
+        const long long inf = s.skin >= 0 ? s.influences : 0;
+        res.influences += (long long)nv * inf;
+        res.faceJoints += p.data.face_start.back();
+        shadowVertices += (long long)nv;
+        parts.push_back(std::move(p));
+    }
+    /* Bytes per vertex: straightforward 24 + its skin; face weights that
+     * and its face's weights (each of the face's three vertices carries
+     * them); recomputed 24 written each frame (the CPU derives the normal;
+     * the position is skinned on the CPU too); neighbours three positions,
+     * each with its skin, and no normal. */
+    const double sv_ = (double)std::max(shadowVertices, 1LL);
+    const double skin = 6.0 * (double)res.influences / sv_;
+    res.bytes[0] = 24 + skin;
+    res.bytes[1] = 24 + skin + 6.0 * 3.0 * (double)res.faceJoints / sv_;
+    res.bytes[2] = 24;
+    res.bytes[3] = 3 * (12 + skin);
+    const std::vector<Vec4> lights = lights_around(all.data(), (int)(all.size() / 3),
+                                                   kLightsExtrude, seed);
+
+    /* The references, light by light: the seed's program by c_ref on each
+     * source's stream; the neighbours' program, which splits no face. */
+    const std::size_t numParts = parts.size();
+    std::vector<std::vector<std::vector<Vec4>>> ref(4, std::vector<std::vector<Vec4>>(
+                                                           (std::size_t)kLightsExtrude * numParts));
+    for (int l = 0; l < kLightsExtrude; l++) {
+        const sv_extrude_light el{lights[(std::size_t)l], 0.0f};
+        for (std::size_t pi = 0; pi < numParts; pi++) {
+            SkinnedPart &p = parts[pi];
+            const sv::PreparedSurface &ps = p.surface->prepared;
+            const int nv = 3 * ps.num_triangles();
+            for (int k = 0; k < 4; k++) {
+                std::vector<Vec4> &r = ref[(std::size_t)k][(std::size_t)l * numParts + pi];
+                r.resize((std::size_t)nv);
+                if (kSources[k] == sv::SkinnedNormals::neighbours) {
+                    sv::write_neighbour_stream(ps.indices.data(), ps.num_triangles(),
+                                               p.frame.positions.data(), p.neighbours.data());
+                    sv::extrude_neighbours(p.neighbours.data(), nv, el, r.data());
+                    for (int t = 0; t < ps.num_triangles(); t++) {
+                        const float w0 = r[3 * (std::size_t)t].w, w1 = r[3 * (std::size_t)t + 1].w,
+                                    w2 = r[3 * (std::size_t)t + 2].w;
+                        res.neighbourSplits += !(w0 == w1 && w1 == w2);
+                    }
+                } else {
+                    write_positions(p);
+                    sv::write_skinned_normals(*p.surface, p.data, p.frame, kSources[k],
+                                              p.stream.data());
+                    sv_extrude_c_ref(p.stream.data(), nv, &el, r.data());
+                }
+            }
+        }
+    }
+    auto check = [&](int source) {
+        return [&, source](int k) {
+            const std::size_t l = (std::size_t)(k % kLightsExtrude);
+            for (std::size_t pi = 0; pi < numParts; pi++) {
+                const std::string d = first_vec4_diff(parts[pi].out.data(),
+                                                      ref[(std::size_t)source][l * numParts + pi]);
+                if (!d.empty()) return d;
+            }
+            if (source == 3 && res.neighbourSplits != 0)
+                return std::string("the neighbour fix split a face");
+            return std::string();
+        };
+    };
+
+    /* The program alone, on the recomputed normals' stream (left there by
+     * the references' last light), checked against that source's
+     * reference. */
+    const sv_extrude_variant *best = sv_best_extrude_variant();
+    for (const sv_extrude_variant *v : {sv_extrude_variant_by_name("c_ref"), best}) {
+        if (progress) std::fprintf(progress, "\r%s: program %s        ", res.name.c_str(), v->name);
+        for (SkinnedPart &p : parts) {
+            write_positions(p);
+            sv::write_skinned_normals(*p.surface, p.data, p.frame, sv::SkinnedNormals::recomputed,
+                                      p.stream.data());
+        }
+        ExtrudeRow r{"skinned_program", v->name, {}};
+        r.t = time_seed_row(
+            timer,
+            [&](int k) {
+                const sv_extrude_light el{lights[(size_t)(k % kLightsExtrude)], 0.0f};
+                for (SkinnedPart &p : parts)
+                    v->extrude(p.stream.data(), (int)p.out.size(), &el, p.out.data());
+            },
+            check(2));
+        res.rows.push_back(r);
+        if (v == best) break; /* c_ref is the best on a CPU without AVX2 */
+    }
+    for (int src = 0; src < 4; src++) {
+        const sv::SkinnedNormals way = kSources[src];
+        if (progress)
+            std::fprintf(progress, "\r%s: %s        ", res.name.c_str(),
+                         sv::skinned_normals_name(way));
+        const bool neighbours = way == sv::SkinnedNormals::neighbours;
+        ExtrudeRow r{source_row(way), neighbours ? "c" : best->name, {}};
+        r.t = time_seed_row(
+            timer,
+            [&](int k) {
+                const sv_extrude_light el{lights[(size_t)(k % kLightsExtrude)], 0.0f};
+                for (SkinnedPart &p : parts) {
+                    const sv::PreparedSurface &ps = p.surface->prepared;
+                    if (neighbours) {
+                        sv::write_neighbour_stream(ps.indices.data(), ps.num_triangles(),
+                                                   p.frame.positions.data(), p.neighbours.data());
+                        sv::extrude_neighbours(p.neighbours.data(), (int)p.out.size(), el,
+                                               p.out.data());
+                    } else {
+                        write_positions(p);
+                        sv::write_skinned_normals(*p.surface, p.data, p.frame, way,
+                                                  p.stream.data());
+                        best->extrude(p.stream.data(), (int)p.out.size(), &el, p.out.data());
+                    }
+                }
+            },
+            check(src));
+        res.rows.push_back(r);
+    }
+    if (progress) std::fprintf(progress, "\r%60s\r", "");
+}
+
+void print_skinned_tables(FILE *out, const std::vector<SkinnedResult> &results) {
+    if (results.empty()) return;
+    const std::string best = sv_best_extrude_variant()->name;
+    std::fprintf(out,
+                 "\nthe skinned normal sources (the seed's Figure 4 and its fixes), one frame "
+                 "(the middle of the first animation) and one light, ticks per frame (median; "
+                 "every call's output bit-identical to the reference, else FAIL); x: over the "
+                 "program alone (%s), the neighbours' C over the program's c_ref\n",
+                 best.c_str());
+    std::fprintf(out, "%-22s %7s %10s %10s %17s %17s %17s %10s %17s\n", "character", "faces",
+                 "program", "c_ref", "straightforward", "face weights", "recomputed", "",
+                 "neighbours (C)");
+    for (const SkinnedResult &r : results) {
+        const VariantRow *prog = find_variant_row(r.rows, "skinned_program", best),
+                         *cref = find_variant_row(r.rows, "skinned_program", "c_ref");
+        auto cell = [&](const VariantRow *row, const VariantRow *base) {
+            char c[48];
+            std::snprintf(c, sizeof c, "%s %5.2fx", ticks_cell(row, 1).c_str(),
+                          row && base ? row->t.median / std::max(1.0, base->t.median) : 0.0);
+            return std::string(c);
+        };
+        std::fprintf(out, "%-22s %7lld %10s %10s %17s %17s %17s %10s %17s\n", r.name.c_str(),
+                     r.faces, ticks_cell(prog, 1).c_str(), ticks_cell(cref, 1).c_str(),
+                     cell(find_variant_row(r.rows, source_row(kSources[0]), ""), prog).c_str(),
+                     cell(find_variant_row(r.rows, source_row(kSources[1]), ""), prog).c_str(),
+                     cell(find_variant_row(r.rows, source_row(kSources[2]), ""), prog).c_str(), "",
+                     cell(find_variant_row(r.rows, source_row(kSources[3]), ""), cref).c_str());
+    }
+    std::fprintf(out, "\nthe bytes a shadow-mesh vertex carries (x 3 a face; a skin influence 6 "
+                      "bytes: a uint16 joint, a float weight)\n");
+    std::fprintf(out, "%-22s %9s %10s %16s %13s %11s %11s %12s\n", "character", "vertices",
+                 "influences", "straightforward", "face weights", "recomputed", "neighbours",
+                 "neighb. split");
+    for (const SkinnedResult &r : results) {
+        std::fprintf(out, "%-22s %9lld %10.2f %16.1f %13.1f %11.1f %11.1f %12lld\n", r.name.c_str(),
+                     3 * r.faces, (double)r.influences / std::max(1.0, 3.0 * (double)r.faces),
+                     r.bytes[0], r.bytes[1], r.bytes[2], r.bytes[3], r.neighbourSplits);
+    }
+    std::fprintf(out, "  straightforward: position, rest normal, the vertex's skin; face weights: "
+                      "and its face's weights; recomputed: position and normal written by the CPU "
+                      "each frame; neighbours: the face's three positions with their skins, no "
+                      "normal\n");
+}
+
 void print_tables(FILE *out, const std::vector<ExtrudeResult> &results) {
     std::vector<std::string> variants;
     for (const ExtrudeRow &r : results.front().rows)
@@ -331,7 +582,47 @@ void print_tables(FILE *out, const std::vector<ExtrudeResult> &results) {
                  "lights)\n");
 }
 
-std::string extrude_json(const std::vector<ExtrudeResult> &results, const SeedTimer &t) {
+void skinned_json(JsonWriter &j, const std::vector<SkinnedResult> &results) {
+    j.key("skinned");
+    j.begin_array();
+    for (const SkinnedResult &r : results) {
+        j.begin_object();
+        j.key("character");
+        j.value(r.name);
+        j.key("faces");
+        j.value(r.faces);
+        j.key("shadow_vertices");
+        j.value(3 * r.faces);
+        j.key("bytes_per_vertex");
+        j.begin_object(true);
+        for (int k = 0; k < 4; k++) {
+            j.key(source_row(kSources[k]).substr(8));
+            j.value(r.bytes[k]);
+        }
+        j.end_object();
+        j.key("neighbours_split_faces");
+        j.value(r.neighbourSplits);
+        j.key("rows");
+        j.begin_array();
+        for (const ExtrudeRow &row : r.rows) {
+            j.begin_object(true);
+            seed_json_row(j, row.what.c_str(), row.variant, row.t);
+            j.key("ok");
+            j.value(row.t.ok);
+            if (!row.t.ok) {
+                j.key("failure");
+                j.value(row.t.failure);
+            }
+            j.end_object();
+        }
+        j.end_array();
+        j.end_object();
+    }
+    j.end_array();
+}
+
+std::string extrude_json(const std::vector<ExtrudeResult> &results,
+                         const std::vector<SkinnedResult> &skinned, const SeedTimer &t) {
     JsonWriter j;
     j.begin_object();
     seed_json_header(j, "shadowvol-extrude/1", t);
@@ -382,6 +673,7 @@ std::string extrude_json(const std::vector<ExtrudeResult> &results, const SeedTi
         j.end_object();
     }
     j.end_array();
+    skinned_json(j, skinned);
     j.end_object();
     return j.str();
 }
@@ -420,10 +712,31 @@ int run_extrude_bench(const SeedCommand &cmd) {
         }
         FILE *progress = isatty(fileno(stderr)) ? stderr : nullptr;
         for (ExtrudeResult &r : results) measure(r, timer, cmd.seed, progress);
+        /* The skinned characters: the demo scene's (its skinned surface
+         * alone), then the shared folder's. */
+        std::vector<std::pair<std::string, bool>> characters = {{SV_DEMO_SCENE, true}};
+        if (!cmd.quick) {
+            for (const char *name : {"CesiumMan.glb", "Fox.glb", "RiggedFigure.glb",
+                                     "RobotExpressive.glb", "open/Zombie_Basic.glb"}) {
+                const std::string p = cmd.sharedModels + "/" + name;
+                if (access(p.c_str(), R_OK) == 0) characters.emplace_back(p, false);
+            }
+        }
+        std::vector<SkinnedResult> skinned;
+        for (const auto &[path, skinnedOnly] : characters) {
+            const sv::AnimatedAsset asset = sv::load_animated_gltf(path);
+            if (asset.animations.empty()) continue;
+            SkinnedResult r;
+            r.name = path.substr(path.rfind('/') + 1);
+            measure_skinned(r, asset, skinnedOnly, timer, cmd.seed, progress);
+            if (r.faces > 0) skinned.push_back(std::move(r));
+        }
         print_tables(out, results);
+        print_skinned_tables(out, skinned);
         int failed = 0;
         for (const ExtrudeResult &r : results) failed += print_failed_rows(out, r.name, r.rows);
-        *doc = extrude_json(results, timer);
+        for (const SkinnedResult &r : skinned) failed += print_failed_rows(out, r.name, r.rows);
+        *doc = extrude_json(results, skinned, timer);
         return failed;
     });
 }

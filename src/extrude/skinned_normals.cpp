@@ -6,6 +6,7 @@
  */
 #include "skinned_normals.h"
 
+#include <algorithm>
 #include <map>
 
 #include "extrude_internal.h"
@@ -59,8 +60,38 @@ SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s,
     return f;
 }
 
+SkinnedNormalData skinned_normal_data(const AnimatedSurface &s) {
+    SkinnedNormalData d;
+    d.rest_planes = rest_planes(s);
+    const int faces = s.prepared.num_triangles(), inf = s.influences;
+    const int *ix = s.prepared.indices.data();
+    d.face_start.assign((std::size_t)faces + 1, 0);
+    for (int t = 0; t < faces && s.skin >= 0 && inf > 0; t++) {
+        std::map<int, float> w;
+        for (int k = 0; k < 3; k++) {
+            const std::size_t v = (std::size_t)ix[3 * t + k];
+            for (int i = 0; i < inf; i++) {
+                w[s.joints[v * (std::size_t)inf + (std::size_t)i]] +=
+                    s.weights[v * (std::size_t)inf + (std::size_t)i];
+            }
+        }
+        for (const auto &[j, wsum] : w) {
+            if (wsum == 0.0f) continue;
+            d.face_joints.push_back((uint16_t)j);
+            d.face_weights.push_back(wsum / 3.0f);
+        }
+        d.face_start[(std::size_t)t + 1] = (int)d.face_joints.size();
+    }
+    return d;
+}
+
 void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
                            SkinnedNormals normals, float *stream) {
+    write_skinned_normals(s, skinned_normal_data(s), frame, normals, stream);
+}
+
+void write_skinned_normals(const AnimatedSurface &s, const SkinnedNormalData &data,
+                           const SkinnedFrame &frame, SkinnedNormals normals, float *stream) {
     const PreparedSurface &p = s.prepared;
     const int faces = p.num_triangles();
     const int *ix = p.indices.data();
@@ -68,46 +99,34 @@ void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
     const bool skinned = !frame.joint_matrices.empty();
     /* The neighbours' normal is the skinned face's own: the recomputed one. */
     if (normals == SkinnedNormals::neighbours) normals = SkinnedNormals::recomputed;
-    std::vector<Plane> planes((std::size_t)faces);
-    if (normals == SkinnedNormals::recomputed || !skinned) {
-        sv_derive_planes_c_ref(pos, ix, faces, planes.data());
-    }
-    const std::vector<Plane> rest = normals == SkinnedNormals::recomputed || !skinned
-                                        ? std::vector<Plane>()
-                                        : rest_planes(s);
+    const bool recomputed = normals == SkinnedNormals::recomputed || !skinned;
+    std::vector<Plane> planes(recomputed ? (std::size_t)faces : 0);
+    /* Every planes variant is bit-identical to sv_derive_planes_c_ref. */
+    if (recomputed) sv_best_planes_variant()->derive_planes(pos, ix, faces, planes.data());
     const int inf = s.influences;
     const float *m = frame.joint_matrices.data();
     for (int t = 0; t < faces; t++) {
         float face_normal[3] = {0, 0, 0};
-        if (normals == SkinnedNormals::recomputed || !skinned) {
+        if (recomputed) {
             const Plane &pl = planes[(std::size_t)t];
             face_normal[0] = pl.a, face_normal[1] = pl.b, face_normal[2] = pl.c;
         } else if (normals == SkinnedNormals::face_weights) {
-            /* The face's weights: the average of its vertices' (a joint's
-             * weight summed over the three, then divided by 3), in joint
-             * order. */
-            std::map<int, float> w;
-            for (int k = 0; k < 3; k++) {
-                const std::size_t v = (std::size_t)ix[3 * t + k];
-                for (int i = 0; i < inf; i++) {
-                    w[s.joints[v * (std::size_t)inf + (std::size_t)i]] +=
-                        s.weights[v * (std::size_t)inf + (std::size_t)i];
-                }
-            }
-            const Plane &r = rest[(std::size_t)t];
+            /* The face's weights (skinned_normal_data) on the rest normal. */
+            const Plane &r = data.rest_planes[(std::size_t)t];
             const float n[3] = {r.a, r.b, r.c};
-            for (const auto &[j, wsum] : w) {
-                if (wsum != 0.0f)
-                    add_weighted_normal(m + 16 * (std::size_t)j, wsum / 3.0f, n, face_normal);
+            for (int e = data.face_start[(std::size_t)t]; e < data.face_start[(std::size_t)t + 1];
+                 e++) {
+                add_weighted_normal(m + 16 * (std::size_t)data.face_joints[(std::size_t)e],
+                                    data.face_weights[(std::size_t)e], n, face_normal);
             }
         }
         for (int k = 0; k < 3; k++) {
             const std::size_t v = (std::size_t)ix[3 * t + k];
             float *out = stream + (3 * (std::size_t)t + (std::size_t)k) * SV_EXTRUDE_STREAM_FLOATS;
             float n[3] = {face_normal[0], face_normal[1], face_normal[2]};
-            if (normals == SkinnedNormals::straightforward && skinned) {
+            if (normals == SkinnedNormals::straightforward && !recomputed) {
                 /* The vertex's own weights on the rest face normal. */
-                const Plane &r = rest[(std::size_t)t];
+                const Plane &r = data.rest_planes[(std::size_t)t];
                 const float rn[3] = {r.a, r.b, r.c};
                 n[0] = n[1] = n[2] = 0;
                 for (int i = 0; i < inf; i++) {
@@ -121,6 +140,18 @@ void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
             }
             out[3] = n[0], out[4] = n[1], out[5] = n[2];
         }
+    }
+}
+
+void write_neighbour_stream(const int *indices, int faces, const float *positions, float *out) {
+    for (std::size_t t = 0; t < (std::size_t)std::max(faces, 0); t++) {
+        float corners[9];
+        for (std::size_t k = 0; k < 3; k++) {
+            const float *p = positions + 3 * (std::size_t)indices[3 * t + k];
+            corners[3 * k] = p[0], corners[3 * k + 1] = p[1], corners[3 * k + 2] = p[2];
+        }
+        for (std::size_t k = 0; k < 3; k++)
+            std::copy(corners, corners + 9, out + (3 * t + k) * kNeighbourStreamFloats);
     }
 }
 

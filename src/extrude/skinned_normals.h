@@ -56,11 +56,28 @@ struct SkinnedFrame {
 };
 SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s, const Pose &pose);
 
+/* What the normal sources of a skinned surface read that does not change
+ * from frame to frame: the rest face normals (the planes' a, b, c), and
+ * the face weights of the seed's Figure 5: per face, the average of its
+ * three vertices' weights joint by joint (a joint's weights summed over
+ * the three in corner order, then divided by 3), joints in increasing
+ * order, zero sums left out: up to 3 x influences joints a face. */
+struct SkinnedNormalData {
+    std::vector<Plane> rest_planes;
+    std::vector<int> face_start; /* faces + 1: face t's joints are [start[t], start[t+1]) */
+    std::vector<uint16_t> face_joints;
+    std::vector<float> face_weights;
+};
+SkinnedNormalData skinned_normal_data(const AnimatedSurface &s);
+
 /* The normals of the NORMALS way at FRAME into the normal columns of
  * STREAM, S's shadow mesh's (vertex 3t + k: corner k of S's triangle t;
  * the caster itself, not a two-sided one). Neighbours write the recomputed
  * normal: their own facing expression is not the seed's program, which
- * the stream feeds. */
+ * the stream feeds. DATA: skinned_normal_data(S), made once (the overload
+ * without it makes it each call). */
+void write_skinned_normals(const AnimatedSurface &s, const SkinnedNormalData &data,
+                           const SkinnedFrame &frame, SkinnedNormals normals, float *stream);
 void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
                            SkinnedNormals normals, float *stream);
 
@@ -71,6 +88,10 @@ void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
  * id. Built from MESH's positions (vertex 3t + k: corner k of face t). */
 constexpr int kNeighbourStreamFloats = 9;
 std::vector<float> neighbour_stream(const ShadowMesh &mesh);
+/* The same from a surface's FACES triangles (INDICES) and its vertices'
+ * POSITIONS (3 floats each) into OUT (9 floats for each of 3 x FACES
+ * vertices). */
+void write_neighbour_stream(const int *indices, int faces, const float *positions, float *out);
 
 /* The neighbour fix's vertex program over STREAM (neighbour_stream, N
  * vertices): the face's normal by a cross product of its corners,
