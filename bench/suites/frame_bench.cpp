@@ -141,9 +141,14 @@ FrameTable measure_frame_table(const SeedCommand &cmd, const FrameBenchOptions &
     o.width = fo.width, o.height = fo.height;
     o.threads = t.threads;
     t.stencil = fo.stencil;
+    t.stencil_source = fo.stencil_source;
+    t.stencil_tile = fo.stencil_tile;
+    t.hier_from_area_per_piece = fo.hier_from_area_per_piece;
     if (!sv::render::stencil_method_by_name(fo.stencil, o.stencil)) {
         throw std::invalid_argument("--stencil " + fo.stencil);
     }
+    o.stencil_tile = fo.stencil_tile;
+    o.stencil_rule.hier_from_area_per_piece = fo.hier_from_area_per_piece;
     o.cache = &cache;
     o.scratch = &scratch;
     std::vector<PassTimes> ours((std::size_t)t.frames);
@@ -272,9 +277,11 @@ void print_frame_table(FILE *out, const FrameTable &t) {
     std::fprintf(out,
                  "the whole frame: %s, %d frames 1/8 s apart after a warm-up frame, %dx%d, %d "
                  "thread(s) on both sides, each frame drawn %d time(s) (the minimum kept); the "
-                 "camera orbits %.1f deg and light %d %.2f deg a frame; our stencil pass: %s\n",
+                 "camera orbits %.1f deg and light %d %.2f deg a frame; our stencil pass: %s "
+                 "(%s; tile %d, auto's hier from %.1f pixels a piece)\n",
                  t.scene.c_str(), t.frames, t.width, t.height, t.threads, t.runs, kStepDegrees,
-                 t.moving_light, kStepDegrees / 2, t.stencil.c_str());
+                 t.moving_light, kStepDegrees / 2, t.stencil.c_str(), t.stencil_source.c_str(),
+                 t.stencil_tile, t.hier_from_area_per_piece);
     std::fprintf(out, "memory: %.1f GB/s read, %.1f GB/s write (%d thread(s), best of %d)\n",
                  t.rate.read_bytes_per_second / 1e9, t.rate.write_bytes_per_second / 1e9,
                  t.rate.threads, t.rate.runs);
@@ -363,6 +370,13 @@ void frame_table_json(JsonWriter &j, const FrameTable &t) {
     j.key("height"), j.value(t.height);
     j.key("threads"), j.value(t.threads);
     j.key("stencil"), j.value(t.stencil);
+    j.key("stencil_source"), j.value(t.stencil_source);
+    j.key("stencil_tile"), j.value(t.stencil_tile);
+    j.key("stencil_hier_from_area_per_piece");
+    if (std::isfinite(t.hier_from_area_per_piece))
+        j.value(t.hier_from_area_per_piece);
+    else
+        j.value("infinity");
     j.key("frames"), j.value(t.frames);
     j.key("runs_per_frame"), j.value(t.runs);
     j.key("first_drawing_wall_ms"), j.value(t.first_drawing_wall_ms);
@@ -423,7 +437,9 @@ void frame_table_json(JsonWriter &j, const FrameTable &t) {
 int run_frame_bench(const SeedCommand &cmd, const FrameBenchOptions &fo) {
     return run_seed_frame(cmd, "frame", [&](FILE *out, std::string *doc) {
         const SeedTimer timer = make_seed_timer(cmd.timer, cmd.quick);
-        print_seed_header(out, "shadowvol bench --frame: the whole frame, pass by pass", timer, -1);
+        print_seed_header(out, "shadowvol bench --frame: the whole frame, pass by pass", timer, -1,
+                          "each frame drawn the times below by us and by Mesa, each pass's "
+                          "minimum kept; every drawing's bytes compared");
         const FrameTable t = measure_frame_table(cmd, fo, timer.tscHz);
         print_frame_table(out, t);
         if (!fo.out_dir.empty()) {

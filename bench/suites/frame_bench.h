@@ -15,6 +15,7 @@
 #include "divider_rate.h"
 #include "memory_rate.h"
 #include "seed_bench.h"
+#include "stencil_method.h"
 
 namespace svbench {
 
@@ -23,10 +24,18 @@ struct FrameBenchOptions {
     int width = 1280, height = 720;
     int threads = 0; /* 0: every core */
     int frames = 8;
-    int runs = 3;               /* drawings per frame on each side, the minimum kept */
-    bool mesa = true;           /* Mesa's same frame beside ours */
-    std::string out_dir;        /* "" none; else the last frame's PNGs, ours and Mesa's */
-    std::string stencil = "bf"; /* our stencil pass's method (stencil_method.h) */
+    int runs = 3;        /* drawings per frame on each side, the minimum kept */
+    bool mesa = true;    /* Mesa's same frame beside ours */
+    std::string out_dir; /* "" none; else the last frame's PNGs, ours and Mesa's */
+    /* Our stencil pass: its method (stencil_method.h), hier's tile side
+     * and auto's threshold, and where they came from. The CLI fills them
+     * as render does where --stencil is not given (the planner's choice:
+     * the wisdom file's, else auto at its offline threshold; source
+     * "wisdom", "measured" or "default"; "option" for --stencil). */
+    std::string stencil = "auto";
+    int stencil_tile = sv::render::kDefaultStencilTile;
+    double hier_from_area_per_piece = sv::render::kDefaultHierFromAreaPerPiece;
+    std::string stencil_source = "default";
 };
 
 /* The table of a run: a row per pass (ms; floor and Mesa's ms where they
@@ -35,7 +44,10 @@ struct FrameTable {
     std::string preset, scene; /* the name given, and what the scene holds */
     int width = 0, height = 0, threads = 0, frames = 0, runs = 0;
     int moving_light = -1;
-    std::string stencil; /* our stencil method */
+    std::string stencil;        /* our stencil method */
+    std::string stencil_source; /* FrameBenchOptions::stencil_source */
+    int stencil_tile = 0;
+    double hier_from_area_per_piece = 0;
     MemoryRate rate;
     struct Row {
         const char *name;

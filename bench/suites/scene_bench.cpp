@@ -165,7 +165,9 @@ int run_preset_passes(const SeedCommand &cmd) {
         const int width = cmd.sceneWidth ? cmd.sceneWidth : cmd.quick ? 320 : 640;
         const int height = cmd.sceneHeight ? cmd.sceneHeight : cmd.quick ? 256 : 512;
         print_seed_header(out, "shadowvol bench --scene: the passes of a scene, per method", timer,
-                          -1);
+                          -1,
+                          "each (frame, method, thread count) drawn the runs below after a "
+                          "warm-up frame, the minimum kept; every stencil compared with bf's");
         const PassTable t = pass_table(cmd, name, width, height);
         print_pass_table(out, t);
         print_bandwidth_table(out, t);

@@ -95,7 +95,8 @@ SeedMesh loaded_seed_mesh(const std::string &path) {
     return m;
 }
 
-void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pinnedCpu) {
+void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pinnedCpu,
+                       const char *runs) {
     std::fprintf(out, "%s\n", title);
     print_cpu_lines(out, pinnedCpu);
     std::fprintf(out,
@@ -103,6 +104,10 @@ void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pin
                  "cycles)\n",
                  timer_name(t.kind), (unsigned long long)t.overhead, t.tscHz * 1e-9);
     std::fprintf(out, "build     %s, commit %s\n", build_flags().c_str(), git_commit().c_str());
+    if (runs) {
+        std::fprintf(out, "runs      %s\n", runs);
+        return;
+    }
     std::fprintf(out,
                  "runs      each row %.2f s of calls (at least %d, at most %d), min and median; "
                  "every call checked\n",

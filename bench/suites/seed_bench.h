@@ -107,8 +107,11 @@ SeedMesh generated_seed_mesh(int n, const std::string &note);
 /* PATH, all surfaces merged (load_model_surface); throws WorkloadError. */
 SeedMesh loaded_seed_mesh(const std::string &path);
 
-/* The cpu and timer lines. */
-void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pinnedCpu);
+/* The cpu and timer lines, and the runs line: how each row is measured,
+ * RUNS where the suite does not time calls against the timer's budget
+ * (default: the budget's line). */
+void print_seed_header(FILE *out, const char *title, const SeedTimer &t, int pinnedCpu,
+                       const char *runs = nullptr);
 /* The same facts as JSON members of the open object. */
 void seed_json_header(JsonWriter &j, const char *schema, const SeedTimer &t);
 

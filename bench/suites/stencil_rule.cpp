@@ -214,7 +214,10 @@ int run_stencil_rule_bench(const SeedCommand &cmd) {
             o.models.resize(1);
         }
         if (cmd.sceneWidth) o.width = cmd.sceneWidth, o.height = cmd.sceneHeight;
-        print_seed_header(out, "shadowvol bench --stencil-rule: bf or hier per light", timer, -1);
+        print_seed_header(out, "shadowvol bench --stencil-rule: bf or hier per light", timer, -1,
+                          "each light's stencil pass drawn with auto forced to bf and to hier, "
+                          "each way the minimum of the runs below after a warm-up frame; every "
+                          "light's stencils compared (=bf)");
         std::fprintf(out,
                      "%dx%d, %d thread, tile %d, %d frames of %s and the render table's %zu "
                      "models in z-pass and z-fail, minimum of %d runs\n\n",

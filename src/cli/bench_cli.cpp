@@ -14,6 +14,7 @@
 
 #include "bench_run.h"
 #include "shadowvol_gltf.h"
+#include "shadowvol_plan.h"
 #include "cycle_table.h"
 #include "figure1.h"
 #include "stencil_rule.h"
@@ -346,6 +347,7 @@ CliOptions parse(int argc, char **argv) {
             c.frameOptionGiven = true;
         } else if (opt == "--stencil") {
             c.frameOptions.stencil = need();
+            c.frameOptions.stencil_source = "option";
             sv::render::StencilMethod m;
             if (!sv::render::stencil_method_by_name(c.frameOptions.stencil, m)) {
                 bad("--stencil needs " + sv::render::stencil_method_names() + ", not '" +
@@ -570,6 +572,25 @@ SeedCommand seed_command(const CliOptions &c) {
     return cmd;
 }
 
+/* --frame's stencil method, tile and threshold as render takes them
+ * (render_cli.cpp): the wisdom file loaded, then the planner's choice
+ * wherever --stencil did not say (stencil_default.cpp). */
+void take_frame_stencil(FrameBenchOptions &fo) {
+    char wisdom[1024];
+    sv_wisdom_load(sv_wisdom_default_path(wisdom, sizeof wisdom));
+    svcli::StencilArgs s;
+    s.method_given = fo.stencil_source == "option";
+    if (s.method_given) {
+        /* Checked when parsed. */
+        (void)sv::render::stencil_method_by_name(fo.stencil, s.method);
+    }
+    svcli::take_stencil_default(s);
+    fo.stencil = sv::render::stencil_method_name(s.method);
+    fo.stencil_tile = s.tile;
+    fo.hier_from_area_per_piece = s.rule.hier_from_area_per_piece;
+    if (!s.method_given) fo.stencil_source = s.source;
+}
+
 int runs_for(int runs, int triangles) {
     if (triangles <= kReferenceTriangles) {
         return runs;
@@ -747,7 +768,9 @@ void bench_usage(FILE *out) {
         "(LP_NUM_THREADS is read once per process: one process per thread count).\n"
         "Checked: the runs give the same bytes, and Mesa's picture agrees off edges\n"
         "(docs/FRAME.md). --out DIR: the last frame, ours and Mesa's, as PNG. --quick:\n"
-        "2 frames, 1 run.\n"
+        "2 frames, 1 run. Our stencil pass: --stencil's method, else the planner's\n"
+        "choice as render takes it (the wisdom file's, else auto); the report and the\n"
+        "JSON say which, from where, with hier's tile and auto's threshold.\n"
         "JSON schema shadowvol-frame-bench/1.\n"
         "\n"
         "The automatic stencil method's rule: shadowvol bench --stencil-rule [--quick]\n"
@@ -817,6 +840,7 @@ int bench_main(int argc, char **argv) {
             return run_stencil_rule_bench(seed_command(c));
         }
         if (c.frame) {
+            take_frame_stencil(c.frameOptions);
             return run_frame_bench(seed_command(c), c.frameOptions);
         }
         if (c.figure1) {

@@ -3,13 +3,18 @@
 # with every pass, the work line (rows, pixels, ticks a unit), the lighting
 # pass's divider line, the two checks of the run (our drawings the same bytes,
 # Mesa's picture agreeing off edges, where OSMesa is built), the PNGs, the
-# JSON (shadowvol-frame-bench/1) and the usage errors (exit 2).
+# JSON (shadowvol-frame-bench/1), our stencil method taken as render takes
+# it (the wisdom file's, else auto; --stencil over both) and the usage
+# errors (exit 2).
 # usage: check_frame_bench.sh PATH/TO/shadowvol
 set -u
 sv="$1"
 fail=0
 err() { echo "FAIL: $*"; fail=1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+# No user's wisdom file decides the stencil method here (the wisdom runs
+# below name their own).
+export SV_WISDOM="$tmp/no-wisdom"
 
 "$sv" bench --frame --quick --size 192x108 --threads 2 --out "$tmp" --json "$tmp/f.json" \
   >"$tmp/f.txt" 2>&1 || err "--frame exited $?: $(tail -3 "$tmp/f.txt")"
@@ -53,10 +58,29 @@ assert w["visible_pixels"] > 0 and w["divider_lanes"] >= 0, w
 dv = d["divider"]
 assert dv["div_ticks_per_lane"] > 0 and dv["sqrt_ticks_per_lane"] > 0 and dv["lanes"] in (2, 4, 8), dv
 assert d["same_bytes_every_run"] is True and d["ok"] is True
+# Without a wisdom file or --stencil: auto at its offline threshold.
+assert d["stencil"] == "auto" and d["stencil_source"] == "default", d["stencil"]
+assert d["stencil_tile"] == 32 and d["stencil_hier_from_area_per_piece"] == 65, d
 PY
 else
   err "python3 not found: the JSON's fields cannot be checked (tools/run.sh test installs it)"
 fi
+# A wisdom line for this CPU sets the method, tile and threshold; --stencil
+# overrides the method and keeps the rest (render_cli's rule).
+cpu=$("$sv" tune --class 0 --no-stencil --dry-run 2>/dev/null | sed -n 's/^cpu  *//p')
+[ -n "$cpu" ] || err "tune printed no cpu line"
+printf 'shadowvol-wisdom 1\ncpu %s\nstencil hier 16 40.0\n' "$cpu" >"$tmp/wisdom"
+wisdom_frame() { # EXPECTED_METHOD EXPECTED_SOURCE ARGS...
+  local method=$1 source=$2; shift 2
+  SV_WISDOM="$tmp/wisdom" "$sv" bench --frame --quick --size 64x36 --threads 1 --no-mesa \
+    --json "$tmp/w.json" "$@" >"$tmp/w.txt" 2>&1 || err "--frame $* with a wisdom file exited $?"
+  grep -q "our stencil pass: $method ($source; tile 16, auto's hier from 40.0 pixels a piece)" \
+    "$tmp/w.txt" || err "--frame $*: not $method from $source: $(grep 'our stencil' "$tmp/w.txt")"
+  grep -q "\"stencil\": \"$method\"" "$tmp/w.json" && grep -q "\"stencil_source\": \"$source\"" "$tmp/w.json" \
+    && grep -q '"stencil_tile": 16' "$tmp/w.json" || err "--frame $*: the JSON does not say $method from $source"
+}
+wisdom_frame hier wisdom
+wisdom_frame bf option --stencil bf
 for args in "--frame --scene" "--frame=1" "--frame --size 0x10" "--frame --threads 0" \
             "--frame --model x.glb" "--threads 2" "--frame --out" "--frame --caster-rule auto"; do
   # shellcheck disable=SC2086
