@@ -9,6 +9,7 @@
 #include "cli_args.h"
 #include "render_args.h"
 #include "scene_options.h"
+#include "skinned_normals.h"
 
 namespace svcli {
 namespace {
@@ -93,6 +94,14 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
             r.check = false;
         } else if (a.is_flag("--no-truth")) {
             r.truth = false;
+        } else if (a.is("--skinned-normals")) {
+            r.skinned_normals = a.value();
+            sv::SkinnedNormals way;
+            if (!sv::skinned_normals_by_option(r.skinned_normals, way)) {
+                usage_error("--skinned-normals needs straightforward, face-weights, recomputed "
+                            "or neighbours, not '" +
+                            quoted(r.skinned_normals) + "'");
+            }
         } else if (a.is("--out")) {
             r.out_dir = a.value();
         } else if (a.is("--json")) {
@@ -105,6 +114,8 @@ SceneArgs parse_scene_args(int argc, char **argv, bool &help) {
         }
     }
     if (r.has_time && r.frames) usage_error("--frames and --time exclude each other");
+    if (!r.skinned_normals.empty() && r.volume.volume != sv::render::VolumeSource::extrude)
+        usage_error("--skinned-normals needs --volume extrude (the seed's shadow meshes)");
     shared.finish(r);
     return r;
 }

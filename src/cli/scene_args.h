@@ -32,6 +32,9 @@ struct SceneArgs {
     sv::CasterRule caster_rule = sv::CasterRule::automatic;
     bool ground_hints = true;
     VolumeArgs volume; /* --volume, --stencil-op, --extrude-to */
+    /* --skinned-normals WAY (scene only, with --volume extrude):
+     * scene_skinned_normals.h; empty: the recomputed normals, uncounted. */
+    std::string skinned_normals;
     sv::GeneralBuild general_build = sv::render::RenderOptions{}.general_build;
     bool check = true; /* render the full frame beside and compare */
     bool truth = true;

@@ -14,6 +14,7 @@
 #include "scene_cli.h"
 #include "scene_args.h"
 #include "scene_open.h"
+#include "scene_skinned_normals.h"
 
 #include <tbb/info.h>
 #include <unistd.h>
@@ -68,6 +69,9 @@ struct FrameRow {
     bool truth_done = false;
     uint64_t truth_mismatches = 0, truth_off_boundary = 0, truth_compared = 0;
     uint64_t primary_checked = 0, primary_disagreements = 0; /* truth.h */
+    /* --skinned-normals: shadow pixels that differ from the recomputed
+     * normals' frame where the light reaches. */
+    uint64_t skinned_differ = 0;
 };
 
 void sum_lights(const sv::render::Frame &f, FrameRow &r) {
@@ -193,7 +197,7 @@ void scene_usage(FILE *out) {
         "                       [--caster-rule auto|closed|general]\n"
         "                       [--ground-hints use|ignore] [--volume silhouette|extrude]\n"
         "                       [--stencil-op saturate|wrap] [--extrude-to range|infinity]\n"
-        "                       [--out DIR] [--json FILE]\n"
+        "                       [--skinned-normals WAY] [--out DIR] [--json FILE]\n"
         "                       [--webp FILE]\n"
         "\n"
         "Plays a glTF scene in time: its node animation, skins (posed on the CPU), its\n"
@@ -249,6 +253,12 @@ void scene_usage(FILE *out) {
         "  --no-check        skip the full frame beside each frame\n"
         "  --no-truth        skip the ray-cast truth\n"
         "  --skinning K      c_ref, sse2, avx2, avx512 (default: the best this CPU runs)\n"
+        "  --skinned-normals WAY  with --volume extrude: the skinned surfaces' face normals\n"
+        "                    straightforward (skinned per vertex: the seed's Figure 4),\n"
+        "                    face-weights, recomputed (the default's) or neighbours (the\n"
+        "                    neighbour fix); each frame is drawn again with the recomputed\n"
+        "                    ones and the shadow pixels that differ are counted (the truth\n"
+        "                    judges the artifact too; docs/EXTRUSION.md)\n"
         "  --out DIR         where the PNGs go (default shadowvol-scene)\n"
         "  --json FILE       the report as JSON (schema shadowvol-scene/1; - for stdout)\n"
         "  --webp FILE       the frames also as an animated WebP a browser plays, looping,\n"
@@ -347,6 +357,15 @@ int scene_main(int argc, char **argv) {
     sv::render::FrameScratch scratch; /* the frames' buffers, kept from frame to frame */
     fast.scratch = &scratch;
     if (args.full) fast.shortcuts = sv::render::Shortcuts::none();
+    /* --skinned-normals: the skinned surfaces' normals that way, each
+     * frame drawn again with the recomputed ones (the default's: the
+     * per-frame planes) to count the shadow pixels that differ. */
+    std::unique_ptr<SceneSkinnedNormals> skinned;
+    if (!args.skinned_normals.empty()) {
+        sv::SkinnedNormals way = sv::SkinnedNormals::recomputed;
+        sv::skinned_normals_by_option(args.skinned_normals, way);
+        skinned = std::make_unique<SceneSkinnedNormals>(*seq, way);
+    }
     sv::render::RenderOptions full = fast;
     full.shortcuts = sv::render::Shortcuts::none();
     full.mode = sv::render::ModeChoice::automatic; /* with no shortcut: z-fail, both caps */
@@ -378,7 +397,22 @@ int scene_main(int argc, char **argv) {
         try {
             r.pose = seq->set_time(times[k]);
             sv::validate_scene(seq->scene());
+            if (skinned) {
+                skinned->apply(fast);
+                skinned->apply(full);
+            }
             f = sv::render::render_frame(scene, fast);
+            if (skinned) {
+                sv::render::RenderOptions recomputed = fast;
+                recomputed.shadow_mesh_hook = nullptr;
+                recomputed.extrude_program = nullptr;
+                recomputed.cache = nullptr;
+                recomputed.scratch = nullptr;
+                r.skinned_differ = sv::render::compare_frames(scene, f,
+                                                              sv::render::render_frame(scene,
+                                                                                       recomputed))
+                                       .mask_in_reach;
+            }
         } catch (const sv::SceneError &e) {
             std::fprintf(stderr, "\nshadowvol scene: frame %zu (%.3f s): %s\n", k, times[k],
                          e.what());
@@ -516,6 +550,20 @@ int scene_main(int argc, char **argv) {
                                     (double)t.pose.planes_derived
                               : 0.0,
         (long long)t.pose.planes_derived);
+    if (skinned) {
+        uint64_t total = 0, worst = 0;
+        std::size_t worst_frame = 0;
+        for (const FrameRow &r : rows) {
+            total += r.skinned_differ;
+            if (r.skinned_differ > worst)
+                worst = r.skinned_differ, worst_frame = (std::size_t)r.index;
+        }
+        std::printf("skinned normals %s: %llu shadow pixels differ from the recomputed normals' "
+                    "where the light reaches, over %zu frame(s) and every light (the worst frame "
+                    "%zu: %llu)\n",
+                    args.skinned_normals.c_str(), (unsigned long long)total, rows.size(),
+                    worst_frame, (unsigned long long)worst);
+    }
     if (args.check && !args.full) {
         bool all_same = true;
         for (const FrameRow &r : rows) all_same &= r.diff.identical();
@@ -582,6 +630,8 @@ int scene_main(int argc, char **argv) {
         j.key("volume"), j.value(sv::render::volume_source_name(fast.volume));
         j.key("stencil_saturate"), j.value(fast.stencil_saturate);
         j.key("extrude_to_infinity"), j.value(fast.extrude_to_infinity);
+        j.key("skinned_normals");
+        skinned ? j.value(args.skinned_normals) : j.null();
         j.key("tsc_hz"), j.value(hz);
         j.key("surfaces"), j.value((long long)scene.surfaces.size());
         j.key("triangles"), j.value((long long)scene.triangles());
@@ -607,6 +657,8 @@ int scene_main(int argc, char **argv) {
             j.key("indices_built"), j.value((long long)r.indices_built);
             j.key("indices_drawn"), j.value((long long)r.indices_drawn);
             j.key("full_indices"), r.compared ? j.value((long long)r.full_indices) : j.null();
+            if (skinned)
+                j.key("skinned_pixels_differ"), j.value((unsigned long long)r.skinned_differ);
             j.key("ticks");
             j.begin_object(true);
             j.key("skinning"), j.value((unsigned long long)r.pose.ticks_skinning);

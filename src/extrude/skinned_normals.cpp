@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 
 #include "extrude_internal.h"
 #include "shadowvol_planes.h"
@@ -44,6 +45,18 @@ const char *skinned_normals_name(SkinnedNormals n) {
     case SkinnedNormals::neighbours: return "neighbours";
     }
     return "?";
+}
+
+bool skinned_normals_by_option(const std::string &name, SkinnedNormals &out) {
+    for (SkinnedNormals n : kAllSkinnedNormals) {
+        std::string option = skinned_normals_name(n);
+        std::replace(option.begin(), option.end(), ' ', '-');
+        if (option == name) {
+            out = n;
+            return true;
+        }
+    }
+    return false;
 }
 
 SkinnedFrame skinned_frame(const AnimatedAsset &asset, const AnimatedSurface &s, const Pose &pose) {
@@ -139,6 +152,30 @@ void write_skinned_normals(const AnimatedSurface &s, const SkinnedNormalData &da
                 }
             }
             out[3] = n[0], out[4] = n[1], out[5] = n[2];
+        }
+    }
+}
+
+void write_caster_skinned_normals(const AnimatedSurface &s, const SkinnedNormalData &data,
+                                  const SkinnedFrame &frame, SkinnedNormals normals,
+                                  const PreparedSurface &caster, float *stream) {
+    const int n = s.prepared.num_triangles(), total = caster.num_triangles();
+    if (total < n || (total > n && (int)caster.triangle_source.size() != total)) {
+        throw std::invalid_argument(
+            "write_caster_skinned_normals: the caster is not the surface's or its two-sided one");
+    }
+    write_skinned_normals(s, data, frame, normals, stream);
+    for (int t = n; t < total; t++) {
+        const int src = caster.triangle_source[(std::size_t)t];
+        if (src < 0 || src >= n) {
+            throw std::invalid_argument("write_caster_skinned_normals: a reverse without a source");
+        }
+        /* Corner k of the reverse (c, b, a) is corner 2 - k of its source. */
+        for (int k = 0; k < 3; k++) {
+            const float *from = stream + (3 * (std::size_t)src + (std::size_t)(2 - k)) *
+                                             SV_EXTRUDE_STREAM_FLOATS;
+            float *to = stream + (3 * (std::size_t)t + (std::size_t)k) * SV_EXTRUDE_STREAM_FLOATS;
+            to[3] = -from[3], to[4] = -from[4], to[5] = -from[5];
         }
     }
 }

@@ -33,6 +33,7 @@
 #define SV_EXTRUDE_SKINNED_NORMALS_H
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "shadowvol_anim.h"
@@ -46,6 +47,10 @@ constexpr SkinnedNormals kAllSkinnedNormals[] = {SkinnedNormals::straightforward
                                                  SkinnedNormals::recomputed,
                                                  SkinnedNormals::neighbours};
 const char *skinned_normals_name(SkinnedNormals n);
+/* The command line's word for each ("straightforward", "face-weights",
+ * "recomputed", "neighbours": the name, '-' for ' '); false for any other
+ * NAME. */
+bool skinned_normals_by_option(const std::string &name, SkinnedNormals &out);
 
 /* A skinned surface posed: its joint matrices (joint_matrices(), identity
  * root) and skinned positions (sv_skin_c_ref), and its rest face normals
@@ -80,6 +85,17 @@ void write_skinned_normals(const AnimatedSurface &s, const SkinnedNormalData &da
                            const SkinnedFrame &frame, SkinnedNormals normals, float *stream);
 void write_skinned_normals(const AnimatedSurface &s, const SkinnedFrame &frame,
                            SkinnedNormals normals, float *stream);
+
+/* The same for the shadow mesh of CASTER: S itself, or its two-sided
+ * caster (two_sided_caster: S's triangles, then the reverse (c, b, a) of
+ * each triangle (a, b, c) of a shell under the general rule, its source
+ * in triangle_source): S's faces as above, each reverse's vertex the
+ * negated normal of its source's corner (corner k of the reverse is
+ * corner 2 - k of the source). Throws std::invalid_argument when CASTER
+ * is neither. */
+void write_caster_skinned_normals(const AnimatedSurface &s, const SkinnedNormalData &data,
+                                  const SkinnedFrame &frame, SkinnedNormals normals,
+                                  const PreparedSurface &caster, float *stream);
 
 /* The neighbour fix's stream: per vertex of the shadow mesh, the three
  * corners of its face in the face's order (9 floats: its own position and

@@ -112,9 +112,10 @@ void use_extruded_volumes(const Scene &scene, const RenderOptions &opt,
          * wrong of a spot light's 160x120 frame). */
         const CasterRule rule = surface_caster_rule(opt.caster_rule, false);
         two_sided[(std::size_t)si] = two_sided_caster(s.prepared, find_shells(s.prepared), rule);
-        meshes[(std::size_t)si] = build_shadow_mesh(
-            two_sided[(std::size_t)si] ? *two_sided[(std::size_t)si] : s.prepared);
-        if (opt.shadow_mesh_hook) opt.shadow_mesh_hook(si, meshes[(std::size_t)si]);
+        const PreparedSurface &caster = two_sided[(std::size_t)si] ? *two_sided[(std::size_t)si]
+                                                                   : s.prepared;
+        meshes[(std::size_t)si] = build_shadow_mesh(caster);
+        if (opt.shadow_mesh_hook) opt.shadow_mesh_hook(si, caster, meshes[(std::size_t)si]);
     });
     const sv_extrude_variant *variant = sv_best_extrude_variant();
     std::vector<Volume> job_volume((std::size_t)num_lights * (std::size_t)num_surfaces);

@@ -170,10 +170,12 @@ struct RenderOptions {
      * with a range. */
     bool extrude_to_infinity = false;
     /* --volume extrude, tests and tools only: called with each surface's
-     * shadow mesh once it is built (before any light's program runs), to
-     * give its vertices other normals (skinned_normals.h: the seed's
-     * skinned artifact). */
-    std::function<void(int surface, ShadowMesh &mesh)> shadow_mesh_hook;
+     * shadow mesh once it is built (before any light's program runs) and
+     * the caster it was built from (the surface, or its two-sided caster
+     * under the caster rule), to give its vertices other normals
+     * (skinned_normals.h: the seed's skinned artifact). */
+    std::function<void(int surface, const PreparedSurface &caster, ShadowMesh &mesh)>
+        shadow_mesh_hook;
     /* --volume extrude, tests and tools only: where set and it returns
      * true, it has written SURFACE's vertex program output (MESH's
      * vertices under LIGHT) in place of the seed's program

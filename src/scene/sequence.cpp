@@ -259,6 +259,22 @@ PoseStats SceneSequence::set_time(double time) {
     return st;
 }
 
+const AnimatedSurface *SceneSequence::animated_surface(int surface) const {
+    if (surface < 0 || surface >= (int)links_.size()) return nullptr;
+    const SurfaceLink &link = links_[(std::size_t)surface];
+    if (link.model < 0) return nullptr;
+    return &models_[(std::size_t)link.model]->asset.surfaces[(std::size_t)link.surface];
+}
+
+std::vector<float> SceneSequence::joint_matrices(int surface) const {
+    const AnimatedSurface *as = animated_surface(surface);
+    if (!as || as->skin < 0) return {};
+    const Model &m = *models_[(std::size_t)links_[(std::size_t)surface].model];
+    std::vector<float> out(16 * m.asset.skins[(std::size_t)as->skin].joints.size());
+    sv::joint_matrices(m.asset, as->skin, m.pose, m.root, out.data());
+    return out;
+}
+
 std::vector<std::string> SceneSequence::describe() const {
     std::vector<std::string> out;
     for (const auto &m : models_) {

@@ -91,6 +91,15 @@ public:
     /* One line per file: what it contributes. */
     std::vector<std::string> describe() const;
 
+    /* Scene surface SURFACE's animated surface (nullptr: the ground, or no
+     * such surface), and, for a skinned one, its joint matrices at the
+     * current time (16 floats a joint, the file's placement included: the
+     * matrices its world positions were skinned with; empty when it has no
+     * skin). For what reads a skin per frame beside the positions: seed
+     * 002's skinned normals (`scene --skinned-normals`, docs/EXTRUSION.md). */
+    const AnimatedSurface *animated_surface(int surface) const;
+    std::vector<float> joint_matrices(int surface) const;
+
 private:
     struct Model;
     struct SurfaceLink {

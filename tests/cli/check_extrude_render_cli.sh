@@ -4,7 +4,8 @@
 # operation (saturating by default, wrap-around when asked) and counts the
 # degenerate quads set-up rejects; the JSON names the choice; scene plays
 # the demo scene's first frames with them, equal to the full frames and
-# the truth; bad values exit 2 naming the option.
+# the truth; scene --skinned-normals counts the pixels each way of the
+# seed's Figure 4 costs; bad values exit 2 naming the option.
 # usage: check_extrude_render_cli.sh PATH/TO/shadowvol
 set -u
 sv="$1"
@@ -40,6 +41,38 @@ paper_tri=$(sed -n 's/^volume set-up 0 ([^)]*): \([0-9]*\) triangles.*/\1/p' "$t
   || err "scene --volume extrude exited $?: $(grep -E 'FAIL|truth:' "$tmp/scene.out" | head -3) $(tail -2 "$tmp/scene.err")"
 grep -q '^PASSED' "$tmp/scene.out" || err "scene --volume extrude did not pass"
 
+# --skinned-normals (the seed's Figure 4 on the demo scene's skinned
+# character, one frame): each frame drawn again with the recomputed normals
+# and the shadow pixels that differ counted. Under --caster-rule general the
+# character's shadow mesh is two-sided (each face and its reverse), whose
+# reverses must get their sources' normals negated: the recomputed normals
+# then give 0, and the neighbour fix (its own program) 0; the
+# straightforward normals print their count and the JSON has it per frame.
+run_skinned() { # NAME ARGS...
+  local name=$1; shift
+  "$sv" scene --volume extrude --frames 1 --size 160x120 --threads 2 --no-check --no-truth \
+    --out "$tmp/$name" --json "$tmp/$name.json" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err" \
+    || err "scene $* exited $?: $(tail -2 "$tmp/$name.err")"
+}
+for way in recomputed neighbours; do
+  run_skinned "sk_$way" --caster-rule general --skinned-normals "$way"
+  grep -q "^skinned normals $way: 0 shadow pixels differ from the recomputed normals' where the light reaches, over 1 frame" "$tmp/sk_$way.out" \
+    || err "--skinned-normals $way under --caster-rule general: $(grep '^skinned' "$tmp/sk_$way.out")"
+done
+run_skinned sk_straight --skinned-normals straightforward
+grep -qE "^skinned normals straightforward: [0-9]+ shadow pixels differ" "$tmp/sk_straight.out" \
+  || err "--skinned-normals straightforward: no count"
+if command -v python3 >/dev/null; then
+  python3 - "$tmp/sk_straight.json" <<'PY' || err "--skinned-normals: bad JSON"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["skinned_normals"] == "straightforward", d["skinned_normals"]
+assert [type(f["skinned_pixels_differ"]) for f in d["frames"]] == [int], d["frames"]
+PY
+else
+  err "python3 not found: the JSON cannot be checked (tools/run.sh test installs it)"
+fi
+
 expect() { # STATUS PATTERN ARGS...
   local want=$1 pattern=$2; shift 2
   "$sv" "$@" >"$tmp/x.out" 2>"$tmp/x.err"
@@ -51,4 +84,6 @@ expect 2 "--volume needs silhouette or extrude, not 'both'" render --volume both
 expect 2 "--stencil-op needs saturate or wrap, not 'clamp'" render --stencil-op clamp
 expect 2 "--extrude-to needs range or infinity, not 'far'" scene --extrude-to far
 expect 2 "--volume needs a value" render --volume
+expect 2 "--skinned-normals needs --volume extrude" scene --skinned-normals neighbours
+expect 2 "--skinned-normals needs straightforward, face-weights, recomputed or neighbours, not 'x'" scene --volume extrude --skinned-normals x
 exit $fail

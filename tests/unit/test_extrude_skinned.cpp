@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "images.h"
 #include "model_surfaces.h"
 #include "skinned_normals.h"
+#include "shadowvol_casters.h"
 #include "shadowvol_scene.h"
 #include "test_conditions.h"
 
@@ -158,7 +160,7 @@ render::Frame posed_frame(const AnimatedAsset &asset, bool skinned_only, double 
     o.volume = render::VolumeSource::extrude;
     o.stencil_saturate = true;
     o.caster_rule = CasterRule::closed;
-    o.shadow_mesh_hook = [&](int si, ShadowMesh &m) {
+    o.shadow_mesh_hook = [&](int si, const PreparedSurface &, ShadowMesh &m) {
         if (si >= (int)surfaces.size()) return; /* the ground */
         write_skinned_normals(*surfaces[(std::size_t)si], frames[(std::size_t)si], way,
                               m.stream.data());
@@ -338,6 +340,50 @@ TEST(ExtrudeSkinned, DemoCharacterPixelsAndTheNeighbourFix) {
 } // namespace
 
 namespace {
+
+/* Under the general rule a shadow mesh is built from the two-sided caster
+ * (each triangle, then its reverse): write_caster_skinned_normals gives
+ * the surface's own faces the normals write_skinned_normals does, and
+ * each reverse's corner k its source's corner 2 - k negated, every way;
+ * a caster that is neither the surface nor its two-sided one is refused. */
+TEST(ExtrudeSkinned, TwoSidedCasterGetsItsSourcesNormalsNegated) {
+    const AnimatedAsset asset = load_animated_gltf(SV_DEMO_SCENE);
+    const AnimatedSurface *s = nullptr;
+    for (const AnimatedSurface &as : asset.surfaces)
+        if (as.skin >= 0 && as.influences) s = &as;
+    ASSERT_NE(s, nullptr);
+    const Animation &a = asset.animations.at(0);
+    const SkinnedFrame f = skinned_frame(asset, *s, pose_at(asset, 0, 0.5 * (a.start + a.end)));
+    const PreparedSurface posed = prepared_at(*s, f.positions.data());
+    const auto caster = two_sided_caster(posed, find_shells(posed), CasterRule::general);
+    ASSERT_TRUE(caster);
+    const int n = posed.num_triangles(), total = caster->num_triangles();
+    ASSERT_EQ(total, 2 * n);
+    const SkinnedNormalData d = skinned_normal_data(*s);
+    constexpr std::size_t kF = SV_EXTRUDE_STREAM_FLOATS;
+    for (SkinnedNormals way : {SkinnedNormals::straightforward, SkinnedNormals::face_weights,
+                               SkinnedNormals::recomputed}) {
+        std::vector<float> own(3 * (std::size_t)n * kF, 0.0f);
+        write_skinned_normals(*s, d, f, way, own.data());
+        ShadowMesh m = build_shadow_mesh(*caster);
+        write_caster_skinned_normals(*s, d, f, way, *caster, m.stream.data());
+        int wrong = 0;
+        for (int t = 0; t < total; t++) {
+            const int src = t < n ? t : caster->triangle_source[(std::size_t)t];
+            for (int k = 0; k < 3; k++) {
+                const float *got = &m.stream[(3 * (std::size_t)t + (std::size_t)k) * kF + 3];
+                const float *want =
+                    &own[(3 * (std::size_t)src + (std::size_t)(t < n ? k : 2 - k)) * kF + 3];
+                const float sign = t < n ? 1.0f : -1.0f;
+                for (int c = 0; c < 3; c++) wrong += got[c] != sign * want[c];
+            }
+        }
+        EXPECT_EQ(wrong, 0) << skinned_normals_name(way);
+        EXPECT_THROW(write_caster_skinned_normals(*s, d, f, way, PreparedSurface{},
+                                                  m.stream.data()),
+                     std::invalid_argument);
+    }
+}
 
 /* Without a skin every way is the recomputed normal: the same splits, and
  * the neighbours' none. A box in a ring of lights, one on a face's plane
