@@ -11,10 +11,11 @@
  * generated 224 x 224-quad height field (100,352 triangles) in row order.
  *
  * Rows (ticks per triangle, median of calls, min in the JSON):
- *  1. derive planes, every variant the CPU runs, and by clusters (every
- *     clustered kernel, the clusters built once beforehand: that build's
- *     ticks too); every call's planes compared bit for bit with the C
- *     reference's.
+ *  1. derive planes, every variant the CPU runs, the floor (the same
+ *     arithmetic on corners gathered beforehand: planes_floor.h), and by
+ *     clusters (every clustered kernel, the clusters built once
+ *     beforehand: that build's ticks too); every call's planes compared
+ *     bit for bit with the C reference's.
  *  2. a frame of 1 and of 4 lights (moving: 16 point lights around the
  *     mesh, the next 1 or 4 in each call):
  *       bfg     sv_facing_from_positions per light (each variant);
@@ -38,8 +39,10 @@
 #include <x86intrin.h>
 
 #include "json_writer.h"
+#include "shadowvol_anim.h"
 #include "shadowvol_mesh.h"
 #include "planes_bench.h"
+#include "planes_floor.h"
 #include "seed_bench.h"
 #include "shadowvol_planes.h"
 #include "skin_planes_bench.h"
@@ -161,6 +164,17 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
             [&](int) { return first_plane_diff(planes.data(), refPlanes); });
         res.rows.push_back(r);
     }
+    /* The floor (planes_floor.h): the same arithmetic on corners gathered
+     * beforehand, untimed, so the gap to the kernels is their gather. */
+    if (planes_floor_runs()) {
+        const GatheredCorners gathered = gather_corners(pos, idx, n);
+        if (progress) std::fprintf(progress, "\r%s: the floor        ", m.name.c_str());
+        PlanesRow r{"derive", "floor_avx2", {}};
+        r.t = time_seed_row(
+            timer, [&](int) { planes_from_gathered_avx2(gathered, planes.data()); },
+            [&](int) { return first_plane_diff(planes.data(), refPlanes); });
+        res.rows.push_back(r);
+    }
     /* The clustered kernels (include/shadowvol_planes.h): the clusters are
      * built once per index list, outside the timing (their cost, once, in
      * the "clusters" row: ticks per triangle of one build). */
@@ -211,7 +225,9 @@ void measure(PlanesResult &res, const SeedTimer &timer, uint64_t seed, FILE *pro
                 [&](int i) { return check_facing(i, refBfg); });
             res.rows.push_back(r);
         }
-        const sv_planes_variant *bp = sv_best_planes_variant();
+        /* The planner's planes variant for the mesh's size (the wisdom
+         * file's measured choice, else the static one), as a scene uses. */
+        const sv_planes_variant *bp = sv::deform_plan_for(n).planes;
         const sv_facing_variant *bf = sv_best_facing_variant();
         PlanesRow r{"planes_" + std::to_string(k), std::string(bp->name) + "+" + bf->name, {}};
         r.t = time_seed_row(
@@ -238,6 +254,9 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
     std::fprintf(out,
                  "\nderive planes, ticks per triangle (median; every call bit-identical to "
                  "c_ref, else FAIL)\n"
+                 "  floor_avx2: not a kernel: the same arithmetic on corners gathered "
+                 "beforehand, untimed, into nine arrays (a kernel's time beyond it is its "
+                 "gather; bench/suites/planes_floor.h)\n"
                  "  clusters_*: by clusters of at most %d vertices, built once per index "
                  "list (build: ticks per triangle, once; tri/cl: triangles per cluster)\n",
                  SV_PLANE_CLUSTER_VERTICES);
@@ -261,14 +280,15 @@ void print_tables(FILE *out, const std::vector<PlanesResult> &results) {
     std::fprintf(out,
                  "\nfacing for a frame of 1 and 4 moving lights, ticks per triangle "
                  "(median; every call checked against the C references)\n"
-                 "  bfg:    sv_facing_from_positions per light (variant %s)\n"
-                 "  planes: derive planes once (%s) + sv_calculate_facing per light (%s)\n",
-                 sv_best_planes_variant()->name, sv_best_planes_variant()->name,
+                 "  bfg:    sv_facing_from_positions per light (the variant planned for the "
+                 "mesh's size: sv::deform_plan_for)\n"
+                 "  planes: derive planes once (that variant) + sv_calculate_facing per light "
+                 "(%s)\n",
                  sv_best_facing_variant()->name);
     std::fprintf(out, "%-24s %9s %9s %9s %9s %9s %12s\n", "mesh", "triangles", "bfg 1", "planes 1",
                  "bfg 4", "planes 4", "disagree");
-    const std::string best = sv_best_planes_variant()->name;
     for (const PlanesResult &r : results) {
+        const std::string best = sv::deform_plan_for(r.mesh.triangles).planes->name;
         char dis[48];
         std::snprintf(dis, sizeof dis, "%lld/%lld", r.disagree, r.compared);
         std::fprintf(out, "%-24s %9d %9s %9s %9s %9s %12s\n", r.mesh.name.c_str(), r.mesh.triangles,

@@ -191,21 +191,25 @@ void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>
         }
         return std::string();
     };
-    for (int k : {1, 4}) {
+    for (int k = 1; k <= 4; k++) {
         const std::string n = std::to_string(k);
-        SkinPlanesRow stored{"job_stored_" + n, "plan", {}};
-        stored.t = time_seed_row(
-            timer,
-            [&](int i) {
-                for (auto &s : surfaces) {
-                    for (int j = 0; j < k; j++) {
-                        volume(*s, plan, s->want_planes.data(),
-                               lights[(std::size_t)((k * i + j) % kJobLights)], j, nullptr);
+        /* 2 and 3 lights: derived and BFG's only, for the crossover. */
+        const bool every_way = k == 1 || k == 4;
+        if (every_way) {
+            SkinPlanesRow stored{"job_stored_" + n, "plan", {}};
+            stored.t = time_seed_row(
+                timer,
+                [&](int i) {
+                    for (auto &s : surfaces) {
+                        for (int j = 0; j < k; j++) {
+                            volume(*s, plan, s->want_planes.data(),
+                                   lights[(std::size_t)((k * i + j) % kJobLights)], j, nullptr);
+                        }
                     }
-                }
-            },
-            [&](int i) { return check(i, k, ref_planes); });
-        r.rows.push_back(stored);
+                },
+                [&](int i) { return check(i, k, ref_planes); });
+            r.rows.push_back(stored);
+        }
         SkinPlanesRow derived{"job_derived_" + n, pv->name, {}};
         derived.t = time_seed_row(
             timer,
@@ -223,7 +227,7 @@ void measure_jobs(SkinPlanesResult &r, std::vector<std::unique_ptr<PosedSurface>
             [&](int i) { return check(i, k, ref_planes); });
         r.rows.push_back(derived);
         /* The planes by clusters (the widest clustered kernel here). */
-        if (cv) {
+        if (cv && every_way) {
             SkinPlanesRow clustered{"job_clustered_" + n, std::string("clusters_") + cv->name, {}};
             clustered.t = time_seed_row(
                 timer,
@@ -377,6 +381,7 @@ std::vector<SkinPlanesResult> measure_skin_planes(const SeedTimer &timer, const 
 }
 
 void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results);
+void print_crossover(FILE *out, const std::vector<SkinPlanesResult> &results);
 
 void print_skin_planes(FILE *out, const std::vector<SkinPlanesResult> &results) {
     if (results.empty()) return;
@@ -447,6 +452,53 @@ void print_jobs(FILE *out, const std::vector<SkinPlanesResult> &results) {
                      ticks_cell(row("job_bfg_4"), r.triangles).c_str());
     }
     std::fprintf(out, "  ratio: derived (or clusters) / stored, same run\n");
+    print_crossover(out, results);
+}
+
+/* Where deriving the planes once per frame (then facing from the planes
+ * per light) beats BFG's facing from the positions per light: the ratio
+ * derived / bfg at 1 to 4 lights a frame, and the first light count at
+ * which it drops below 1. By the minimum of each row's calls, not the
+ * median: the crossover is a comparison of two costs, and the minimum is
+ * the one least moved by whatever else the machine runs. */
+void print_crossover(FILE *out, const std::vector<SkinPlanesResult> &results) {
+    std::fprintf(out, "\nlights per frame: the per-light job with planes derived once (the "
+                      "planned variant) against BFG's facing from positions per light, ticks "
+                      "per triangle per frame (minimum of the calls; every volume checked)\n"
+                      "  ratio derived/bfg below 1: deriving the planes once pays; from: the "
+                      "fewest lights a frame from which it does at every count up to 4 "
+                      "(- : not at 4)\n");
+    std::fprintf(out, "%-22s %9s", "character", "triangles");
+    for (int k = 1; k <= 4; k++) std::fprintf(out, "  derived %d   bfg %d  ratio", k, k);
+    std::fprintf(out, "  %4s\n", "from");
+    for (const SkinPlanesResult &r : results) {
+        auto row = [&](const std::string &what) { return find_variant_row(r.rows, what, ""); };
+        auto cell = [&](const SkinPlanesRow *x) {
+            char buf[32] = "-";
+            if (x) {
+                std::snprintf(buf, sizeof buf, "%.2f%s", x->t.min / std::max(1, r.triangles),
+                              x->t.ok ? "" : " FAIL");
+            }
+            return std::string(buf);
+        };
+        std::fprintf(out, "%-22s %9d", r.name.c_str(), r.triangles);
+        int from = 0;
+        for (int k = 1; k <= 4; k++) {
+            const std::string n = std::to_string(k);
+            const SkinPlanesRow *d = row("job_derived_" + n), *b = row("job_bfg_" + n);
+            char ratio[16] = "-";
+            if (d && b && b->t.min > 0) {
+                const double q = d->t.min / b->t.min;
+                std::snprintf(ratio, sizeof ratio, "%.2f", q);
+                if (q >= 1.0)
+                    from = 0;
+                else if (from == 0)
+                    from = k;
+            }
+            std::fprintf(out, "  %9s %5s %6s", cell(d).c_str(), cell(b).c_str(), ratio);
+        }
+        std::fprintf(out, "  %4s\n", from ? std::to_string(from).c_str() : "-");
+    }
 }
 
 void skin_planes_json(JsonWriter &j, const std::vector<SkinPlanesResult> &results) {
