@@ -19,25 +19,12 @@
 # ../shared/models/open, z-pass, 640x512, 5 repeats)
 set -u
 repo=$(cd "$(dirname "$0")/.." && pwd)
-build="$repo/build" mode=zpass size=640x512 repeats=5 models=()
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --mode) mode="$2"; shift 2 ;;
-    --size) size="$2"; shift 2 ;;
-    --repeats) repeats="$2"; shift 2 ;;
-    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
-    *.glb) models+=("$1"); shift ;;
-    *) build="$1"; shift ;;
-  esac
-done
-sv="$build/shadowvol"
+# shellcheck source=tools/table_args.sh
+. "$repo/tools/table_args.sh"
+build="$repo/build" mode=zpass size=640x512 repeats=5
+table_args caster_table 16 "--mode --size --repeats" -- "$@"
 [ -x "$sv" ] || { echo "caster_table: no $sv (build first)" >&2; exit 2; }
-if [ ${#models[@]} -eq 0 ]; then
-  models=("$repo/models/character_1344.glb")
-  for m in "$repo"/../shared/models/*.glb "$repo"/../shared/models/open/*.glb; do
-    [ -f "$m" ] && models+=("$m")
-  done
-fi
+table_default_models
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 
 # One line per (model, light, rule) from a render's JSON: the truth run and

@@ -24,15 +24,10 @@
 # usage: tools/extrude_skinned_table.sh [BUILD_DIR] [--fps F] [--png FILE]   (default 30, no image)
 set -u
 repo=$(cd "$(dirname "$0")/.." && pwd)
+# shellcheck source=tools/table_args.sh
+. "$repo/tools/table_args.sh"
 build="$repo/build" fps=30 png=
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --fps) fps="$2"; shift 2 ;;
-    --png) png="$2"; shift 2 ;;
-    -h|--help) sed -n 2,24p "$0"; exit 0 ;;
-    *) build="$1"; shift ;;
-  esac
-done
+table_args extrude_skinned_table 24 "--fps --png" -- "$@"
 t="$build/tests/shadowvol_extrude_skinned_tests"
 [ -x "$t" ] || { echo "extrude_skinned_table: no $t (build first)" >&2; exit 2; }
 SV_TEST_SHARED_MODELS=1 SV_EXTRUDE_SKINNED_FPS="$fps" SV_EXTRUDE_SKINNED_PNG="$png" "$t" --gtest_filter='*SharedModels*' \

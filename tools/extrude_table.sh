@@ -30,24 +30,12 @@
 # spot:auto, dir:auto)
 set -u
 repo=$(cd "$(dirname "$0")/.." && pwd)
-build="$repo/build" size=640x480 repeats=3 models=()
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --size) size="$2"; shift 2 ;;
-    --repeats) repeats="$2"; shift 2 ;;
-    -h|--help) sed -n 2,30p "$0"; exit 0 ;;
-    *.glb) models+=("$1"); shift ;;
-    *) build="$1"; shift ;;
-  esac
-done
-sv="$build/shadowvol"
+# shellcheck source=tools/table_args.sh
+. "$repo/tools/table_args.sh"
+build="$repo/build" size=640x480 repeats=3
+table_args extrude_table 30 "--size --repeats" -- "$@"
 [ -x "$sv" ] || { echo "extrude_table: no $sv (build first)" >&2; exit 2; }
-if [ ${#models[@]} -eq 0 ]; then
-  models=("$repo/models/character_1344.glb")
-  for m in "$repo"/../shared/models/*.glb "$repo"/../shared/models/open/*.glb; do
-    [ -f "$m" ] && models+=("$m")
-  done
-fi
+table_default_models
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 
 printf '%-20s %-5s %7s | %8s %8s | %8s %8s | %13s %13s | %8s %8s | %9s %9s | %6s %5s\n' \

@@ -131,7 +131,8 @@ void sv_extrude_avx512(const float *stream, int numVertices, const sv_extrude_li
                                                _mm512_set1_epi32(6));
     for (int i = 0; i < numVertices; i += 16) {
         const int left = numVertices - i;
-        const __mmask16 m = left >= 16 ? (__mmask16)0xFFFF : (__mmask16)((1u << left) - 1);
+        /* One conversion of an unsigned (a conditional of two __mmask16 is an int). */
+        const __mmask16 m = (__mmask16)(left >= 16 ? 0xFFFFu : (1u << left) - 1u);
         const float *v = stream + SV_EXTRUDE_STREAM_FLOATS * (ptrdiff_t)i;
         const __m512 px = _mm512_mask_i32gather_ps(zero, m, offsets, v + 0, 4);
         const __m512 py = _mm512_mask_i32gather_ps(zero, m, offsets, v + 1, 4);

@@ -9,7 +9,6 @@
  */
 #include <gtest/gtest.h>
 
-#include <dirent.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +25,7 @@
 #include "frame.h"
 #include "gl_compare.h"
 #include "images.h"
+#include "model_surfaces.h"
 #include "scene_options.h"
 #include "shadowvol_scene.h"
 #include "test_conditions.h"
@@ -73,27 +73,6 @@ void expect_truth_holds(const Scene &scene, const Frame &f, const std::string &w
     }
 }
 
-/* Every .glb of ../shared/models and of its open/ folder (the open and
- * non-manifold characters of issue 27). */
-std::vector<std::string> shared_models() {
-    std::vector<std::string> out;
-    for (const std::string &dir :
-         {svtest::shared_models_dir(), svtest::shared_models_dir() + "/open"}) {
-        DIR *d = opendir(dir.c_str());
-        if (!d) {
-            ADD_FAILURE() << dir << " cannot be read";
-            continue;
-        }
-        while (dirent *e = readdir(d)) {
-            const std::string n = e->d_name;
-            if (n.size() > 4 && n.substr(n.size() - 4) == ".glb") out.push_back(dir + "/" + n);
-        }
-        closedir(d);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 TEST(Render, BundledCharacterMatchesTruthInBothModes) {
     Scene scene = model_on_ground(SV_MODELS_DIR "/character_1344.glb");
     scene.lights = three_lights(scene);
@@ -109,7 +88,9 @@ TEST(Render, BundledCharacterMatchesTruthInBothModes) {
 }
 
 TEST(Render, EverySharedModelsCharacterMatchesTruth) {
-    const std::vector<std::string> models = shared_models();
+    /* Every .glb of ../shared/models and of its open/ folder (the open and
+     * non-manifold characters of issue 27). */
+    const std::vector<std::string> models = svtest::seed_model_paths("SharedModels");
     EXPECT_FALSE(models.empty()) << "no .glb in " << svtest::shared_models_dir();
     for (const std::string &path : models) {
         Scene scene = model_on_ground(path);
