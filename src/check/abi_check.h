@@ -37,8 +37,11 @@ extern "C" {
 /* Calls fn(args[0..7]) with the platform's convention and hostile register
  * contents; sets sv_abi_failed. Returns rax (eax on x86-32). Not reentrant. */
 uintptr_t sv_abi_checked_call(const void *fn, const uintptr_t *args);
-/* Fills sv_abi_flags from CPUID / XGETBV and returns it. */
+/* Fills sv_abi_flags from CPUID / XGETBV (sv_abi_detect_cpu, the
+ * assembly) and returns it; on x86-32 without SV_ABI_HAS_XINUSE: the
+ * dirty-upper check is off there (abi_check.c says why). */
 uint32_t sv_abi_detect(void);
+uint32_t sv_abi_detect_cpu(void);
 
 extern uintptr_t sv_abi_canary[8]; /* callee-saved GPR values */
 extern uintptr_t sv_abi_stack_canary[SV_ABI_STACK_CANARIES];

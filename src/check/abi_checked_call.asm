@@ -49,7 +49,7 @@
 ; Not reentrant: the saved stack pointer and the state are globals (the
 ; tests and `shadowvol check` call from one thread).
 ;
-; uint32_t sv_abi_detect(void): fills sv_abi_flags (bit 0 AVX usable,
+; uint32_t sv_abi_detect_cpu(void): fills sv_abi_flags (bit 0 AVX usable,
 ;   bit 1 XGETBV ecx=1 available, bit 2 SSE2) and returns it. Call once
 ;   before the first checked call (checked_call.h does).
 ;
@@ -105,9 +105,9 @@ section .text
 ; ======================================================================
 default rel
 
-; uint32_t sv_abi_detect(void): rbx is callee-saved everywhere, cpuid
+; uint32_t sv_abi_detect_cpu(void): rbx is callee-saved everywhere, cpuid
 ; writes it.
-GLOBAL_FUNC sv_abi_detect
+GLOBAL_FUNC sv_abi_detect_cpu
         push    rbx
         xor     r8d, r8d                ; flags
         mov     eax, 1
@@ -365,7 +365,7 @@ GLOBAL_FUNC sv_abi_checked_call
 extern _GLOBAL_OFFSET_TABLE_
 %define G(base, x) base + (x) wrt ..gotoff
 
-GLOBAL_FUNC sv_abi_detect
+GLOBAL_FUNC sv_abi_detect_cpu
         push    ebx
         push    esi
         push    edi

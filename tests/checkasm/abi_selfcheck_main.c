@@ -61,7 +61,8 @@ int main(void) {
         expect("dirty ymm", (const void *)sv_abi_selftest_dirty_ymm, SV_ABI_FAIL_YMM_UPPER);
         expect("clean ymm", (const void *)sv_abi_selftest_clean_ymm, 0);
     } else {
-        printf("dirty ymm                    skipped: no AVX or no XGETBV ecx=1\n");
+        printf("dirty ymm                    skipped: no AVX, no XGETBV ecx=1, or x86-32 "
+               "(abi_check.c)\n");
     }
     return failures ? 1 : 0;
 }

@@ -69,8 +69,9 @@ TEST(AbiChecker, CatchesDirtyUpperYmmState) {
     if (!(sv_abi_flags & SV_ABI_HAS_AVX))
         GTEST_SKIP() << "this CPU (or OS) has no AVX: no upper state to leave dirty";
     if (!(sv_abi_flags & SV_ABI_HAS_XINUSE))
-        GTEST_SKIP() << "this CPU has no XGETBV ecx=1 (CPUID.(0Dh,1):EAX bit 2): the "
-                        "dirty-upper check cannot run";
+        GTEST_SKIP() << "the dirty-upper check is off: this CPU has no XGETBV ecx=1 "
+                        "(CPUID.(0Dh,1):EAX bit 2), or this is the x86-32 build (C and SSE2 "
+                        "only; src/check/abi_check.c says why)";
     Rng rng = rng_for("AbiChecker.Ymm");
     const uint32_t m = mask_of(rng, sv_abi_selftest_dirty_ymm);
     EXPECT_EQ(m, SV_ABI_FAIL_YMM_UPPER) << abi_failures(m) << " xinuse " << sv_abi_xinuse_after;
