@@ -399,6 +399,23 @@ void Rasterizer::walk_stencil(const SetupTriangle &tri, const float *depth, uint
                                                                                r);
 }
 
+void Rasterizer::covered_spans(const SetupTriangle &tri, RowBand band,
+                               std::vector<CoveredSpan> &out) {
+    detail::walk_rows(tri, band, [&](const RowSpan &span, int y) {
+        /* walk_rows's span is padded (a pixel or so each side); the
+         * kernels' integer test decides, and so does this one. */
+        auto covered = [&](int x) {
+            const int64_t dx = (int64_t)x - span.x_begin;
+            return span.e[0] + span.step[0] * dx >= 0 && span.e[1] + span.step[1] * dx >= 0 &&
+                   span.e[2] + span.step[2] * dx >= 0;
+        };
+        int lo = span.x_begin, hi = span.x_end - 1;
+        while (lo <= hi && !covered(lo)) lo++;
+        while (hi >= lo && !covered(hi)) hi--;
+        if (lo <= hi) out.push_back({y, lo, hi + 1});
+    });
+}
+
 void Rasterizer::walk_stencil_bounded(const SetupTriangle &tri, const float *depth,
                                       uint8_t *stencil, int width, RowBand band, StencilMode mode,
                                       DepthBounds bounds, RowCounts &r) const {

@@ -227,6 +227,19 @@ public:
     void walk_stencil_saturating(const SetupTriangle &tri, const float *depth, uint8_t *count,
                                  int width, RowBand band, StencilMode mode, DepthBounds bounds,
                                  RowCounts &r) const;
+    /* Pixel centres [x_begin, x_end) of row y. */
+    struct CoveredSpan {
+        int y, x_begin, x_end;
+    };
+    /* The pixel centres of TRI in BAND's rows, by the fill rule alone (no
+     * depth, nothing counted): one span per row that has any, appended to
+     * OUT. They are the pixels every walk tests (the same edge functions,
+     * the same padded span shrunk to the covered centres; a triangle's
+     * centres on a row are one run). For a triangle whose depth test is
+     * known to fail at every pixel (stencil_hier.cpp: the receiver's own
+     * caps in z-fail), its stencil count is its delta on exactly these. */
+    static void covered_spans(const SetupTriangle &tri, RowBand band,
+                              std::vector<CoveredSpan> &out);
     /* Adds a pass's pixel counts R to C (bytes as the draw_* functions
      * count them). */
     static void add_depth_counts(const RowCounts &r, PassCounters &c);

@@ -225,6 +225,8 @@ Frame render_frame(const Scene &scene, const RenderOptions &opt) {
             lf.stencil = std::move(st.stencil);
             lf.stencil_boundary_tiles = std::move(st.boundary_tile_mask);
             lf.stencil_psv_lines = st.psv_lines;
+            lf.stencil_coverage_rows = st.coverage_rows;
+            lf.stencil_coverage_pixels = st.coverage_pixels;
             lf.stencil_counters = st.counters;
             lf.ticks_stencil = st.ticks;
             lf.seconds_stencil = st.seconds;

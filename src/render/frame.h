@@ -255,6 +255,8 @@ struct LightFrame {
     /* --stencil hier: its boundary tiles (StencilPassResult). */
     std::vector<uint8_t> stencil_boundary_tiles;
     uint64_t stencil_psv_lines = 0;
+    /* --stencil hier: the receiver's caps taken by coverage (StencilPassResult). */
+    uint64_t stencil_coverage_rows = 0, stencil_coverage_pixels = 0;
     /* The method that filled this light's stencil (--stencil auto: the
      * one it chose), and the load auto chose by (StencilPassResult). */
     StencilMethod stencil_ran = StencilMethod::brute_force;

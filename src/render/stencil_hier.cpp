@@ -38,6 +38,23 @@
  * crossing the tile between pixel centres is seen too (volume_pieces.h
  * keeps pieces that cover no centre).
  *
+ * The receiver's own caps by coverage (beyond the seed). In z-fail such a
+ * cap's count is its delta at every pixel centre it covers, whatever the
+ * depth, so its pieces need no test at all: each band adds their covered
+ * spans (Rasterizer::covered_spans, the pixels the walks would test) as
+ * differences along its rows and a running sum gives each pixel theirs.
+ * What is left of the volume is classified and walked as above, with the
+ * edges between the receiver's pieces and the others (CAP_SEGMENTS: where
+ * the receiver's triangles do not close among themselves) as open edges:
+ * the tiles they meet are boundary tiles. In any other tile the rest's
+ * count is constant, by the argument above, and the caps' count is exact
+ * per pixel, so the sum is brute force's. A dense mesh in z-fail is mostly
+ * caps (the koala under a point light: 88% of its pieces), and its caps
+ * then cost a few integer operations per row instead of a walk with a
+ * depth read per pixel. Taken only where every triangle of the receiver's
+ * own kept its flag (VolumePieces::caps_by_coverage) and not under
+ * saturation.
+ *
  * The z-pass form (derived here; the seed gives z-fail): a pixel's z-pass
  * count is the deltas of the pieces in front of it, so in a tile no piece
  * crosses, the pieces in front of the whole box count (front faces +1,
@@ -128,7 +145,84 @@ constexpr int kCoarse = 4;
 struct RowTotals {
     raster::RowCounts walked;
     uint64_t pairs = 0, boundary_pairs = 0, boundary_tiles = 0, wholesale_pixels = 0;
-    uint64_t psv_lines = 0;
+    uint64_t psv_lines = 0, coverage_rows = 0, coverage_pixels = 0;
+};
+
+/* The receiver's own caps of a band's rows by coverage: each covered
+ * span adds its delta at its first pixel and takes it back one past its
+ * last, in a row of differences (modulo 256, as the stencil); a running
+ * sum along the row then gives every pixel the sum of the deltas of the
+ * spans over it. */
+class CoverageRows {
+public:
+    /* DIFF, LO, HI: storage kept from band to band (BandScratch). */
+    CoverageRows(int row_begin, int row_end, int width, std::vector<uint8_t> &diff,
+                 std::vector<int> &lo, std::vector<int> &hi)
+        : row_begin_(row_begin), width_(width), diff_(diff), lo_(lo), hi_(hi) {
+        const std::size_t rows = (std::size_t)(row_end - row_begin);
+        diff_.assign(rows * (std::size_t)(width + 1), 0);
+        lo_.assign(rows, width);
+        hi_.assign(rows, -1);
+    }
+    void add(const raster::Rasterizer::CoveredSpan &s, uint8_t delta) {
+        const std::size_t r = (std::size_t)(s.y - row_begin_);
+        uint8_t *d = diff_.data() + r * (std::size_t)(width_ + 1);
+        d[s.x_begin] = (uint8_t)(d[s.x_begin] + delta);
+        d[s.x_end] = (uint8_t)(d[s.x_end] - delta);
+        lo_[r] = std::min(lo_[r], s.x_begin);
+        hi_[r] = std::max(hi_[r], s.x_end);
+    }
+    /* Adds the sums to STENCIL's rows; returns the pixels it ran over. */
+    uint64_t resolve(uint8_t *stencil) {
+        uint64_t pixels = 0;
+        for (std::size_t r = 0; r < lo_.size(); r++) {
+            if (hi_[r] < 0) continue;
+            uint8_t *d = diff_.data() + r * (std::size_t)(width_ + 1);
+            uint8_t *row = stencil + ((std::size_t)row_begin_ + r) * (std::size_t)width_;
+            uint8_t sum = 0;
+            /* The sum is 0 again at HI (every span has ended by then). */
+            for (int x = lo_[r]; x < hi_[r]; x++) {
+                sum = (uint8_t)(sum + d[x]);
+                d[x] = 0;
+                row[x] = (uint8_t)(row[x] + sum);
+            }
+            d[hi_[r]] = 0;
+            pixels += (uint64_t)(hi_[r] - lo_[r]);
+        }
+        return pixels;
+    }
+
+private:
+    int row_begin_, width_;
+    std::vector<uint8_t> &diff_;
+    std::vector<int> &lo_, &hi_;
+};
+
+/* What one piece needs in one fine row of a band, computed when first
+ * asked for (and kept for stage 2). */
+struct FineRow {
+    bool reached;
+    int first, last;
+    RowExtent extent;
+};
+
+/* The columns its open edges (and, for the receiver's own triangle, its
+ * unclosed edges) may meet in a fine row: stage 1's, per piece. */
+struct FineSegments {
+    bool open_whole, cap_whole;
+    SegmentColumns open, cap;
+};
+
+/* A band's working buffers, kept by each thread from band to band and
+ * frame to frame: a pass over a dense mesh asks for tens of megabytes of
+ * them, and fresh pages cost the kernel more than the pass's own work. */
+struct BandScratch {
+    std::vector<uint8_t> state, count, wholesale, walked, psv_seen, fine_known;
+    std::vector<std::size_t> touched;
+    std::vector<FineRow> fine_rows;
+    std::vector<raster::Rasterizer::CoveredSpan> spans;
+    std::vector<uint8_t> coverage_diff;
+    std::vector<int> coverage_lo, coverage_hi;
 };
 
 /* Tiles per cache line of the seed's PSV buffer (StencilPassResult). */
@@ -181,6 +275,10 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
     const TileGrid coarse = coarser_grid(grid, kCoarse);
     const VolumePieces vp = finish_volume_pieces(in, std::move(setup));
     result.counters = vp.counters;
+    /* Per volume: its receiver's caps taken by coverage. Not under
+     * saturation (its two counts are not one sum of deltas). */
+    std::vector<uint8_t> caps_by_coverage = vp.caps_by_coverage;
+    if (in.saturate) std::fill(caps_by_coverage.begin(), caps_by_coverage.end(), 0);
     /* Pieces binned to bands (a row of coarse tiles) by their extent, in
      * submission order (so a volume's pieces are consecutive in every
      * band). */
@@ -219,11 +317,23 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
          * count. Across volumes: the counts to add wholesale, and whether
          * any volume walked it. */
         const std::size_t n = nx * (std::size_t)band_rows;
-        std::vector<uint8_t> state(n, 0), count(n, 0), wholesale(n, 0), walked(n, 0);
-        std::vector<std::size_t> touched;
+        static thread_local BandScratch scratch;
+        std::vector<uint8_t> &state = scratch.state, &count = scratch.count,
+                             &wholesale = scratch.wholesale, &walked = scratch.walked;
+        state.assign(n, 0);
+        count.assign(n, 0);
+        wholesale.assign(n, 0);
+        walked.assign(n, 0);
+        std::vector<std::size_t> &touched = scratch.touched;
+        touched.clear();
         const std::size_t psv_per_row = (nx + kPsvLineTiles - 1) / kPsvLineTiles;
-        std::vector<uint8_t> psv_seen(psv_per_row * (std::size_t)band_rows, 0);
+        std::vector<uint8_t> &psv_seen = scratch.psv_seen;
+        psv_seen.assign(psv_per_row * (std::size_t)band_rows, 0);
         bool row_boundary[kCoarse] = {};
+        const int band_y0 = grid.y0(ty0), band_y1 = grid.y1(ty1 - 1);
+        CoverageRows coverage(band_y0, band_y1, width, scratch.coverage_diff, scratch.coverage_lo,
+                              scratch.coverage_hi);
+        std::vector<raster::Rasterizer::CoveredSpan> &spans = scratch.spans;
         auto touch = [&](std::size_t t) {
             if (state[t] == 0) {
                 state[t] = 1;
@@ -231,20 +341,12 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                 touched.push_back(t);
             }
         };
-        /* What one piece needs in one fine row of the band, computed when
-         * first asked for. */
-        struct FineRow {
-            bool reached = false, open_whole = false, cap_whole = false;
-            int first = 0, last = 0;
-            RowExtent extent{};
-            SegmentColumns open, cap;
-        };
         /* The rows' data, and whether each was computed (bit 0) and its
          * segments' columns (bit 1): the flags cleared per volume, the data
          * (larger) written only where asked for. */
-        std::vector<FineRow> fine_rows;
-        std::vector<uint8_t> fine_known;
-        constexpr uint8_t kRowKnown = 1, kSegmentsKnown = 2;
+        std::vector<FineRow> &fine_rows = scratch.fine_rows;
+        std::vector<uint8_t> &fine_known = scratch.fine_known;
+        constexpr uint8_t kRowKnown = 1;
         for (std::size_t i = 0; i < bin.size();) {
             const int vol = vp.volume[(std::size_t)bin[i]];
             std::size_t j = i;
@@ -261,6 +363,7 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                 const bool receiver = vp.receiver[(std::size_t)q] != 0;
                 const uint8_t open = vp.open[(std::size_t)q];
                 const uint8_t delta = vp.delta[(std::size_t)q];
+                const bool by_coverage = receiver && caps_by_coverage[(std::size_t)vol];
                 FineRow *fine = &fine_rows[(k - i) * (std::size_t)kCoarse];
                 uint8_t *known = &fine_known[(k - i) * (std::size_t)kCoarse];
                 auto fine_row = [&](int r) -> const FineRow & {
@@ -273,10 +376,12 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                     return f;
                 };
                 /* ... and the columns its segments may meet there. */
-                auto fine_segments = [&](int r) {
-                    FineRow &f = fine[r];
-                    if (known[r] & kSegmentsKnown) return;
-                    known[r] |= kSegmentsKnown;
+                FineSegments segments[kCoarse];
+                unsigned segments_known = 0;
+                auto fine_segments = [&](int r) -> const FineSegments & {
+                    FineSegments &f = segments[r];
+                    if (segments_known >> r & 1) return f;
+                    segments_known |= 1u << r;
                     f.open.n = 0;
                     f.cap.n = 0;
                     f.cap_whole = false;
@@ -292,16 +397,17 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                                                  vp.cap_first[(std::size_t)q + 1], grid,
                                                  grid.y0(ty), grid.y1(ty));
                     }
+                    return f;
                 };
                 /* One fine tile: the seed's stage 1 test. */
-                auto classify_fine = [&](int r, int tx, const FineRow &f) {
+                auto classify_fine = [&](int r, int tx, const FineRow &f, const FineSegments &sg) {
                     const std::size_t t = (std::size_t)r * nx + (std::size_t)tx;
                     if (state[t] == 2) return;
                     TileSide side = TileSide::behind;
                     if (!receiver) {
                         side = classify_in_row(p, e, grid, tx, ty0 + r, f.extent, in.faults);
                         if (side == TileSide::misses) return;
-                    } else if (f.cap_whole || f.cap.meet(tx)) {
+                    } else if (sg.cap_whole || sg.cap.meet(tx)) {
                         /* The receiver's own triangle fails its test at every
                          * pixel it covers: "behind" in every tile, except
                          * where an edge at which the receiver's triangles do
@@ -315,7 +421,7 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                         return;
                     }
                     if ((side == TileSide::behind) != zfail) return; /* does not count */
-                    if (in.saturate || f.open_whole || f.open.meet(tx)) {
+                    if (in.saturate || sg.open_whole || sg.open.meet(tx)) {
                         state[t] = 2;
                         return;
                     }
@@ -323,6 +429,37 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                     tile_sample(grid, tx, ty0 + r, in.faults, sx, sy);
                     if (covers_pixel(p, sx, sy)) count[t] = (uint8_t)(count[t] + delta);
                 };
+                if (by_coverage) {
+                    /* Its count is its delta wherever it covers a pixel
+                     * centre (its test fails at each): the band's rows
+                     * take it by coverage, and stage 2 never walks it. The
+                     * edges where the receiver's pieces meet the others
+                     * are open edges of what is left of the volume: the
+                     * tiles they meet are boundary tiles. */
+                    spans.clear();
+                    raster::Rasterizer::covered_spans(p, {band_y0, band_y1}, spans);
+                    for (raster::Rasterizer::CoveredSpan &sp : spans) {
+                        if (in.faults.cap_spans_short && sp.x_end - sp.x_begin > 1) sp.x_end--;
+                        coverage.add(sp, delta);
+                    }
+                    tot.coverage_rows += spans.size();
+                    if (vp.cap_first[(std::size_t)q] == vp.cap_first[(std::size_t)q + 1] ||
+                        in.faults.cap_edges_not_boundary) {
+                        continue;
+                    }
+                    for (int r = 0; r < band_rows; r++) {
+                        const FineRow &f = fine_row(r);
+                        if (!f.reached) continue;
+                        const FineSegments &sg = fine_segments(r);
+                        for (int tx = f.first; tx <= f.last; tx++) {
+                            if (!sg.cap_whole && !sg.cap.meet(tx)) continue;
+                            const std::size_t t = (std::size_t)r * nx + (std::size_t)tx;
+                            touch(t);
+                            state[t] = 2;
+                        }
+                    }
+                    continue;
+                }
                 int cfirst = 0, clast = 0;
                 RowExtent cextent{};
                 if (!piece_columns_in_row(edges[(std::size_t)q], coarse, coarse.y0(cy),
@@ -378,10 +515,10 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                     for (int r = 0; r < band_rows; r++) {
                         const FineRow &f = fine_row(r);
                         if (!f.reached) continue;
-                        fine_segments(r);
+                        const FineSegments &sg = fine_segments(r);
                         for (int tx = std::max(f.first, tx_lo); tx <= std::min(f.last, tx_hi);
                              tx++) {
-                            classify_fine(r, tx, f);
+                            classify_fine(r, tx, f, sg);
                         }
                     }
                 }
@@ -420,6 +557,8 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                     /* The receiver's own triangle fails everywhere: nothing to
                      * walk in z-pass. */
                     if (receiver && !zfail) continue;
+                    /* ... and in z-fail it is taken by coverage. */
+                    if (receiver && caps_by_coverage[(std::size_t)vol]) continue;
                     const std::size_t fr = (k - i) * (std::size_t)kCoarse + (std::size_t)r;
                     FineRow &f = fine_rows[fr];
                     if (!(fine_known[fr] & kRowKnown)) {
@@ -485,6 +624,7 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                 tot.wholesale_pixels += (uint64_t)(X1 - X0) * (uint64_t)(Y1 - Y0);
             }
         }
+        tot.coverage_pixels += coverage.resolve(result.stencil.data());
     });
     if (sat) sat->resolve(result.stencil);
     for (const RowTotals &t : totals) {
@@ -496,6 +636,11 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
         result.boundary_pairs += t.boundary_pairs;
         result.boundary_tiles += t.boundary_tiles;
         result.psv_lines += t.psv_lines;
+        result.coverage_rows += t.coverage_rows;
+        result.coverage_pixels += t.coverage_pixels;
+        /* The running sum reads and writes each pixel's stencil once. */
+        result.counters.stencil_bytes_read += t.coverage_pixels;
+        result.counters.stencil_bytes_written += t.coverage_pixels;
     }
     result.tiles = (uint64_t)grid.tiles_x * (uint64_t)grid.tiles_y;
     result.ran = StencilMethod::hierarchical;

@@ -71,6 +71,11 @@ struct StencilRule {
 struct StencilFaults {
     bool tile_box_test_too_tight = false; /* the plane's depth at the tile's centre only */
     bool sample_outside_tile = false;     /* the tile's sample point in the next tile */
+    /* The receiver's caps by coverage (z-fail): the tiles where they meet
+     * the rest of the volume not made boundary tiles; each covered span
+     * one pixel short. */
+    bool cap_edges_not_boundary = false;
+    bool cap_spans_short = false;
 };
 
 /* The hierarchical method's tile side in pixels (4, 8, 16 or 32). The

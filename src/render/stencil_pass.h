@@ -106,6 +106,10 @@ struct StencilPassResult {
      * 2 bits of boundary and first, and the 8-bit count of a 2x2 group of
      * tiles sharing their sample point, section 5) in 64 bytes. */
     uint64_t psv_lines = 0;
+    /* Hierarchical: the receiver's own caps in z-fail, taken by coverage
+     * instead of walked (stencil_hier.cpp): their covered row spans, and
+     * the pixels the running sums over them ran across. */
+    uint64_t coverage_rows = 0, coverage_pixels = 0;
     /* The method that filled the stencil (auto: the one it chose), and the
      * load auto chose by (counted by auto only). */
     StencilMethod ran = StencilMethod::brute_force;

@@ -156,9 +156,11 @@ VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps) 
     VolumePieces vp;
     vp.closed.assign(volumes.size(), 1);
     vp.zfail.resize(volumes.size());
+    vp.caps_by_coverage.assign(volumes.size(), 0);
     vp.first_piece.assign(volumes.size() + 1, 0);
     for (std::size_t vi = 0; vi < volumes.size(); vi++) {
         vp.zfail[vi] = volumes[vi].zfail;
+        vp.caps_by_coverage[vi] = volumes[vi].zfail ? 1 : 0;
         const auto &o = open_tri[vi];
         const auto &nc = near_cut[vi];
         for (std::size_t t = 0; t < o.size(); t++) {
@@ -233,7 +235,8 @@ VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps) 
             vp.open_first.push_back((int)first_segment);
             /* The receiver's own triangle, and its edges that are open among
              * the receiver's triangles (not projectable: not used). */
-            bool receiver = on_receiver[(std::size_t)vi][t] != 0;
+            const bool on_surface = on_receiver[(std::size_t)vi][t] != 0;
+            bool receiver = on_surface;
             const std::size_t first_cap = vp.cap_segments.size();
             const uint8_t cap_edges = receiver ? cap_open[(std::size_t)vi][t] : 0;
             if (cap_edges) {
@@ -248,6 +251,7 @@ VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps) 
                 }
             }
             if (!receiver) vp.cap_segments.resize(first_cap);
+            if (on_surface && !receiver) vp.caps_by_coverage[(std::size_t)vi] = 0;
             vp.receiver.push_back(receiver ? 1 : 0);
             vp.cap_first.push_back((int)first_cap);
         }

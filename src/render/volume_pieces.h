@@ -53,7 +53,14 @@ struct VolumePieces {
     /* Per volume: no open piece, so its count is 0 wherever every one of
      * its triangles passes the depth test, and wherever every one fails. */
     std::vector<uint8_t> closed;
-    std::vector<uint8_t> zfail;    /* per volume */
+    std::vector<uint8_t> zfail; /* per volume */
+    /* Per volume: z-fail, and every triangle of the receiver's own among
+     * its pieces is flagged in RECEIVER (none lost its flag to an edge
+     * that could not be projected), so the edges between those pieces and
+     * the others are all in CAP_SEGMENTS: a method may then take the
+     * receiver's pieces out of the volume and add their counts by
+     * coverage alone (stencil_hier.cpp). */
+    std::vector<uint8_t> caps_by_coverage;
     raster::PassCounters counters; /* triangle counts of the set-up */
 };
 

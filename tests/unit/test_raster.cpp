@@ -462,6 +462,62 @@ SV_TIERED_TEST(Raster, SimdKernelsMatchTheCBitForBit) {
     }
 }
 
+TEST(Raster, CoveredSpansAreThePixelsTheWalksTest) {
+    /* Rasterizer::covered_spans against the walks: random triangles
+     * (slivers, corners on pixel centres and on pixel edges, cut by the
+     * near and side planes), each piece walked in z-fail over a depth of 0
+     * (its test fails everywhere, so the walk counts every centre it
+     * covers) and its spans added with the same delta, in random bands:
+     * the same stencil, and as many pixels as the walk tested. */
+    std::mt19937 rng(2027);
+    std::uniform_real_distribution<double> u(-1.3, 1.3);
+    const int w = 67, h = 45;
+    const Rasterizer r(row_kernels_best());
+    auto on_grid = [&](double v, int side, double offset) {
+        return (std::floor((v + 1) / 2 * side) + offset) / side * 2 - 1;
+    };
+    for (int trial = 0; trial < 400; trial++) {
+        ClipVertex v[3];
+        for (ClipVertex &q : v) {
+            q = {u(rng), u(rng), u(rng) * 1.1, 1.0};
+            const int snap = (int)(rng() % 4); /* 0: free; 1: centres; 2: edges; 3: mixed */
+            if (snap == 1 || snap == 3) q.x = on_grid(q.x, w, 0.5);
+            if (snap == 1 || snap == 2) q.y = on_grid(q.y, h, snap == 1 ? 0.5 : 0.0);
+            if (snap == 2) q.x = on_grid(q.x, w, 0.0);
+        }
+        if (trial % 5 == 0) v[1] = {v[0].x + 2e-3, v[0].y + u(rng), v[0].z, 1.0}; /* a sliver */
+        std::vector<SetupTriangle> pieces;
+        PassCounters pc;
+        r.setup(v, w, h, 0, pc, pieces);
+        const RowBand band{(int)(rng() % 8), h - (int)(rng() % 8)};
+        std::vector<float> depth((std::size_t)w * h + kFrameSlack / sizeof(float), 0.0f);
+        std::vector<uint8_t> walked((std::size_t)w * h, 0), spanned((std::size_t)w * h, 0);
+        RowCounts rc;
+        uint64_t covered = 0;
+        std::vector<Rasterizer::CoveredSpan> spans;
+        for (const SetupTriangle &p : pieces) {
+            r.walk_stencil(p, depth.data(), walked.data(), w, h, band, StencilMode::zfail, rc);
+            spans.clear();
+            Rasterizer::covered_spans(p, band, spans);
+            const uint8_t delta = p.front ? 255 : 1; /* z-fail: back +1, front -1 */
+            for (const Rasterizer::CoveredSpan &sp : spans) {
+                ASSERT_GE(sp.y, band.row_begin);
+                ASSERT_LT(sp.y, band.row_end);
+                ASSERT_GE(sp.x_begin, 0);
+                ASSERT_LE(sp.x_end, w);
+                ASSERT_LT(sp.x_begin, sp.x_end);
+                for (int x = sp.x_begin; x < sp.x_end; x++) {
+                    uint8_t &s = spanned[(std::size_t)sp.y * w + (std::size_t)x];
+                    s = (uint8_t)(s + delta);
+                }
+                covered += (uint64_t)(sp.x_end - sp.x_begin);
+            }
+        }
+        ASSERT_TRUE(walked == spanned) << "trial " << trial;
+        ASSERT_EQ(rc.tested, covered) << "trial " << trial;
+    }
+}
+
 SV_TIERED_TEST(Raster, TriangleWalksMatchTheCInAnyBandAndClamp) {
     /* The triangle walks (row_kernels.h) of every version over random
      * set-up triangles (slivers among them), each walked in bands of 1 to

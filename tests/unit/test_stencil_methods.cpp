@@ -159,6 +159,27 @@ TEST(StencilMethods, EqualBruteForceOnEveryTestSceneModeAndThreadCount) {
     }
 }
 
+/* hier takes the receiver's own caps by coverage in z-fail (the equality
+ * tests hold with it), never in z-pass (no caps) nor under saturation
+ * (its two counts are no sum of deltas). */
+TEST(StencilMethods, HierTakesTheReceiversCapsByCoverageInZfailAlone) {
+    const Scene scene = character_scene();
+    auto rows = [](const Frame &f) {
+        uint64_t n = 0;
+        for (const LightFrame &lf : f.lights) n += lf.stencil_coverage_rows;
+        return n;
+    };
+    const Frame zfail = render_frame(scene, options(kW, kH, StencilMethod::hierarchical,
+                                                    ModeChoice::zfail, 1));
+    EXPECT_GT(rows(zfail), 0u);
+    EXPECT_EQ(rows(render_frame(scene, options(kW, kH, StencilMethod::hierarchical,
+                                               ModeChoice::zpass, 1))),
+              0u);
+    RenderOptions saturating = options(kW, kH, StencilMethod::hierarchical, ModeChoice::zfail, 1);
+    saturating.stencil_saturate = true;
+    EXPECT_EQ(rows(render_frame(scene, saturating)), 0u);
+}
+
 /* Every row kernel this entry's tier runs: hier's per-pixel stage and db
  * leave bf's bytes through it too. */
 SV_TIERED_TEST(StencilMethods, EqualBruteForceWithEveryRowKernel) {
@@ -279,14 +300,21 @@ TEST(StencilMethods, TheEqualityCatchesEachHierTestMadeWrong) {
     struct Fault {
         const char *name;
         void (*apply)(StencilFaults &);
+        bool zfail_only; /* the receiver's caps are drawn in z-fail alone */
     };
     const Fault faults[] = {
-        {"tile box test too tight", [](StencilFaults &f) { f.tile_box_test_too_tight = true; }},
-        {"sample point outside its tile", [](StencilFaults &f) { f.sample_outside_tile = true; }},
+        {"tile box test too tight", [](StencilFaults &f) { f.tile_box_test_too_tight = true; },
+         false},
+        {"sample point outside its tile", [](StencilFaults &f) { f.sample_outside_tile = true; },
+         false},
+        {"caps' edges not boundary", [](StencilFaults &f) { f.cap_edges_not_boundary = true; },
+         true},
+        {"caps' spans a pixel short", [](StencilFaults &f) { f.cap_spans_short = true; }, true},
     };
     for (const Fault &fault : faults) {
         for (StencilMethod m : {StencilMethod::hierarchical, StencilMethod::automatic}) {
             for (ModeChoice mode : {ModeChoice::zpass, ModeChoice::zfail}) {
+                if (fault.zfail_only && mode != ModeChoice::zfail) continue;
                 uint64_t seen = 0;
                 for (const Case &c : kScenes) {
                     const Scene scene = c.make();
