@@ -218,7 +218,7 @@ struct FineSegments {
  * them, and fresh pages cost the kernel more than the pass's own work. */
 struct BandScratch {
     std::vector<uint8_t> state, count, wholesale, walked, psv_seen, fine_known;
-    std::vector<std::size_t> touched;
+    std::vector<std::size_t> touched, walkable;
     std::vector<FineRow> fine_rows;
     std::vector<raster::Rasterizer::CoveredSpan> spans;
     std::vector<uint8_t> coverage_diff;
@@ -356,6 +356,12 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
             if (fine_rows.size() < (j - i) * (std::size_t)kCoarse)
                 fine_rows.resize((j - i) * (std::size_t)kCoarse);
             fine_known.assign((j - i) * (std::size_t)kCoarse, 0);
+            /* The pieces stage 2 may walk (not those taken by coverage,
+             * nor the receiver's in z-pass, which fail everywhere): on a
+             * dense mesh in z-fail a tenth of the volume, scanned once per
+             * boundary row. */
+            std::vector<std::size_t> &walkable = scratch.walkable;
+            walkable.clear();
             for (std::size_t k = i; k < j; k++) {
                 const int q = bin[k];
                 const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
@@ -364,6 +370,7 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                 const uint8_t open = vp.open[(std::size_t)q];
                 const uint8_t delta = vp.delta[(std::size_t)q];
                 const bool by_coverage = receiver && caps_by_coverage[(std::size_t)vol];
+                if (!receiver || (zfail && !by_coverage)) walkable.push_back(k);
                 FineRow *fine = &fine_rows[(k - i) * (std::size_t)kCoarse];
                 uint8_t *known = &fine_known[(k - i) * (std::size_t)kCoarse];
                 auto fine_row = [&](int r) -> const FineRow & {
@@ -546,7 +553,7 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                 row_boundary[r] = false;
                 const int ty = ty0 + r, Y0 = grid.y0(ty), Y1 = grid.y1(ty);
                 const uint8_t *row_state = state.data() + (std::size_t)r * nx;
-                for (std::size_t k = i; k < j; k++) {
+                for (const std::size_t k : walkable) {
                     const int q = bin[k];
                     const raster::SetupTriangle &p = vp.pieces[(std::size_t)q];
                     if (p.x_first > p.x_last || p.y_first > p.y_last || p.y_last < Y0 ||
@@ -554,11 +561,6 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                         continue;
                     }
                     const bool receiver = vp.receiver[(std::size_t)q] != 0;
-                    /* The receiver's own triangle fails everywhere: nothing to
-                     * walk in z-pass. */
-                    if (receiver && !zfail) continue;
-                    /* ... and in z-fail it is taken by coverage. */
-                    if (receiver && caps_by_coverage[(std::size_t)vol]) continue;
                     const std::size_t fr = (k - i) * (std::size_t)kCoarse + (std::size_t)r;
                     FineRow &f = fine_rows[fr];
                     if (!(fine_known[fr] & kRowKnown)) {
