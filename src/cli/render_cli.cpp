@@ -262,6 +262,10 @@ int render_main(int argc, char **argv) {
     opt.kernels = kernels;
     opt.variant = variant;
     opt.threads = args.threads; /* 0: every core; the same bytes at any count */
+    /* Kept from the first drawing to the second (below), as a sequence of
+     * frames keeps it: the second is warm as Mesa's second is. */
+    sv::render::FrameScratch scratch;
+    opt.scratch = &scratch;
     sv::render::Frame frame;
     try {
         frame = sv::render::render_frame(scene, opt);

@@ -61,6 +61,8 @@ StencilPassResult stencil_pass_brute_force(const StencilPassInputs &in) {
         const VolumeChunk &ch = chunks[(std::size_t)c];
         const Volume &vol = volumes[(std::size_t)ch.volume];
         const auto &cv = sv_clip[(std::size_t)ch.volume];
+        /* A piece per triangle, mostly: no copies as the chunk grows. */
+        bt.chunks[(std::size_t)c].reserve((std::size_t)(ch.last - ch.first));
         for (int t = ch.first; t < ch.last; t++) {
             const raster::ClipVertex v[3] = {cv[(std::size_t)vol.indices[3 * (std::size_t)t]],
                                              cv[(std::size_t)vol.indices[3 * (std::size_t)t + 1]],

@@ -78,6 +78,11 @@ PieceSetup set_up_pieces(const StencilPassInputs &in) {
         const Volume &vol = volumes[(std::size_t)ch.volume];
         const auto &cv = sv_clip[(std::size_t)ch.volume];
         PieceSetup::ChunkOut &o = co[(std::size_t)c];
+        /* A piece per triangle, mostly (a clipped one may give more): no
+         * copies as the vectors grow. */
+        o.pieces.reserve((std::size_t)(ch.last - ch.first));
+        o.extents.reserve((std::size_t)(ch.last - ch.first));
+        o.triangle.reserve((std::size_t)(ch.last - ch.first));
         for (int t = ch.first; t < ch.last; t++) {
             const raster::ClipVertex v[3] = {cv[(std::size_t)vol.indices[3 * (std::size_t)t]],
                                              cv[(std::size_t)vol.indices[3 * (std::size_t)t + 1]],
