@@ -602,20 +602,7 @@ void skinned_json(JsonWriter &j, const std::vector<SkinnedResult> &results) {
         j.end_object();
         j.key("neighbours_split_faces");
         j.value(r.neighbourSplits);
-        j.key("rows");
-        j.begin_array();
-        for (const ExtrudeRow &row : r.rows) {
-            j.begin_object(true);
-            seed_json_row(j, row.what.c_str(), row.variant, row.t);
-            j.key("ok");
-            j.value(row.t.ok);
-            if (!row.t.ok) {
-                j.key("failure");
-                j.value(row.t.failure);
-            }
-            j.end_object();
-        }
-        j.end_array();
+        variant_rows_json(j, r.rows);
         j.end_object();
     }
     j.end_array();
@@ -656,20 +643,7 @@ std::string extrude_json(const std::vector<ExtrudeResult> &results,
         j.value(r.rsqrtFlips);
         j.key("rsqrt_compared");
         j.value(r.rsqrtCompared);
-        j.key("rows");
-        j.begin_array();
-        for (const ExtrudeRow &row : r.rows) {
-            j.begin_object(true);
-            seed_json_row(j, row.what.c_str(), row.variant, row.t);
-            j.key("ok");
-            j.value(row.t.ok);
-            if (!row.t.ok) {
-                j.key("failure");
-                j.value(row.t.failure);
-            }
-            j.end_object();
-        }
-        j.end_array();
+        variant_rows_json(j, r.rows);
         j.end_object();
     }
     j.end_array();

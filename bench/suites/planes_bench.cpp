@@ -342,22 +342,7 @@ std::string planes_json(const std::vector<PlanesResult> &results,
         j.value(r.compared);
         j.key("clusters");
         j.value(r.clusters);
-        j.key("rows");
-        j.begin_array();
-        for (const PlanesRow &row : r.rows) {
-            j.begin_object(true);
-            seed_json_row(j, row.what.c_str(), row.variant, row.t);
-            j.key("ok");
-            j.value(row.t.ok);
-            if (!row.t.ok) {
-                j.key("failure");
-                j.value(row.t.failure);
-            }
-            j.key("ticks_per_triangle");
-            j.value(row.t.median / std::max(1, r.mesh.triangles));
-            j.end_object();
-        }
-        j.end_array();
+        variant_rows_json(j, r.rows, std::max(1, r.mesh.triangles));
         j.end_object();
     }
     j.end_array();
@@ -398,6 +383,27 @@ const VariantRow *find_variant_row(const std::vector<VariantRow> &rows, const st
         if (row.what == what && (variant.empty() || row.variant == variant)) return &row;
     }
     return nullptr;
+}
+
+void variant_rows_json(JsonWriter &j, const std::vector<VariantRow> &rows, int per_triangle) {
+    j.key("rows");
+    j.begin_array();
+    for (const VariantRow &row : rows) {
+        j.begin_object(true);
+        seed_json_row(j, row.what.c_str(), row.variant, row.t);
+        j.key("ok");
+        j.value(row.t.ok);
+        if (!row.t.ok) {
+            j.key("failure");
+            j.value(row.t.failure);
+        }
+        if (per_triangle > 0) {
+            j.key("ticks_per_triangle");
+            j.value(row.t.median / per_triangle);
+        }
+        j.end_object();
+    }
+    j.end_array();
 }
 
 std::string ticks_cell(const VariantRow *row, double per) {

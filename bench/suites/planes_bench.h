@@ -37,6 +37,11 @@ const VariantRow *find_variant_row(const std::vector<VariantRow> &rows, const st
 /* The row's median ticks per PER units ("%.2f", " FAIL" when its check
  * failed), or "-" without a row. */
 std::string ticks_cell(const VariantRow *row, double per);
+/* ROWS as the JSON array "rows" (J's key written here): per row its
+ * seed_json_row fields, "ok", "failure" where it failed, and where
+ * PER_TRIANGLE > 0 its median ticks per triangle ("ticks_per_triangle",
+ * over PER_TRIANGLE triangles). */
+void variant_rows_json(JsonWriter &j, const std::vector<VariantRow> &rows, int per_triangle = 0);
 /* A line "FAILED MESH WHAT VARIANT: why" per failed row; returns how many. */
 int print_failed_rows(FILE *out, const std::string &mesh, const std::vector<VariantRow> &rows);
 

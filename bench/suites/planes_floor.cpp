@@ -16,6 +16,8 @@
 
 #include <immintrin.h>
 
+#include "planes_store_avx2.h"
+
 namespace svbench {
 
 GatheredCorners gather_corners(const float *positions, const int *indices, int numTriangles) {
@@ -33,25 +35,6 @@ GatheredCorners gather_corners(const float *positions, const int *indices, int n
 }
 
 bool planes_floor_runs() { return (sv_cpu_isa() & SV_ISA_AVX2) != 0; }
-
-namespace {
-
-/* Plane columns a..d of triangles 0..7 (lane order) -> 8 planes. */
-__attribute__((target("avx2"))) void store_planes8(Plane *out, __m256 a, __m256 b, __m256 c,
-                                                   __m256 d) {
-    const __m256 u0 = _mm256_unpacklo_ps(a, b), u1 = _mm256_unpacklo_ps(c, d);
-    const __m256 u2 = _mm256_unpackhi_ps(a, b), u3 = _mm256_unpackhi_ps(c, d);
-    const __m256 o0 = _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(1, 0, 1, 0));
-    const __m256 o1 = _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(3, 2, 3, 2));
-    const __m256 o2 = _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(1, 0, 1, 0));
-    const __m256 o3 = _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(3, 2, 3, 2));
-    _mm256_storeu_ps(&out[0].a, _mm256_permute2f128_ps(o0, o1, 0x20));
-    _mm256_storeu_ps(&out[2].a, _mm256_permute2f128_ps(o2, o3, 0x20));
-    _mm256_storeu_ps(&out[4].a, _mm256_permute2f128_ps(o0, o1, 0x31));
-    _mm256_storeu_ps(&out[6].a, _mm256_permute2f128_ps(o2, o3, 0x31));
-}
-
-} // namespace
 
 __attribute__((target("avx2"))) void planes_from_gathered_avx2(const GatheredCorners &g,
                                                                Plane *planes) {
@@ -85,10 +68,10 @@ __attribute__((target("avx2"))) void planes_from_gathered_avx2(const GatheredCor
         const __m256 za = _mm256_and_ps(a, ok), zb = _mm256_and_ps(b, ok),
                      zc = _mm256_and_ps(cc, ok), zd = _mm256_and_ps(d, ok);
         if (g.triangles - t >= 8) {
-            store_planes8(planes + t, za, zb, zc, zd);
+            sv_store_planes8_avx2(planes + t, za, zb, zc, zd);
         } else {
             Plane tail[8];
-            store_planes8(tail, za, zb, zc, zd);
+            sv_store_planes8_avx2(tail, za, zb, zc, zd);
             std::memcpy(planes + t, tail, sizeof(Plane) * (std::size_t)(g.triangles - t));
         }
     }

@@ -516,18 +516,7 @@ void skin_planes_json(JsonWriter &j, const std::vector<SkinPlanesResult> &result
         j.value(r.vertices);
         j.key("segments");
         j.value(r.segments);
-        j.key("rows");
-        j.begin_array();
-        for (const SkinPlanesRow &row : r.rows) {
-            j.begin_object(true);
-            seed_json_row(j, row.what.c_str(), row.variant, row.t);
-            j.key("ok");
-            j.value(row.t.ok);
-            j.key("ticks_per_triangle");
-            j.value(row.t.median / std::max(1, r.triangles));
-            j.end_object();
-        }
-        j.end_array();
+        variant_rows_json(j, r.rows, std::max(1, r.triangles));
         j.end_object();
     }
     j.end_array();

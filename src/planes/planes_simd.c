@@ -43,6 +43,7 @@
 
 #include "planes_avx512_normal.h"
 #include "planes_internal.h"
+#include "planes_store_avx2.h"
 #include "../core/mask_bytes.h"
 #include "../core/simd_exit.h"
 
@@ -235,21 +236,6 @@ SV_TARGET_AVX2 static inline void store_planes8_pairs(Plane *out, __m256 a, __m2
     _mm256_storeu_ps(&out[2].a, _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(3, 2, 3, 2)));
     _mm256_storeu_ps(&out[4].a, _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(1, 0, 1, 0)));
     _mm256_storeu_ps(&out[6].a, _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(3, 2, 3, 2)));
-}
-
-/* Plane columns a..d in lane order (0 1 2 3 | 4 5 6 7) -> planes T..T+7. */
-SV_TARGET_AVX2 static inline void store_planes8_split(Plane *out, __m256 a, __m256 b, __m256 c,
-                                                      __m256 d) {
-    const __m256 u0 = _mm256_unpacklo_ps(a, b), u1 = _mm256_unpacklo_ps(c, d);
-    const __m256 u2 = _mm256_unpackhi_ps(a, b), u3 = _mm256_unpackhi_ps(c, d);
-    const __m256 o0 = _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(1, 0, 1, 0));
-    const __m256 o1 = _mm256_shuffle_ps(u0, u1, _MM_SHUFFLE(3, 2, 3, 2));
-    const __m256 o2 = _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(1, 0, 1, 0));
-    const __m256 o3 = _mm256_shuffle_ps(u2, u3, _MM_SHUFFLE(3, 2, 3, 2));
-    _mm256_storeu_ps(&out[0].a, _mm256_permute2f128_ps(o0, o1, 0x20));
-    _mm256_storeu_ps(&out[2].a, _mm256_permute2f128_ps(o2, o3, 0x20));
-    _mm256_storeu_ps(&out[4].a, _mm256_permute2f128_ps(o0, o1, 0x31));
-    _mm256_storeu_ps(&out[6].a, _mm256_permute2f128_ps(o2, o3, 0x31));
 }
 
 /* ---- sv_derive_planes_avx2: blocks of up to 32 steps of 8 triangles -------
@@ -471,7 +457,7 @@ SV_TARGET_AVX2 void sv_derive_planes_avx2_gather(const float *positions, const i
         const int *ix = indices + 3 * t;
         LOAD_TRI8_GATHER(positions, ix);
         PLANES_AVX2(a, b, c, d, ok);
-        store_planes8_split(planes + t, a, b, c, d);
+        sv_store_planes8_avx2(planes + t, a, b, c, d);
         if (ok != 0xFF) {
             for (int l = 0; l < 8; l++)
                 if (!(ok & (1u << l))) planes[t + l] = sv_plane_one(positions, ix + 3 * l);
