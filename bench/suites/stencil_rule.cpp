@@ -219,9 +219,9 @@ int run_stencil_rule_bench(const SeedCommand &cmd) {
                           "each way the minimum of the runs below after a warm-up frame; every "
                           "light's stencils compared (=bf)");
         std::fprintf(out,
-                     "%dx%d, %d thread, tile %d, %d frames of %s and the render table's %zu "
+                     "%dx%d, %d thread, tile %d, %d frame%s of %s and the render table's %zu "
                      "models in z-pass and z-fail, minimum of %d runs\n\n",
-                     o.width, o.height, o.threads, o.tile, o.frames,
+                     o.width, o.height, o.threads, o.tile, o.frames, o.frames == 1 ? "" : "s",
                      cmd.scenePreset.empty() ? "simple, knights, demo" : cmd.scenePreset.c_str(),
                      o.models.size(), o.runs);
         std::vector<StencilRuleSample> samples = sample_stencil_rule(cmd, o);
