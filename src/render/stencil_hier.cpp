@@ -291,7 +291,7 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
     }
     std::vector<PieceEdges> edges;
     edges.reserve(vp.pieces.size());
-    for (const raster::PieceExtent &e : vp.extents) edges.emplace_back(e);
+    for (std::size_t q = 0; q < vp.extents.size(); q++) edges.emplace_back(vp.extents[q]);
     std::vector<SegmentLine> open_lines, cap_lines;
     open_lines.reserve(vp.open_segments.size());
     for (const VolumePieces::Segment &sg : vp.open_segments)

@@ -179,6 +179,9 @@ VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps) 
     vp.volume.reserve(total);
     vp.delta.reserve(total);
     vp.open.reserve(total);
+    vp.receiver.reserve(total);
+    vp.open_first.reserve(total + 1);
+    vp.cap_first.reserve(total + 1);
     for (std::size_t c = 0; c < chunks.size(); c++) {
         const int vi = chunks[c].volume;
         const PieceSetup::ChunkOut &o = co[c];
@@ -264,6 +267,13 @@ VolumePieces finish_volume_pieces(const StencilPassInputs &in, PieceSetup &&ps) 
     }
     vp.open_first.push_back((int)vp.open_segments.size());
     vp.cap_first.push_back((int)vp.cap_segments.size());
+    /* The records stay where they are (moving a vector keeps its buffer). */
+    vp.piece_chunks.reserve(ps.chunk_out.size());
+    vp.extent_chunks.reserve(ps.chunk_out.size());
+    for (PieceSetup::ChunkOut &o : ps.chunk_out) {
+        vp.piece_chunks.push_back(std::move(o.pieces));
+        vp.extent_chunks.push_back(std::move(o.extents));
+    }
     /* Volumes with no chunk (no drawn triangle) start where the last ended. */
     for (std::size_t vi = 1; vi <= volumes.size(); vi++) {
         vp.first_piece[vi] = std::max(vp.first_piece[vi], vp.first_piece[vi - 1]);

@@ -21,11 +21,34 @@ namespace sv::render::detail {
 
 constexpr uint8_t kOpenWhole = 8;
 
+/* The set-up's records of the pieces, left where the set-up wrote them
+ * (PieceSetup::ChunkOut, kept by VolumePieces) and reached through a
+ * pointer each: gathering them in one array copied 224 bytes a piece, and
+ * faulted in fresh pages for them, on every pass. */
+template <class T> class PieceRecords {
+public:
+    const T &operator[](std::size_t q) const { return *at_[q]; }
+    std::size_t size() const { return at_.size(); }
+    void reserve(std::size_t n) { at_.reserve(n); }
+    void push_back(const T &record) { at_.push_back(&record); }
+
+private:
+    std::vector<const T *> at_;
+};
+
+struct PieceSetup;
+
 struct VolumePieces {
+    VolumePieces() = default;
+    VolumePieces(VolumePieces &&) = default;
+    VolumePieces &operator=(VolumePieces &&) = default;
+    /* A copy's records would point into the original's chunks. */
+    VolumePieces(const VolumePieces &) = delete;
+    VolumePieces &operator=(const VolumePieces &) = delete;
     /* In submission order (volume by volume, triangle by triangle), pieces
      * that cover no pixel centre included (empty pixel bounds). */
-    std::vector<raster::SetupTriangle> pieces;
-    std::vector<raster::PieceExtent> extents;
+    PieceRecords<raster::SetupTriangle> pieces;
+    PieceRecords<raster::PieceExtent> extents;
     std::vector<int> volume;    /* per piece */
     std::vector<uint8_t> delta; /* per piece: 1 or 255, by facing and the volume's mode */
     /* Per piece: 1 where its triangle has an open edge or the near plane
@@ -62,6 +85,9 @@ struct VolumePieces {
      * coverage alone (stencil_hier.cpp). */
     std::vector<uint8_t> caps_by_coverage;
     raster::PassCounters counters; /* triangle counts of the set-up */
+    /* Where PIECES and EXTENTS point: the set-up's chunks, moved here. */
+    std::vector<std::vector<raster::SetupTriangle>> piece_chunks;
+    std::vector<std::vector<raster::PieceExtent>> extent_chunks;
 };
 
 /* The first half of the set-up, what brute force's set-up does too (so
