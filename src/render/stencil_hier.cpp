@@ -155,12 +155,16 @@ struct RowTotals {
  * spans over it. */
 class CoverageRows {
 public:
-    /* DIFF, LO, HI: storage kept from band to band (BandScratch). */
+    /* DIFF, LO, HI: storage kept from band to band (BandScratch). DIFF
+     * is all zeros between bands (resolve clears what add wrote), so it is
+     * only grown here, not cleared: most bands of most passes add nothing. */
     CoverageRows(int row_begin, int row_end, int width, std::vector<uint8_t> &diff,
                  std::vector<int> &lo, std::vector<int> &hi)
         : row_begin_(row_begin), width_(width), diff_(diff), lo_(lo), hi_(hi) {
         const std::size_t rows = (std::size_t)(row_end - row_begin);
-        diff_.assign(rows * (std::size_t)(width + 1), 0);
+        if (diff_.size() < rows * (std::size_t)(width + 1)) {
+            diff_.resize(rows * (std::size_t)(width + 1), 0);
+        }
         lo_.assign(rows, width);
         hi_.assign(rows, -1);
     }
@@ -180,7 +184,8 @@ public:
             uint8_t *d = diff_.data() + r * (std::size_t)(width_ + 1);
             uint8_t *row = stencil + ((std::size_t)row_begin_ + r) * (std::size_t)width_;
             uint8_t sum = 0;
-            /* The sum is 0 again at HI (every span has ended by then). */
+            /* The sum is 0 again at HI (every span has ended by then); every
+             * entry ADD wrote, [lo, hi], is cleared. */
             for (int x = lo_[r]; x < hi_[r]; x++) {
                 sum = (uint8_t)(sum + d[x]);
                 d[x] = 0;
@@ -275,10 +280,9 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
     const TileGrid coarse = coarser_grid(grid, kCoarse);
     const VolumePieces vp = finish_volume_pieces(in, std::move(setup));
     result.counters = vp.counters;
-    /* Per volume: its receiver's caps taken by coverage. Not under
-     * saturation (its two counts are not one sum of deltas). */
-    std::vector<uint8_t> caps_by_coverage = vp.caps_by_coverage;
-    if (in.saturate) std::fill(caps_by_coverage.begin(), caps_by_coverage.end(), 0);
+    /* The receiver's caps are taken by coverage where VolumePieces allows
+     * it, not under saturation (two counts, not one sum of deltas). */
+    const bool coverage_allowed = !in.saturate;
     /* Pieces binned to bands (a row of coarse tiles) by their extent, in
      * submission order (so a volume's pieces are consecutive in every
      * band). */
@@ -369,7 +373,8 @@ void detail::hierarchical_stencil(const StencilPassInputs &in, PieceSetup &&setu
                 const bool receiver = vp.receiver[(std::size_t)q] != 0;
                 const uint8_t open = vp.open[(std::size_t)q];
                 const uint8_t delta = vp.delta[(std::size_t)q];
-                const bool by_coverage = receiver && caps_by_coverage[(std::size_t)vol];
+                const bool by_coverage = receiver && coverage_allowed &&
+                                         vp.caps_by_coverage[(std::size_t)vol] != 0;
                 if (!receiver || (zfail && !by_coverage)) walkable.push_back(k);
                 FineRow *fine = &fine_rows[(k - i) * (std::size_t)kCoarse];
                 uint8_t *known = &fine_known[(k - i) * (std::size_t)kCoarse];

@@ -36,8 +36,6 @@ private:
     std::vector<const T *> at_;
 };
 
-struct PieceSetup;
-
 struct VolumePieces {
     VolumePieces() = default;
     VolumePieces(VolumePieces &&) = default;
